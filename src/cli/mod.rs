@@ -1,0 +1,48 @@
+//! Command-line parsing and dispatch.
+
+use clap::{Parser, Subcommand};
+use rasterlab::{Error, Result};
+use std::process::ExitCode;
+
+mod commands;
+
+/// Compare rasterization algorithms: exact back-ends on one shared fragment stage.
+#[derive(Parser, Debug)]
+#[command(name = "rasterlab", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// List every back-end as `NAME KIND DESCRIPTION`, one per line.
+    Backends,
+    /// Print the fragments a back-end emits for a triangle soup, one `x y t` per line.
+    Fragments(commands::FragmentsArgs),
+    /// Render a triangle soup or a built-in scene to a PNG file.
+    Render(commands::RenderArgs),
+    /// Render the bundled scenes with every back-end and check the images are identical.
+    Demo(commands::DemoArgs),
+}
+
+/// Runs the command line; errors are printed to stderr.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result: Result<()> = match cli.command {
+        Command::Backends => commands::backends(),
+        Command::Fragments(args) => commands::fragments(&args),
+        Command::Render(args) => commands::render(&args),
+        Command::Demo(args) => commands::demo(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("rasterlab: error: {e}");
+            match e {
+                Error::Parse { .. } | Error::Io { .. } => ExitCode::from(2),
+                _ => ExitCode::from(1),
+            }
+        }
+    }
+}

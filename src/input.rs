@@ -1,0 +1,179 @@
+//! Plain-text 2D inputs: triangle soups and line sets.
+//!
+//! One primitive per line, coordinates in screen pixels (x right, y down):
+//!
+//! ```text
+//! # a triangle soup: x0 y0 x1 y1 x2 y2
+//! 0 0  5 0  5 5
+//! 0 5  0 0  5 5
+//! ```
+//!
+//! ```text
+//! # a line set: x0 y0 x1 y1
+//! 0 0 7 3
+//! ```
+//!
+//! Blank lines and `#` comments are ignored. A file holds either triangles
+//! or lines. Every coordinate is snapped when read, so NaN, infinities and
+//! coordinates beyond the guard band are reported with the file and line.
+
+use crate::error::{Error, Result};
+use crate::fixed::FixedPoint;
+use std::path::Path;
+
+/// Snapped primitives read from a text file, with their source lines.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shapes {
+    /// A triangle soup.
+    Triangles {
+        /// The snapped triangles, in file order.
+        triangles: Vec<[FixedPoint; 3]>,
+        /// The 1-based line each triangle came from.
+        lines: Vec<usize>,
+    },
+    /// A set of line segments.
+    Lines {
+        /// The snapped segments, in file order.
+        segments: Vec<[FixedPoint; 2]>,
+        /// The 1-based line each segment came from.
+        lines: Vec<usize>,
+    },
+}
+
+impl Shapes {
+    /// Number of primitives.
+    pub fn len(&self) -> usize {
+        match self {
+            Shapes::Triangles { triangles, .. } => triangles.len(),
+            Shapes::Lines { segments, .. } => segments.len(),
+        }
+    }
+
+    /// True when the file held no primitive.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Parses the text of a triangle soup or line set. `path` is used in
+/// error messages only.
+pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
+    let mut triangles = Vec::new();
+    let mut segments = Vec::new();
+    let mut lines = Vec::new();
+    for (index, raw_line) in text.lines().enumerate() {
+        let line_no = index + 1;
+        let content = raw_line.split('#').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        let at = |message: String| Error::Parse {
+            path: path.to_path_buf(),
+            line: Some(line_no),
+            message,
+        };
+        let numbers = content
+            .split_whitespace()
+            .map(|tok| {
+                tok.parse::<f64>()
+                    .map_err(|_| at(format!("`{tok}` is not a number")))
+            })
+            .collect::<Result<Vec<f64>>>()?;
+        let points = numbers
+            .chunks(2)
+            .filter(|c| c.len() == 2)
+            .map(|c| {
+                Ok(FixedPoint {
+                    x: crate::fixed::Fixed::snap_f64(c[0])?,
+                    y: crate::fixed::Fixed::snap_f64(c[1])?,
+                })
+            })
+            .collect::<Result<Vec<FixedPoint>>>()
+            .map_err(|e| e.at_line(path, line_no))?;
+        match numbers.len() {
+            6 if segments.is_empty() => triangles.push([points[0], points[1], points[2]]),
+            4 if triangles.is_empty() => segments.push([points[0], points[1]]),
+            6 | 4 => {
+                return Err(at(
+                    "a file holds either triangles (6 numbers) or lines (4 numbers), not both"
+                        .to_string(),
+                ))
+            }
+            n => {
+                return Err(at(format!(
+                    "expected 6 numbers (x0 y0 x1 y1 x2 y2) or 4 numbers (x0 y0 x1 y1), found {n}"
+                )))
+            }
+        }
+        lines.push(line_no);
+    }
+    Ok(if segments.is_empty() {
+        Shapes::Triangles { triangles, lines }
+    } else {
+        Shapes::Lines { segments, lines }
+    })
+}
+
+/// Reads and parses a triangle soup or line set file.
+pub fn read_shapes(path: &Path) -> Result<Shapes> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, &e))?;
+    parse_shapes(&text, path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Shapes> {
+        parse_shapes(text, Path::new("soup.txt"))
+    }
+
+    #[test]
+    fn comments_and_blank_lines_are_skipped() {
+        let s = parse("# header\n\n0 0 5 0 5 5 # first\n  0 5 0 0 5 5\n").unwrap();
+        match s {
+            Shapes::Triangles { triangles, lines } => {
+                assert_eq!(triangles.len(), 2);
+                assert_eq!(lines, vec![3, 4]);
+            }
+            other => panic!("expected triangles, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn errors_name_the_file_and_line() {
+        let cases = [
+            ("0 0 1 1 2\n", "soup.txt:1: expected 6 numbers"),
+            (
+                "0 0 5 0 5 5\n0 0 x 0 5 5\n",
+                "soup.txt:2: `x` is not a number",
+            ),
+            (
+                "0 0 5 0 5 5\n\n0 0 NaN 0 5 5\n",
+                "soup.txt:3: coordinate NaN is not a finite",
+            ),
+            (
+                "0 0 5 0 inf 5\n",
+                "soup.txt:1: coordinate inf is not a finite",
+            ),
+            (
+                "0 0 5 0 1e9 5\n",
+                "soup.txt:1: coordinate 1000000000 px is outside the guard band",
+            ),
+            ("0 0 5 0 5 5\n0 0 1 1\n", "soup.txt:2: a file holds either"),
+        ];
+        for (text, expected) in cases {
+            let msg = parse(text).unwrap_err().to_string();
+            assert!(
+                msg.starts_with(expected),
+                "{msg:?} should start with {expected:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn line_sets_are_recognised() {
+        let s = parse("0 0 7 3\n1 1 2 9\n").unwrap();
+        assert!(matches!(s, Shapes::Lines { ref segments, .. } if segments.len() == 2));
+    }
+}

@@ -1,0 +1,59 @@
+//! # rasterlab
+//!
+//! Interchangeable rasterizer back-ends, all feeding **one shared fragment
+//! / z-buffer stage**, for teaching, checking and comparing rasterization
+//! algorithms.
+//!
+//! ```text
+//! vertices ──► vertex shader ──► assembly ──► clip ──► divide ──► cull ──► viewport + snap
+//!                                                                               │
+//!        ┌──────────────────────────────────────────────────────────────────────┘
+//!        ▼
+//! a rasterizer back-end (line or triangle, chosen by name at run time)
+//!        │  emits fragments: pixel (x, y) + the exact integer edge values
+//!        ▼
+//! the shared fragment stage: barycentrics ─► depth test ─► fragment shader ─► colour buffer
+//!                                                │
+//!                                       depth buffer (starts at 1.0)
+//! ```
+//!
+//! * [`fixed`]: snapping to 1/256 pixel and the guard band;
+//! * [`edge`]: the course's implicit line equation as exact `i64` edge
+//!   functions, fill rules (top-left, bottom-right, off-screen point,
+//!   inclusive, exclusive) and triangle set-up;
+//! * [`triangle`]: the triangle back-ends, one file each;
+//! * [`fragment`]: fragments, the [`FragmentSink`](fragment::FragmentSink)
+//!   they go into, work counters;
+//! * [`stage`] and [`shader`]: the shared fragment stage and its shaders;
+//! * [`target`]: colour, depth and coverage buffers;
+//! * [`backend`]: the registry of back-ends by name;
+//! * [`input`] and [`scene`]: text inputs and small 2D scenes.
+//!
+//! ```
+//! use rasterlab::{backend, edge::FillRule, scene::Scene2D, shader::Flat};
+//!
+//! // Seed 002's depth-buffer example, drawn by every triangle back-end.
+//! let scene = Scene2D::depth_example(true);
+//! let reference = scene.render(backend::triangle_backends()[0], FillRule::TopLeft, &Flat).unwrap().0;
+//! for b in backend::triangle_backends() {
+//!     let (image, _work) = scene.render(*b, FillRule::TopLeft, &Flat).unwrap();
+//!     assert_eq!(image, reference, "{} differs", b.name());
+//! }
+//! ```
+
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
+
+pub mod backend;
+pub mod edge;
+pub mod error;
+pub mod fixed;
+pub mod fragment;
+pub mod input;
+pub mod scene;
+pub mod shader;
+pub mod stage;
+pub mod target;
+pub mod triangle;
+
+pub use error::{Error, Result};

@@ -1,0 +1,324 @@
+//! The shared fragment stage: every back-end's fragments end here.
+//!
+//! For each fragment the stage does, in this order (seed 002, seed 003):
+//!
+//! 1. **coverage count**: the pixel's count in the coverage buffer goes up
+//!    by one, before any test, so double draws and gaps can be analysed;
+//! 2. **barycentrics** from the exact edge values: `alpha = E0 / area`,
+//!    `beta = E1 / area`, `gamma = E2 / area` with `area = E0 + E1 + E2`
+//!    (exact in integers, so nothing from the back-end but the pixel and its
+//!    edge values is used);
+//! 3. **depth**, interpolated linearly in screen space,
+//!    `z = z0 + beta (z1 - z0) + gamma (z2 - z0)` (a constant depth stays
+//!    exactly constant);
+//! 4. **depth test** against the depth buffer (`less` by default);
+//! 5. **varyings** (colour, UV, normal), perspective-correct by default:
+//!    interpolate `a / w` and `1 / w`, divide per fragment (seed 003); or
+//!    plain linear, to show the difference;
+//! 6. the **fragment shader** computes the colour;
+//! 7. **colour write** (blended by the fragment's coverage for anti-aliased
+//!    lines) and **depth write** when enabled.
+//!
+//! Because every step is a pure function of the fragment's pixel and
+//! integer edge values, back-ends that emit the same fragments in the same
+//! per-pixel order produce bit-identical colour, depth and coverage buffers.
+
+use crate::fixed::FixedPoint;
+use crate::fragment::{FragmentSink, LineFragment, TriangleFragment};
+use crate::target::{DepthState, RenderTarget};
+use glam::{Vec2, Vec3, Vec4};
+
+/// Per-vertex values interpolated across a primitive.
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub struct Varyings {
+    /// Linear RGBA colour in `[0, 1]`.
+    pub color: Vec4,
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Normal (world space), not necessarily unit length after interpolation.
+    pub normal: Vec3,
+}
+
+impl Varyings {
+    /// Varyings holding only a colour.
+    pub fn color(color: Vec4) -> Varyings {
+        Varyings {
+            color,
+            ..Varyings::default()
+        }
+    }
+
+    /// The weighted sum `sum(w[i] * v[i])`.
+    pub fn weighted<const N: usize>(v: &[Varyings; N], w: [f32; N]) -> Varyings {
+        let mut out = Varyings {
+            color: Vec4::ZERO,
+            uv: Vec2::ZERO,
+            normal: Vec3::ZERO,
+        };
+        for (vi, wi) in v.iter().zip(w) {
+            out.color += vi.color * wi;
+            out.uv += vi.uv * wi;
+            out.normal += vi.normal * wi;
+        }
+        out
+    }
+}
+
+/// A vertex as the fragment stage needs it: screen depth, `1 / w` and varyings.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadedVertex {
+    /// Depth in `[0, 1]` after the viewport transform (0 near, 1 far).
+    pub depth: f32,
+    /// `1 / w` of the clip-space position (1 for 2D input).
+    pub inv_w: f32,
+    /// Values to interpolate.
+    pub varyings: Varyings,
+}
+
+impl ShadedVertex {
+    /// A 2D vertex (`w = 1`) with a depth and a colour.
+    pub fn flat(depth: f32, color: Vec4) -> ShadedVertex {
+        ShadedVertex {
+            depth,
+            inv_w: 1.0,
+            varyings: Varyings::color(color),
+        }
+    }
+}
+
+/// A line segment as the fragment stage needs it.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadedLine {
+    /// Snapped start point.
+    pub from: FixedPoint,
+    /// Snapped end point.
+    pub to: FixedPoint,
+    /// Start and end vertex data.
+    pub vertices: [ShadedVertex; 2],
+}
+
+/// How varyings are interpolated across a primitive.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Interpolation {
+    /// Interpolate `a / w` and `1 / w` linearly, divide per fragment.
+    #[default]
+    PerspectiveCorrect,
+    /// Interpolate `a` linearly in screen space (wrong under perspective).
+    Linear,
+}
+
+/// What a fragment shader is given.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct FragmentInput {
+    /// Pixel column.
+    pub x: u32,
+    /// Pixel row.
+    pub y: u32,
+    /// Interpolated depth (already tested).
+    pub depth: f32,
+    /// Interpolated varyings.
+    pub varyings: Varyings,
+    /// The provoking (first) vertex's varyings, for flat shading.
+    pub flat: Varyings,
+    /// Index of the primitive in its draw.
+    pub primitive: u32,
+}
+
+/// Computes a fragment's colour (seed 000, step 5).
+pub trait FragmentShader: Sync {
+    /// The fragment's linear RGBA colour; components are clamped to `[0, 1]`.
+    fn shade(&self, input: &FragmentInput) -> Vec4;
+}
+
+/// Converts a colour in `[0, 1]` to RGBA8 (clamped, rounded).
+#[inline]
+pub fn to_rgba8(c: Vec4) -> [u8; 4] {
+    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    [q(c.x), q(c.y), q(c.z), q(c.w)]
+}
+
+/// Converts RGBA8 to a colour in `[0, 1]`.
+#[inline]
+pub fn from_rgba8(c: [u8; 4]) -> Vec4 {
+    Vec4::new(c[0] as f32, c[1] as f32, c[2] as f32, c[3] as f32) / 255.0
+}
+
+/// The shared fragment stage: a [`FragmentSink`] that depth-tests, shades
+/// and writes fragments into a [`RenderTarget`].
+pub struct FragmentStage<'a> {
+    target: &'a mut RenderTarget,
+    shader: &'a dyn FragmentShader,
+    triangles: &'a [[ShadedVertex; 3]],
+    lines: &'a [ShadedLine],
+    /// Depth comparison and write mask.
+    pub depth: DepthState,
+    /// How varyings are interpolated.
+    pub interpolation: Interpolation,
+    /// Added to every line fragment's depth, so a wireframe drawn over its
+    /// own surface with `less-equal` wins (negative values pull it nearer).
+    pub line_depth_offset: f32,
+}
+
+impl<'a> FragmentStage<'a> {
+    /// A stage writing into `target` with `shader`, default depth state and
+    /// perspective-correct interpolation, and no primitive data yet.
+    pub fn new(target: &'a mut RenderTarget, shader: &'a dyn FragmentShader) -> Self {
+        FragmentStage {
+            target,
+            shader,
+            triangles: &[],
+            lines: &[],
+            depth: DepthState::DEFAULT,
+            interpolation: Interpolation::PerspectiveCorrect,
+            line_depth_offset: 0.0,
+        }
+    }
+
+    /// Vertex data of the triangles, indexed by triangle id.
+    pub fn with_triangles(mut self, triangles: &'a [[ShadedVertex; 3]]) -> Self {
+        self.triangles = triangles;
+        self
+    }
+
+    /// Vertex data of the line segments, indexed by line id.
+    pub fn with_lines(mut self, lines: &'a [ShadedLine]) -> Self {
+        self.lines = lines;
+        self
+    }
+
+    /// Sets the depth state.
+    pub fn with_depth(mut self, depth: DepthState) -> Self {
+        self.depth = depth;
+        self
+    }
+
+    /// Sets the interpolation mode.
+    pub fn with_interpolation(mut self, interpolation: Interpolation) -> Self {
+        self.interpolation = interpolation;
+        self
+    }
+
+    /// The target's width and height.
+    pub fn size(&self) -> (u32, u32) {
+        (self.target.width(), self.target.height())
+    }
+
+    /// Interpolation weights for the varyings from screen-space weights.
+    #[inline]
+    fn varying_weights<const N: usize>(&self, screen: [f32; N], v: &[ShadedVertex; N]) -> [f32; N] {
+        match self.interpolation {
+            Interpolation::Linear => screen,
+            Interpolation::PerspectiveCorrect => {
+                let mut w = [0.0; N];
+                let mut sum = 0.0;
+                for i in 0..N {
+                    w[i] = screen[i] * v[i].inv_w;
+                    sum += w[i];
+                }
+                if sum > 0.0 {
+                    w.map(|wi| wi / sum)
+                } else {
+                    screen
+                }
+            }
+        }
+    }
+
+    /// Depth test, shading and writes shared by triangles and lines.
+    #[inline]
+    fn resolve<const N: usize>(&mut self, s: Sample<N>) {
+        let idx = self.target.index(s.x, s.y);
+        self.target.coverage[idx] = self.target.coverage[idx].saturating_add(1);
+        if !self.depth.test.passes(s.depth, self.target.depth[idx]) {
+            return;
+        }
+        let weights = self.varying_weights(s.screen, &s.vertices);
+        let input = FragmentInput {
+            x: s.x,
+            y: s.y,
+            depth: s.depth,
+            varyings: Varyings::weighted(&s.vertices.map(|v| v.varyings), weights),
+            flat: s.vertices[0].varyings,
+            primitive: s.primitive,
+        };
+        let color = self.shader.shade(&input).clamp(Vec4::ZERO, Vec4::ONE);
+        self.target.color[idx] = if s.coverage >= 1.0 {
+            to_rgba8(color)
+        } else {
+            let dst = from_rgba8(self.target.color[idx]);
+            to_rgba8(color * s.coverage + dst * (1.0 - s.coverage))
+        };
+        if self.depth.write {
+            self.target.depth[idx] = s.depth;
+        }
+    }
+}
+
+/// A fragment after interpolation of its depth, before the depth test.
+struct Sample<const N: usize> {
+    x: u32,
+    y: u32,
+    primitive: u32,
+    depth: f32,
+    /// Screen-space interpolation weights of the N vertices.
+    screen: [f32; N],
+    vertices: [ShadedVertex; N],
+    coverage: f32,
+}
+
+impl FragmentSink for FragmentStage<'_> {
+    fn triangle_fragment(&mut self, f: &TriangleFragment) {
+        let Some(v) = self.triangles.get(f.triangle as usize).copied() else {
+            debug_assert!(false, "no vertex data for triangle {}", f.triangle);
+            return;
+        };
+        let area = (f.edges[0] + f.edges[1] + f.edges[2]) as f64;
+        let beta = f.edges[1] as f64 / area;
+        let gamma = f.edges[2] as f64 / area;
+        let alpha = f.edges[0] as f64 / area;
+        let z0 = f64::from(v[0].depth);
+        let z = (z0 + beta * (f64::from(v[1].depth) - z0) + gamma * (f64::from(v[2].depth) - z0))
+            as f32;
+        let screen = [alpha as f32, beta as f32, gamma as f32];
+        self.resolve(Sample {
+            x: f.x,
+            y: f.y,
+            primitive: f.triangle,
+            depth: z,
+            screen,
+            vertices: v,
+            coverage: 1.0,
+        });
+    }
+
+    fn line_fragment(&mut self, f: &LineFragment) {
+        let Some(line) = self.lines.get(f.line as usize).copied() else {
+            debug_assert!(false, "no vertex data for line {}", f.line);
+            return;
+        };
+        // Parameter of the pixel centre's projection onto the snapped segment.
+        let (ax, ay) = line.from.to_f64();
+        let (bx, by) = line.to.to_f64();
+        let (dx, dy) = (bx - ax, by - ay);
+        let len2 = dx * dx + dy * dy;
+        let (px, py) = (f64::from(f.x) + 0.5, f64::from(f.y) + 0.5);
+        let t = if len2 > 0.0 {
+            (((px - ax) * dx + (py - ay) * dy) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let [v0, v1] = line.vertices;
+        let z0 = f64::from(v0.depth);
+        let z = (z0 + t * (f64::from(v1.depth) - z0)) as f32 + self.line_depth_offset;
+        let screen = [(1.0 - t) as f32, t as f32];
+        self.resolve(Sample {
+            x: f.x,
+            y: f.y,
+            primitive: f.line,
+            depth: z,
+            screen,
+            vertices: line.vertices,
+            coverage: f.coverage,
+        });
+    }
+}

@@ -1,0 +1,253 @@
+//! The render target: colour buffer, depth buffer and coverage-count buffer.
+//!
+//! The **colour buffer** holds one RGBA8 colour per pixel (seed 000). The
+//! **depth buffer** holds one `f32` per pixel and starts at `1.0`, the far
+//! plane (seed 002, seed 003). The **coverage buffer** counts every
+//! fragment that reached a pixel, before the depth test: it is how
+//! rasterlab shows double-drawn pixels (count 2) and gaps (count 0) on
+//! shared edges.
+
+use crate::error::{Error, Result};
+use std::fmt;
+use std::path::Path;
+use std::str::FromStr;
+
+/// The largest allowed width or height of a target, in pixels. Every pixel
+/// centre then lies well inside the guard band.
+pub const MAX_TARGET_SIDE: u32 = 16_384;
+
+/// The comparison a fragment's depth must pass against the stored depth.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DepthTest {
+    /// Never passes.
+    Never,
+    /// `z < stored` (the default; seed 002's test).
+    #[default]
+    Less,
+    /// `z == stored`.
+    Equal,
+    /// `z <= stored`.
+    LessEqual,
+    /// `z > stored`.
+    Greater,
+    /// `z != stored`.
+    NotEqual,
+    /// `z >= stored`.
+    GreaterEqual,
+    /// Always passes (no depth test).
+    Always,
+}
+
+impl DepthTest {
+    /// Every comparison.
+    pub const ALL: [DepthTest; 8] = [
+        DepthTest::Never,
+        DepthTest::Less,
+        DepthTest::Equal,
+        DepthTest::LessEqual,
+        DepthTest::Greater,
+        DepthTest::NotEqual,
+        DepthTest::GreaterEqual,
+        DepthTest::Always,
+    ];
+
+    /// The command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            DepthTest::Never => "never",
+            DepthTest::Less => "less",
+            DepthTest::Equal => "equal",
+            DepthTest::LessEqual => "less-equal",
+            DepthTest::Greater => "greater",
+            DepthTest::NotEqual => "not-equal",
+            DepthTest::GreaterEqual => "greater-equal",
+            DepthTest::Always => "always",
+        }
+    }
+
+    /// Does a fragment at depth `z` pass against the `stored` depth?
+    #[inline]
+    pub fn passes(self, z: f32, stored: f32) -> bool {
+        match self {
+            DepthTest::Never => false,
+            DepthTest::Less => z < stored,
+            DepthTest::Equal => z == stored,
+            DepthTest::LessEqual => z <= stored,
+            DepthTest::Greater => z > stored,
+            DepthTest::NotEqual => z != stored,
+            DepthTest::GreaterEqual => z >= stored,
+            DepthTest::Always => true,
+        }
+    }
+}
+
+impl fmt::Display for DepthTest {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for DepthTest {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        DepthTest::ALL
+            .into_iter()
+            .find(|d| d.name() == s)
+            .ok_or_else(|| Error::UnknownName {
+                what: "depth test",
+                name: s.to_string(),
+                known: DepthTest::ALL.map(DepthTest::name).join(", "),
+            })
+    }
+}
+
+/// Depth-buffer state: which comparison, and whether passing fragments
+/// write their depth.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub struct DepthState {
+    /// The comparison.
+    pub test: DepthTest,
+    /// Whether a passing fragment stores its depth.
+    pub write: bool,
+}
+
+impl DepthState {
+    /// `less` with writes on: seed 002's depth buffer.
+    pub const DEFAULT: DepthState = DepthState {
+        test: DepthTest::Less,
+        write: true,
+    };
+}
+
+impl Default for DepthState {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Colour, depth and coverage buffers of one size.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderTarget {
+    width: u32,
+    height: u32,
+    /// RGBA8 colours, row by row from the top.
+    pub color: Vec<[u8; 4]>,
+    /// Depths, starting at 1.0.
+    pub depth: Vec<f32>,
+    /// Fragments received per pixel (before the depth test), saturating.
+    pub coverage: Vec<u16>,
+}
+
+impl RenderTarget {
+    /// Opaque black: the default clear colour.
+    pub const BLACK: [u8; 4] = [0, 0, 0, 255];
+
+    /// A cleared target: colour opaque black, depth 1.0, coverage 0.
+    ///
+    /// Errors on a zero side or a side over [`MAX_TARGET_SIDE`].
+    pub fn new(width: u32, height: u32) -> Result<RenderTarget> {
+        if width == 0 || height == 0 || width > MAX_TARGET_SIDE || height > MAX_TARGET_SIDE {
+            return Err(Error::InvalidTargetSize {
+                width: width.into(),
+                height: height.into(),
+                max: MAX_TARGET_SIDE,
+            });
+        }
+        let n = width as usize * height as usize;
+        Ok(RenderTarget {
+            width,
+            height,
+            color: vec![Self::BLACK; n],
+            depth: vec![1.0; n],
+            coverage: vec![0; n],
+        })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The buffer index of pixel `(x, y)`.
+    #[inline]
+    pub fn index(&self, x: u32, y: u32) -> usize {
+        y as usize * self.width as usize + x as usize
+    }
+
+    /// Fills the colour buffer.
+    pub fn clear_color(&mut self, color: [u8; 4]) {
+        self.color.fill(color);
+    }
+
+    /// Resets depth to 1.0 and coverage to 0 (colour is kept).
+    pub fn clear_depth_and_coverage(&mut self) {
+        self.depth.fill(1.0);
+        self.coverage.fill(0);
+    }
+
+    /// The colour buffer as an image.
+    pub fn to_image(&self) -> image::RgbaImage {
+        let bytes: Vec<u8> = self.color.iter().flatten().copied().collect();
+        image::RgbaImage::from_raw(self.width, self.height, bytes)
+            .expect("colour buffer holds width * height pixels")
+    }
+
+    /// Writes the colour buffer as a PNG file.
+    pub fn save_png(&self, path: &Path) -> Result<()> {
+        self.to_image().save(path).map_err(|e| Error::Io {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+    }
+
+    /// Pixels whose coverage count is exactly `n`.
+    pub fn pixels_with_coverage(&self, n: u16) -> usize {
+        self.coverage.iter().filter(|&&c| c == n).count()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn zero_and_oversized_targets_are_errors() {
+        assert!(matches!(
+            RenderTarget::new(0, 10),
+            Err(Error::InvalidTargetSize { .. })
+        ));
+        assert!(RenderTarget::new(10, 0).is_err());
+        assert!(RenderTarget::new(MAX_TARGET_SIDE + 1, 1).is_err());
+        let t = RenderTarget::new(3, 2).unwrap();
+        assert_eq!(t.depth, vec![1.0; 6]);
+        assert_eq!(t.to_image().dimensions(), (3, 2));
+    }
+
+    #[test]
+    fn depth_tests_compare_as_named() {
+        use DepthTest::*;
+        let expect = [
+            (Never, [false, false, false]),
+            (Less, [true, false, false]),
+            (Equal, [false, true, false]),
+            (LessEqual, [true, true, false]),
+            (Greater, [false, false, true]),
+            (NotEqual, [true, false, true]),
+            (GreaterEqual, [false, true, true]),
+            (Always, [true, true, true]),
+        ];
+        for (test, results) in expect {
+            assert_eq!(
+                [0.25, 0.5, 0.75].map(|z| test.passes(z, 0.5)),
+                results,
+                "{test}"
+            );
+            assert_eq!(test.name().parse::<DepthTest>().unwrap(), test);
+        }
+    }
+}

@@ -1,0 +1,61 @@
+//! Triangle rasterizer back-ends.
+//!
+//! Each back-end is a unit struct named after its algorithm, behind the
+//! object-safe [`TriangleRasterizer`] trait, so tools and tests loop over
+//! [`crate::backend::triangle_backends`] by name. A back-end only decides
+//! *which* pixels each triangle covers; every one of them applies the same
+//! exact inside test ([`TriangleSetup::inside`]) to the same sample points,
+//! so they all emit the same fragments, and differ only in how many samples
+//! they test and in what order they visit them.
+//!
+//! | back-end | idea | tests per pixel |
+//! |---|---|---|
+//! | [`naive`] | the course pseudocode: every pixel, every triangle | `triangles` |
+//! | [`bbox`] | only pixels in the triangle's bounding box, edge functions evaluated directly | 1 inside the box |
+//! | [`scanline`] | per row, solve exactly where the row enters and leaves the triangle | 0 |
+//! | [`incremental`] | bounding box, edge functions stepped by additions (Pineda) | 1 inside the box |
+//!
+//! Every back-end emits, for each pixel, that pixel's fragments in
+//! ascending triangle order, so the shared stage's depth test resolves ties
+//! the same way whichever back-end ran.
+
+pub mod bbox;
+pub mod incremental;
+pub mod naive;
+pub mod scanline;
+
+use crate::edge::{PixelRect, TriangleSetup};
+use crate::fragment::{FragmentSink, TriangleFragment, WorkCounters};
+
+/// A triangle rasterization algorithm.
+pub trait TriangleRasterizer: Send + Sync {
+    /// Short name used on the command line.
+    fn name(&self) -> &'static str;
+    /// One-line description.
+    fn description(&self) -> &'static str;
+    /// Emits every fragment of `triangles` whose pixel lies in `viewport`,
+    /// and returns the work done.
+    fn rasterize(
+        &self,
+        triangles: &[TriangleSetup],
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+    ) -> WorkCounters;
+}
+
+/// Emits one fragment (pixel indices already inside the viewport).
+#[inline]
+pub(crate) fn emit(
+    sink: &mut dyn FragmentSink,
+    triangle: &TriangleSetup,
+    x: i64,
+    y: i64,
+    edges: [i64; 3],
+) {
+    sink.triangle_fragment(&TriangleFragment {
+        x: x as u32,
+        y: y as u32,
+        triangle: triangle.id,
+        edges,
+    });
+}
