@@ -1,0 +1,168 @@
+//! The command-line contract: `backends`, `fragments` and error handling.
+
+use std::process::{Command, Output};
+
+fn rasterlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn temp_file(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rasterlab-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn backends_lists_name_kind_and_description() {
+    let out = rasterlab(&["backends"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let names: Vec<&str> = text
+        .lines()
+        .map(|l| l.split_whitespace().next().unwrap())
+        .collect();
+    for expected in ["naive", "bbox", "scanline", "incremental"] {
+        assert!(names.contains(&expected), "{expected} missing from {text}");
+    }
+    for line in text.lines() {
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        assert!(fields.len() >= 3, "{line}");
+        assert!(fields[1] == "triangle" || fields[1] == "line", "{line}");
+    }
+}
+
+#[test]
+fn fragments_prints_x_y_t_in_emission_order() {
+    let soup = temp_file("split.txt", "# split square\n0 0 5 0 5 5\n\n0 5 0 0 5 5\n");
+    let out = rasterlab(&[
+        "fragments",
+        "--backend",
+        "bbox",
+        "--size",
+        "5x5",
+        soup.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let rows: Vec<(u32, u32, u32)> = text
+        .lines()
+        .map(|l| {
+            let v: Vec<u32> = l.split(' ').map(|n| n.parse().unwrap()).collect();
+            (v[0], v[1], v[2])
+        })
+        .collect();
+    assert_eq!(rows.len(), 25);
+    assert_eq!(rows.iter().filter(|r| r.2 == 0).count(), 15);
+    // bbox emits triangle 0 row by row, then triangle 1.
+    assert_eq!(rows[0], (0, 0, 0));
+    assert_eq!(rows[15], (0, 1, 1)); // (0, 0) is on the diagonal, which triangle 0 owns
+    let naive = rasterlab(&[
+        "fragments",
+        "--backend",
+        "naive",
+        "--size",
+        "5x5",
+        "--rule",
+        "bottom-right",
+        soup.to_str().unwrap(),
+    ]);
+    assert!(naive.status.success());
+    assert_eq!(String::from_utf8(naive.stdout).unwrap().lines().count(), 25);
+}
+
+#[test]
+fn fragments_clips_to_the_target() {
+    let soup = temp_file("big.txt", "-10 -10 100 -10 -10 100\n");
+    let out = rasterlab(&[
+        "fragments",
+        "--backend",
+        "scanline",
+        "--size",
+        "3x2",
+        soup.to_str().unwrap(),
+    ]);
+    assert_eq!(String::from_utf8(out.stdout).unwrap().lines().count(), 6);
+}
+
+#[test]
+fn malformed_input_names_the_file_and_line_exits_2_and_prints_nothing() {
+    let soup = temp_file("bad.txt", "0 0 5 0 5 5\n# ok so far\n0 0 5 zero 5 5\n");
+    let out = rasterlab(&[
+        "fragments",
+        "--backend",
+        "naive",
+        "--size",
+        "8x8",
+        soup.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("bad.txt:3:") && err.contains("`zero` is not a number"),
+        "{err}"
+    );
+
+    let nan = temp_file("nan.txt", "0 0 5 0 NaN 5\n");
+    let out = rasterlab(&[
+        "fragments",
+        "--backend",
+        "naive",
+        "--size",
+        "8x8",
+        nan.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8(out.stderr)
+        .unwrap()
+        .contains("nan.txt:1:"));
+
+    let out = rasterlab(&[
+        "fragments",
+        "--backend",
+        "naive",
+        "--size",
+        "8x8",
+        "/nonexistent/soup.txt",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8(out.stderr)
+        .unwrap()
+        .contains("/nonexistent/soup.txt"));
+}
+
+#[test]
+fn unknown_backends_rules_and_zero_sizes_fail_cleanly() {
+    let soup = temp_file("ok.txt", "0 0 5 0 5 5\n");
+    for args in [
+        vec!["fragments", "--backend", "zbuffer", "--size", "8x8"],
+        vec!["fragments", "--backend", "naive", "--size", "0x8"],
+        vec![
+            "fragments",
+            "--backend",
+            "naive",
+            "--size",
+            "8x8",
+            "--rule",
+            "diagonal",
+        ],
+    ] {
+        let mut args = args.clone();
+        args.push(soup.to_str().unwrap());
+        let out = rasterlab(&args);
+        assert!(!out.status.success(), "{args:?}");
+        assert!(out.stdout.is_empty());
+        assert!(String::from_utf8(out.stderr)
+            .unwrap()
+            .starts_with("rasterlab: error:"));
+    }
+}

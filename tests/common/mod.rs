@@ -1,0 +1,123 @@
+//! Generators and helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use proptest::prelude::*;
+use rasterlab::edge::{FillRule, PixelRect, TriangleSetup};
+use rasterlab::fixed::FixedPoint;
+use rasterlab::fragment::FragmentList;
+use rasterlab::polygon::Polygon;
+use rasterlab::scene::setup_triangles;
+use rasterlab::triangle::TriangleRasterizer;
+
+/// Side of the square target used by the property tests.
+pub const SIZE: u32 = 40;
+
+/// Grid a coordinate is rounded to: whole pixels and half pixels (pixel
+/// centres) make ties with sample points common, 1/256 is the snapping grid
+/// itself, and `None` leaves arbitrary floats that snapping rounds.
+pub fn quantum() -> impl Strategy<Value = Option<f32>> {
+    prop_oneof![
+        Just(Some(1.0)),
+        Just(Some(0.5)),
+        Just(Some(1.0 / 256.0)),
+        Just(None),
+    ]
+}
+
+pub fn quantize(v: f32, q: Option<f32>) -> f32 {
+    match q {
+        Some(q) => (v / q).round() * q,
+        None => v,
+    }
+}
+
+pub fn snap(x: f32, y: f32) -> FixedPoint {
+    FixedPoint::snap(x, y).expect("test coordinates lie inside the guard band")
+}
+
+/// A point in `[lo, hi)^2`, rounded to `q`.
+pub fn point(lo: f32, hi: f32, q: Option<f32>) -> impl Strategy<Value = FixedPoint> + Clone {
+    (lo..hi, lo..hi).prop_map(move |(x, y)| snap(quantize(x, q), quantize(y, q)))
+}
+
+/// A triangle soup of 1 to `max` triangles around (and partly outside) the target.
+pub fn triangle_soup(max: usize) -> impl Strategy<Value = Vec<[FixedPoint; 3]>> {
+    quantum().prop_flat_map(move |q| {
+        let p = point(-8.0, SIZE as f32 + 8.0, q);
+        proptest::collection::vec([p.clone(), p.clone(), p], 1..=max)
+    })
+}
+
+/// A star-shaped ring around `c`: `n` vertices at jittered, increasing angles.
+fn star_ring(
+    c: (f32, f32),
+    n: usize,
+    radii: (f32, f32),
+    q: Option<f32>,
+) -> impl Strategy<Value = Vec<FixedPoint>> {
+    proptest::collection::vec((0.0f32..0.8, radii.0..radii.1), n).prop_map(move |v| {
+        v.iter()
+            .enumerate()
+            .map(|(i, &(jitter, r))| {
+                let a = (i as f32 + jitter) / n as f32 * std::f32::consts::TAU;
+                snap(
+                    quantize(c.0 + r * a.cos(), q),
+                    quantize(c.1 + r * a.sin(), q),
+                )
+            })
+            .collect()
+    })
+}
+
+/// A random simple polygon, star-shaped, with or without a hole, partly
+/// outside the target at times, with vertices on or off the subpixel grid.
+pub fn polygon() -> impl Strategy<Value = Polygon> {
+    (
+        quantum(),
+        (4.0f32..36.0, 4.0f32..36.0),
+        3usize..=11,
+        proptest::option::of(3usize..=6),
+    )
+        .prop_flat_map(|(q, c, n, hole)| {
+            let outer = star_ring(c, n, (9.0, 24.0), q);
+            let hole = match hole {
+                Some(m) => star_ring(c, m, (2.0, 7.0), q).prop_map(Some).boxed(),
+                None => Just(None).boxed(),
+            };
+            (outer, hole)
+        })
+        .prop_filter_map("snapping made the polygon non-simple", |(outer, hole)| {
+            Polygon::new(outer, hole.into_iter().collect()).ok()
+        })
+}
+
+/// The triangles of a polygon's constrained Delaunay triangulation.
+pub fn triangulation(poly: &Polygon) -> Vec<[FixedPoint; 3]> {
+    poly.triangulate()
+        .expect("a validated simple polygon triangulates")
+}
+
+pub fn viewport() -> PixelRect {
+    PixelRect::of_target(SIZE, SIZE)
+}
+
+/// Every fragment of a back-end, in emission order.
+pub fn fragments(
+    backend: &dyn TriangleRasterizer,
+    triangles: &[[FixedPoint; 3]],
+    rule: FillRule,
+) -> FragmentList {
+    let setups: Vec<TriangleSetup> = setup_triangles(triangles, rule);
+    let mut list = FragmentList::default();
+    backend.rasterize(&setups, viewport(), &mut list);
+    list
+}
+
+/// How many fragments each pixel received.
+pub fn coverage_counts(list: &FragmentList) -> Vec<u32> {
+    let mut counts = vec![0u32; (SIZE * SIZE) as usize];
+    for f in &list.triangles {
+        counts[(f.y * SIZE + f.x) as usize] += 1;
+    }
+    counts
+}

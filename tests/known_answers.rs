@@ -1,0 +1,223 @@
+//! Known answers, checked exactly: rules.md's 15/10 split, each fill rule's
+//! pattern on a triangle with pixel centres on all three edges, and seed
+//! 002's depth-buffer example.
+
+use rasterlab::backend::triangle_backends;
+use rasterlab::edge::FillRule;
+use rasterlab::fixed::FixedPoint;
+use rasterlab::scene::{collect_fragments, setup_triangles, Scene2D, BLUE, RED};
+use rasterlab::shader::Flat;
+use rasterlab::stage::to_rgba8;
+
+fn snap(x: f32, y: f32) -> FixedPoint {
+    FixedPoint::snap(x, y).unwrap()
+}
+
+/// The coverage of a triangle soup as ASCII art: `#` covered once, `.` not,
+/// digits for pixels covered more than once.
+fn pattern(
+    backend_index: usize,
+    tris: &[[FixedPoint; 3]],
+    rule: FillRule,
+    w: u32,
+    h: u32,
+) -> Vec<String> {
+    let setups = setup_triangles(tris, rule);
+    let (list, _) = collect_fragments(triangle_backends()[backend_index], &setups, w, h);
+    let mut counts = vec![0u32; (w * h) as usize];
+    for f in &list.triangles {
+        counts[(f.y * w + f.x) as usize] += 1;
+    }
+    counts
+        .chunks(w as usize)
+        .map(|row| {
+            row.iter()
+                .map(|&n| match n {
+                    0 => '.',
+                    1 => '#',
+                    n => char::from_digit(n, 10).unwrap(),
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn the_split_square_covers_15_and_10_pixels() {
+    let tris = [
+        [snap(0., 0.), snap(5., 0.), snap(5., 5.)],
+        [snap(0., 5.), snap(0., 0.), snap(5., 5.)],
+    ];
+    for backend in triangle_backends() {
+        let (list, _) =
+            collect_fragments(*backend, &setup_triangles(&tris, FillRule::TopLeft), 5, 5);
+        let per_triangle = |t| list.triangles.iter().filter(|f| f.triangle == t).count();
+        assert_eq!(
+            (per_triangle(0), per_triangle(1)),
+            (15, 10),
+            "{}",
+            backend.name()
+        );
+    }
+}
+
+#[test]
+fn each_fill_rule_has_its_pattern_on_a_triangle_with_centres_on_every_edge() {
+    // Top edge y = 0.5, left edge x = 0.5 and the hypotenuse x + y = 7 all
+    // run through pixel centres.
+    let tri = [[snap(0.5, 0.5), snap(6.5, 0.5), snap(0.5, 6.5)]];
+    let expected: [(FillRule, [&str; 7]); 5] = [
+        // Top and left edges own their ties, the hypotenuse (right) does not.
+        (
+            FillRule::TopLeft,
+            [
+                "######.", "#####..", "####...", "###....", "##.....", "#......", ".......",
+            ],
+        ),
+        // The mirror: only the hypotenuse owns its ties.
+        (
+            FillRule::BottomRight,
+            [
+                ".......", ".#####.", ".####..", ".###...", ".##....", ".#.....", ".......",
+            ],
+        ),
+        // The off-screen point (-100000, -70000) is inside the hypotenuse's
+        // half-plane only: the same as bottom-right here.
+        (
+            FillRule::OffscreenPoint,
+            [
+                ".......", ".#####.", ".####..", ".###...", ".##....", ".#.....", ".......",
+            ],
+        ),
+        (
+            FillRule::Inclusive,
+            [
+                "#######", "######.", "#####..", "####...", "###....", "##.....", "#......",
+            ],
+        ),
+        (
+            FillRule::Exclusive,
+            [
+                ".......", ".####..", ".###...", ".##....", ".#.....", ".......", ".......",
+            ],
+        ),
+    ];
+    for (rule, rows) in expected {
+        for b in 0..triangle_backends().len() {
+            assert_eq!(
+                pattern(b, &tri, rule, 7, 7),
+                rows,
+                "{rule} / {}",
+                triangle_backends()[b].name()
+            );
+        }
+    }
+}
+
+#[test]
+fn a_horizontal_shared_edge_goes_to_the_triangle_below_it() {
+    // Two triangles share the edge y = 2.5 through pixel centres; the lower
+    // one has it as its top edge and owns it under top-left.
+    let tris = [
+        [snap(0.5, 2.5), snap(6.5, 2.5), snap(3.5, -0.5)],
+        [snap(6.5, 2.5), snap(0.5, 2.5), snap(3.5, 5.5)],
+    ];
+    let setups = setup_triangles(&tris, FillRule::TopLeft);
+    for backend in triangle_backends() {
+        let (list, _) = collect_fragments(*backend, &setups, 7, 6);
+        let on_edge: Vec<u32> = list
+            .triangles
+            .iter()
+            .filter(|f| f.y == 2)
+            .map(|f| f.triangle)
+            .collect();
+        assert_eq!(on_edge, vec![1; 6], "{}", backend.name());
+    }
+}
+
+/// Seed 002's worked example, as written on the slides.
+const DEPTH_AFTER_BOTH: [&str; 9] = [
+    "1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 1.0 0.8 0.8 0.8 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 1.0 1.0 0.8 0.8 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 0.5 0.5 0.5 0.5 0.5 0.5 0.5 0.5 1.0 1.0 1.0",
+    "1.0 1.0 0.5 0.5 0.5 0.5 0.5 0.5 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 0.5 0.5 0.5 0.5 1.0 0.8 0.8 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 0.5 1.0 1.0 1.0 1.0 1.0 0.8 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+];
+
+/// The slide after the blue triangle alone.
+const DEPTH_AFTER_BLUE: [&str; 9] = [
+    "1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 0.5 0.5 0.5 0.5 0.5 0.5 0.5 0.5 1.0 1.0 1.0",
+    "1.0 1.0 0.5 0.5 0.5 0.5 0.5 0.5 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 0.5 0.5 0.5 0.5 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 0.5 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+    "1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
+];
+
+fn matrix(depth: &[f32]) -> Vec<String> {
+    depth
+        .chunks(14)
+        .map(|row| {
+            row.iter()
+                .map(|z| format!("{z:.1}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect()
+}
+
+#[test]
+fn seed_002_depth_buffer_example_matches_the_slides_in_both_drawing_orders() {
+    for backend in triangle_backends() {
+        let blue_only = Scene2D {
+            triangles: Scene2D::depth_example(true).triangles[..1].to_vec(),
+            vertices: Scene2D::depth_example(true).vertices[..1].to_vec(),
+            ..Scene2D::depth_example(true)
+        };
+        let (after_blue, _) = blue_only
+            .render(*backend, FillRule::TopLeft, &Flat)
+            .unwrap();
+        assert_eq!(
+            matrix(&after_blue.depth),
+            DEPTH_AFTER_BLUE,
+            "{}",
+            backend.name()
+        );
+
+        let (blue_first, _) = Scene2D::depth_example(true)
+            .render(*backend, FillRule::TopLeft, &Flat)
+            .unwrap();
+        let (red_first, _) = Scene2D::depth_example(false)
+            .render(*backend, FillRule::TopLeft, &Flat)
+            .unwrap();
+        assert_eq!(
+            matrix(&blue_first.depth),
+            DEPTH_AFTER_BOTH,
+            "{}",
+            backend.name()
+        );
+        assert_eq!(blue_first.depth, red_first.depth);
+        assert_eq!(blue_first.color, red_first.color);
+        // The colour buffer agrees with the depth buffer cell by cell.
+        for (z, c) in blue_first.depth.iter().zip(&blue_first.color) {
+            let expected = match format!("{z:.1}").as_str() {
+                "0.5" => to_rgba8(BLUE),
+                "0.8" => to_rgba8(RED),
+                _ => [0, 0, 0, 255],
+            };
+            assert_eq!(*c, expected);
+        }
+        // Depth values are exact, not merely close.
+        assert!(blue_first
+            .depth
+            .iter()
+            .all(|&z| z == 0.5 || z == 0.8 || z == 1.0));
+    }
+}
