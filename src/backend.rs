@@ -4,6 +4,9 @@
 //! `NAME KIND DESCRIPTION`.
 
 use crate::error::{Error, Result};
+use crate::line::{
+    bresenham::Bresenham, dda::Dda, diamond::Diamond, direct::Direct, wu::Wu, LineRasterizer,
+};
 use crate::triangle::{
     bbox::BoundingBox, incremental::Incremental, naive::Naive, scanline::Scanline,
     TriangleRasterizer,
@@ -53,25 +56,66 @@ pub fn triangle_backend(name: &str) -> Result<&'static dyn TriangleRasterizer> {
         .iter()
         .copied()
         .find(|b| b.name() == name)
-        .ok_or_else(|| Error::UnknownBackend {
-            name: name.to_string(),
-            kind: "triangle",
-            known: triangle_backends()
-                .iter()
-                .map(|b| b.name())
-                .collect::<Vec<_>>()
-                .join(", "),
-        })
+        .ok_or_else(|| unknown(name, "triangle"))
+}
+
+static LINE_BACKENDS: [&dyn LineRasterizer; 5] = [&Direct, &Dda, &Bresenham, &Wu, &Diamond];
+
+/// Every line back-end.
+pub fn line_backends() -> &'static [&'static dyn LineRasterizer] {
+    &LINE_BACKENDS
+}
+
+/// The line back-end called `name`.
+pub fn line_backend(name: &str) -> Result<&'static dyn LineRasterizer> {
+    line_backends()
+        .iter()
+        .copied()
+        .find(|b| b.name() == name)
+        .ok_or_else(|| unknown(name, "line"))
+}
+
+/// A back-end of either kind.
+#[derive(Copy, Clone)]
+pub enum Backend {
+    /// A triangle back-end.
+    Triangle(&'static dyn TriangleRasterizer),
+    /// A line back-end.
+    Line(&'static dyn LineRasterizer),
+}
+
+/// The back-end of either kind called `name`.
+pub fn backend(name: &str) -> Result<Backend> {
+    triangle_backend(name)
+        .map(Backend::Triangle)
+        .or_else(|_| line_backend(name).map(Backend::Line))
+        .map_err(|_| unknown(name, "rasterizer"))
+}
+
+fn unknown(name: &str, kind: &'static str) -> Error {
+    let names: Vec<&str> = match kind {
+        "triangle" => triangle_backends().iter().map(|b| b.name()).collect(),
+        "line" => line_backends().iter().map(|b| b.name()).collect(),
+        _ => all_backends().iter().map(|b| b.name).collect(),
+    };
+    Error::UnknownBackend {
+        name: name.to_string(),
+        kind,
+        known: names.join(", "),
+    }
 }
 
 /// Every back-end of every kind, triangles first.
 pub fn all_backends() -> Vec<BackendInfo> {
-    triangle_backends()
-        .iter()
-        .map(|b| BackendInfo {
-            name: b.name(),
-            kind: BackendKind::Triangle,
-            description: b.description(),
-        })
-        .collect()
+    let triangles = triangle_backends().iter().map(|b| BackendInfo {
+        name: b.name(),
+        kind: BackendKind::Triangle,
+        description: b.description(),
+    });
+    let lines = line_backends().iter().map(|b| BackendInfo {
+        name: b.name(),
+        kind: BackendKind::Line,
+        description: b.description(),
+    });
+    triangles.chain(lines).collect()
 }

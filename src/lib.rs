@@ -50,6 +50,7 @@ pub mod error;
 pub mod fixed;
 pub mod fragment;
 pub mod input;
+pub mod line;
 pub mod polygon;
 pub mod scene;
 pub mod shader;

@@ -1,10 +1,13 @@
 //! One function per subcommand.
 
 use clap::Args;
-use rasterlab::backend::{all_backends, triangle_backend, triangle_backends};
+use rasterlab::backend::{all_backends, backend, triangle_backend, triangle_backends, Backend};
 use rasterlab::edge::FillRule;
+use rasterlab::edge::PixelRect;
+use rasterlab::fragment::FragmentList;
 use rasterlab::input::{read_shapes, Shapes};
-use rasterlab::scene::{collect_fragments, setup_triangles, Scene2D};
+use rasterlab::line::{Connectivity, Endpoints, LineOptions, LineSetup};
+use rasterlab::scene::{setup_triangles, Scene2D};
 use rasterlab::shader::Flat;
 use rasterlab::target::{DepthState, DepthTest, RenderTarget};
 use rasterlab::{Error, Result};
@@ -56,32 +59,107 @@ pub struct FragmentsArgs {
     /// Target size, `WxH`.
     #[arg(long)]
     size: Size,
-    /// Fill rule: top-left, bottom-right, offscreen-point, inclusive, exclusive.
+    /// Triangle fill rule: top-left, bottom-right, offscreen-point, inclusive, exclusive.
     #[arg(long, default_value = "top-left")]
     rule: String,
-    /// Triangle soup: one triangle per line, `x0 y0 x1 y1 x2 y2` in pixels.
+    #[command(flatten)]
+    line: LineArgs,
+    /// Triangle soup (`x0 y0 x1 y1 x2 y2` per line) or line set (`x0 y0 x1 y1` per line).
     file: PathBuf,
 }
 
+/// Options of the line back-ends.
+#[derive(Args, Debug)]
+pub struct LineArgs {
+    /// Line connectivity: 8 or 4.
+    #[arg(long, default_value = "8")]
+    connectivity: String,
+    /// Line endpoints: inclusive or half-open.
+    #[arg(long, default_value = "inclusive")]
+    endpoints: String,
+    /// Draw lines so the pixels do not depend on the direction of travel.
+    #[arg(long)]
+    symmetric: bool,
+}
+
+impl LineArgs {
+    fn options(&self) -> Result<LineOptions> {
+        Ok(LineOptions {
+            connectivity: self.connectivity.parse::<Connectivity>()?,
+            endpoints: self.endpoints.parse::<Endpoints>()?,
+            symmetric: self.symmetric,
+        })
+    }
+}
+
 pub fn fragments(args: &FragmentsArgs) -> Result<()> {
-    let backend = triangle_backend(&args.backend)?;
+    let backend = backend(&args.backend)?;
     let rule: FillRule = args.rule.parse()?;
+    let options = args.line.options()?;
+    if let Backend::Line(b) = backend {
+        b.check_options(&options)?;
+    }
     RenderTarget::new(args.size.width, args.size.height)?;
+    let viewport = PixelRect::of_target(args.size.width, args.size.height);
     let shapes = read_shapes(&args.file)?;
-    let Shapes::Triangles { triangles, .. } = shapes else {
-        return Err(Error::InvalidArgument(format!(
-            "{}: back-end `{}` draws triangles, but the file holds line segments",
-            args.file.display(),
-            backend.name()
-        )));
-    };
-    let setups = setup_triangles(&triangles, rule);
-    let (list, _) = collect_fragments(backend, &setups, args.size.width, args.size.height);
+    let mut list = FragmentList::default();
+    match (backend, shapes) {
+        (Backend::Triangle(b), Shapes::Triangles { triangles, .. }) => {
+            b.rasterize(&setup_triangles(&triangles, rule), viewport, &mut list);
+        }
+        (Backend::Line(b), Shapes::Lines { segments, .. }) => {
+            let setups = line_setups(&segments);
+            b.rasterize(&setups, &options, viewport, &mut list);
+        }
+        (Backend::Triangle(b), Shapes::Lines { .. }) => {
+            return Err(kind_mismatch(
+                &args.file,
+                b.name(),
+                "triangles",
+                "line segments",
+            ))
+        }
+        (Backend::Line(b), Shapes::Triangles { .. }) => {
+            return Err(kind_mismatch(
+                &args.file,
+                b.name(),
+                "line segments",
+                "triangles",
+            ))
+        }
+    }
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     for f in &list.triangles {
         writeln!(out, "{} {} {}", f.x, f.y, f.triangle).map_err(stdout_error)?;
     }
+    let weighted = matches!(backend, Backend::Line(b) if b.name() == "wu");
+    for f in &list.lines {
+        if weighted {
+            writeln!(out, "{} {} {} {:.4}", f.x, f.y, f.line, f.coverage).map_err(stdout_error)?;
+        } else {
+            writeln!(out, "{} {} {}", f.x, f.y, f.line).map_err(stdout_error)?;
+        }
+    }
     out.flush().map_err(stdout_error)
+}
+
+fn line_setups(segments: &[[rasterlab::fixed::FixedPoint; 2]]) -> Vec<LineSetup> {
+    segments
+        .iter()
+        .enumerate()
+        .map(|(i, s)| LineSetup {
+            id: i as u32,
+            from: s[0],
+            to: s[1],
+        })
+        .collect()
+}
+
+fn kind_mismatch(file: &std::path::Path, name: &str, draws: &str, holds: &str) -> Error {
+    Error::InvalidArgument(format!(
+        "{}: back-end `{name}` draws {draws}, but the file holds {holds}",
+        file.display()
+    ))
 }
 
 #[derive(Args, Debug)]
