@@ -21,7 +21,8 @@
 //! start). Other octants by symmetry ([`super::OctantFrame`]).
 
 use super::{
-    emit_pixels, finish_pixels, walk_frame, LineOptions, LineRasterizer, LineSetup, OctantFrame,
+    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup,
+    OctantFrame,
 };
 use crate::edge::PixelRect;
 use crate::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
@@ -92,13 +93,6 @@ impl LineRasterizer for Bresenham {
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
-        let mut work = WorkCounters::default();
-        for line in lines {
-            work.primitives += 1;
-            let pixels = Self::pixels(line, options);
-            work.samples_tested += pixels.len() as u64;
-            emit_pixels(line, &pixels, viewport, sink, &mut work);
-        }
-        work
+        rasterize_aliased(lines, options, viewport, sink, Self::pixels)
     }
 }

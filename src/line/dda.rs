@@ -15,7 +15,7 @@
 //! `direct`. Every pixel is still within half a pixel (plus that error) of
 //! the ideal line, which the property tests check.
 
-use super::{emit_pixels, finish_pixels, walk_frame, LineOptions, LineRasterizer, LineSetup};
+use super::{finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup};
 use crate::edge::PixelRect;
 use crate::fixed::SUBPIXEL_SCALE;
 use crate::fragment::{FragmentSink, WorkCounters};
@@ -59,13 +59,6 @@ impl LineRasterizer for Dda {
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
-        let mut work = WorkCounters::default();
-        for line in lines {
-            work.primitives += 1;
-            let pixels = Self::pixels(line, options);
-            work.samples_tested += pixels.len() as u64;
-            emit_pixels(line, &pixels, viewport, sink, &mut work);
-        }
-        work
+        rasterize_aliased(lines, options, viewport, sink, Self::pixels)
     }
 }

@@ -15,7 +15,7 @@
 //! pixel for pixel the same as `bresenham`'s. Other octants by symmetry
 //! ([`super::OctantFrame`]).
 
-use super::{emit_pixels, finish_pixels, walk_frame, LineOptions, LineRasterizer, LineSetup};
+use super::{finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup};
 use crate::edge::PixelRect;
 use crate::fragment::{FragmentSink, WorkCounters};
 
@@ -50,13 +50,6 @@ impl LineRasterizer for Direct {
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
-        let mut work = WorkCounters::default();
-        for line in lines {
-            work.primitives += 1;
-            let pixels = Self::pixels(line, options);
-            work.samples_tested += pixels.len() as u64;
-            emit_pixels(line, &pixels, viewport, sink, &mut work);
-        }
-        work
+        rasterize_aliased(lines, options, viewport, sink, Self::pixels)
     }
 }

@@ -325,6 +325,26 @@ pub fn finish_pixels(
     pixels
 }
 
+/// The `rasterize` of a seed 004 aliased algorithm given its pixel
+/// function: each segment's pixels, in the order of travel, clipped to the
+/// viewport.
+pub fn rasterize_aliased(
+    lines: &[LineSetup],
+    options: &LineOptions,
+    viewport: PixelRect,
+    sink: &mut dyn FragmentSink,
+    pixels_of: fn(&LineSetup, &LineOptions) -> Vec<(i64, i64)>,
+) -> WorkCounters {
+    let mut work = WorkCounters::default();
+    for line in lines {
+        work.primitives += 1;
+        let pixels = pixels_of(line, options);
+        work.samples_tested += pixels.len() as u64;
+        emit_pixels(line, &pixels, viewport, sink, &mut work);
+    }
+    work
+}
+
 /// Emits aliased pixels (coverage 1) that lie in the viewport.
 pub fn emit_pixels(
     line: &LineSetup,
