@@ -27,7 +27,7 @@
 //! * [`stage`] and [`shader`]: the shared fragment stage and its shaders;
 //! * [`target`]: colour, depth and coverage buffers;
 //! * [`backend`]: the registry of back-ends by name;
-//! * [`line`]: the line back-ends, one file each, and their options;
+//! * [`line`](mod@line): the line back-ends, one file each, and their options;
 //! * [`polygon`]: simple polygons and their spade triangulation;
 //! * [`input`] and [`scene`]: text inputs and small 2D scenes.
 //!
