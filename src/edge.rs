@@ -303,6 +303,12 @@ impl PixelRect {
         }
     }
 
+    /// Is pixel `(x, y)` inside?
+    #[inline]
+    pub fn contains(self, x: i64, y: i64) -> bool {
+        x >= self.x0 && x <= self.x1 && y >= self.y0 && y <= self.y1
+    }
+
     /// True when no pixel is inside.
     pub fn is_empty(self) -> bool {
         self.x0 > self.x1 || self.y0 > self.y1

@@ -24,11 +24,11 @@
 //! column (or row), and the tests check it against applying it to every
 //! pixel.
 
-use super::{LineOptions, LineRasterizer, LineSetup};
+use super::{emit_pixels, LineOptions, LineRasterizer, LineSetup};
 use crate::edge::PixelRect;
 use crate::error::{Error, Result};
 use crate::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
-use crate::fragment::{FragmentSink, LineFragment, WorkCounters};
+use crate::fragment::{FragmentSink, WorkCounters};
 use std::cmp::Ordering;
 
 /// The diamond-exit rule.
@@ -252,17 +252,7 @@ impl LineRasterizer for Diamond {
             work.primitives += 1;
             let (pixels, tested) = Self::pixels(line);
             work.samples_tested += tested;
-            for (x, y) in pixels {
-                if x >= viewport.x0 && x <= viewport.x1 && y >= viewport.y0 && y <= viewport.y1 {
-                    work.fragments += 1;
-                    sink.line_fragment(&LineFragment {
-                        x: x as u32,
-                        y: y as u32,
-                        line: line.id,
-                        coverage: 1.0,
-                    });
-                }
-            }
+            emit_pixels(line, &pixels, viewport, sink, &mut work);
         }
         work
     }

@@ -354,7 +354,7 @@ pub fn emit_pixels(
     work: &mut WorkCounters,
 ) {
     for &(x, y) in pixels {
-        if x >= viewport.x0 && x <= viewport.x1 && y >= viewport.y0 && y <= viewport.y1 {
+        if viewport.contains(x, y) {
             work.fragments += 1;
             sink.line_fragment(&LineFragment {
                 x: x as u32,

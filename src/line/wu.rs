@@ -87,7 +87,7 @@ impl LineRasterizer for Wu {
             work.primitives += 1;
             for ((x, y), coverage) in Self::pixels(line, options) {
                 work.samples_tested += 1;
-                if x >= viewport.x0 && x <= viewport.x1 && y >= viewport.y0 && y <= viewport.y1 {
+                if viewport.contains(x, y) {
                     work.fragments += 1;
                     sink.line_fragment(&LineFragment {
                         x: x as u32,
