@@ -53,6 +53,7 @@ pub mod fixed;
 pub mod fragment;
 pub mod input;
 pub mod line;
+pub mod mesh;
 pub mod polygon;
 pub mod scene;
 pub mod shader;

@@ -8,9 +8,11 @@
 //!    `beta = E1 / area`, `gamma = E2 / area` with `area = E0 + E1 + E2`
 //!    (exact in integers, so nothing from the back-end but the pixel and its
 //!    edge values is used);
-//! 3. **depth**, interpolated linearly in screen space,
-//!    `z = z0 + beta (z1 - z0) + gamma (z2 - z0)` (a constant depth stays
-//!    exactly constant);
+//! 3. **depth**, linear in screen space: the plane through the three
+//!    snapped vertices, `z = z0 + beta (z1 - z0) + gamma (z2 - z0)`, set up
+//!    once per triangle as a [`DepthPlane`] and evaluated at the pixel centre
+//!    in `f32` in one fixed order (so a back-end that writes whole spans gets
+//!    the very same bits, and a constant depth stays exactly constant);
 //! 4. **depth test** against the depth buffer (`less` by default);
 //! 5. **varyings** (colour, UV, normal), perspective-correct by default:
 //!    interpolate `a / w` and `1 / w`, divide per fragment (seed 003); or
@@ -23,7 +25,8 @@
 //! integer edge values, back-ends that emit the same fragments in the same
 //! per-pixel order produce bit-identical colour, depth and coverage buffers.
 
-use crate::fixed::FixedPoint;
+use crate::edge::TriangleSetup;
+use crate::fixed::{FixedPoint, SUBPIXEL_SCALE};
 use crate::fragment::{FragmentSink, LineFragment, TriangleFragment};
 use crate::target::{DepthState, RenderTarget};
 use glam::{Vec2, Vec3, Vec4};
@@ -84,6 +87,129 @@ impl ShadedVertex {
             varyings: Varyings::color(color),
         }
     }
+}
+
+/// A triangle's depth as a plane in screen space.
+///
+/// Depth is affine in screen space after the perspective divide, so it is
+/// the plane through the three snapped vertices. It is set up from the
+/// triangle's exact edge functions, relative to the first pixel of its
+/// bounding box, and evaluated as `(z_origin + dz_dy * dy) + dz_dx * dx` in
+/// `f32`: the row term first, then the column term, always in this order, so
+/// every back-end and every code path gets bit-identical depths.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct DepthPlane {
+    /// Pixel column of the origin.
+    pub origin_x: i64,
+    /// Pixel row of the origin.
+    pub origin_y: i64,
+    /// Depth at the origin pixel's centre.
+    pub z_origin: f32,
+    /// Change of depth per pixel to the right.
+    pub dz_dx: f32,
+    /// Change of depth per pixel down.
+    pub dz_dy: f32,
+}
+
+impl DepthPlane {
+    /// The plane through the triangle's snapped vertices at depths `z`
+    /// (vertex `i` at depth `z[i]`).
+    ///
+    /// With `E_i` the edge function opposite vertex `i` and `A` twice the
+    /// area, `z = z0 + ((z1 - z0) E1 + (z2 - z0) E2) / A`; its slopes are
+    /// the edge functions' coefficients weighted the same way.
+    pub fn new(setup: &TriangleSetup, z: [f32; 3]) -> DepthPlane {
+        let [z0, z1, z2] = z.map(f64::from);
+        let (d1, d2) = (z1 - z0, z2 - z0);
+        let area = setup.area as f64;
+        let (ox, oy) = (setup.bounds.x0, setup.bounds.y0);
+        let e = setup.edge_values_at_pixel(ox, oy);
+        let [_, e1, e2] = setup.edges;
+        let scale = SUBPIXEL_SCALE as f64;
+        DepthPlane {
+            origin_x: ox,
+            origin_y: oy,
+            z_origin: (z0 + (d1 * e[1] as f64 + d2 * e[2] as f64) / area) as f32,
+            dz_dx: ((d1 * e1.a as f64 + d2 * e2.a as f64) * scale / area) as f32,
+            dz_dy: ((d1 * e1.b as f64 + d2 * e2.b as f64) * scale / area) as f32,
+        }
+    }
+
+    /// A plane of constant depth.
+    pub fn constant(z: f32) -> DepthPlane {
+        DepthPlane {
+            origin_x: 0,
+            origin_y: 0,
+            z_origin: z,
+            dz_dx: 0.0,
+            dz_dy: 0.0,
+        }
+    }
+
+    /// The depth at the start of row `y`, before the column term.
+    #[inline]
+    pub fn row(&self, y: u32) -> f32 {
+        self.z_origin + self.dz_dy * (i64::from(y) - self.origin_y) as f32
+    }
+
+    /// The depth at column `x` of a row whose [`row`](Self::row) value is `row`.
+    #[inline]
+    pub fn in_row(&self, row: f32, x: u32) -> f32 {
+        row + self.dz_dx * (i64::from(x) - self.origin_x) as f32
+    }
+
+    /// The depth at the centre of pixel `(x, y)`.
+    #[inline]
+    pub fn at(&self, x: u32, y: u32) -> f32 {
+        self.in_row(self.row(y), x)
+    }
+}
+
+/// A triangle as the fragment stage needs it: vertex data and depth plane.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadedTriangle {
+    /// The three vertices, in the order of the set-up.
+    pub vertices: [ShadedVertex; 3],
+    /// The depth plane through the snapped vertices.
+    pub depth: DepthPlane,
+}
+
+impl ShadedTriangle {
+    /// Pairs a set-up triangle with its vertex data.
+    pub fn new(setup: &TriangleSetup, vertices: [ShadedVertex; 3]) -> ShadedTriangle {
+        ShadedTriangle {
+            vertices,
+            depth: DepthPlane::new(setup, vertices.map(|v| v.depth)),
+        }
+    }
+
+    /// A triangle of constant depth (its first vertex's), for primitives that
+    /// never produce a fragment, such as zero-area ones.
+    pub fn constant_depth(vertices: [ShadedVertex; 3]) -> ShadedTriangle {
+        ShadedTriangle {
+            vertices,
+            depth: DepthPlane::constant(vertices[0].depth),
+        }
+    }
+}
+
+/// The stage's triangle data for a draw: entry `i` belongs to the triangle
+/// with id `i`, `vertices[i]`; those without a set-up (zero area) get a
+/// constant depth, as they produce no fragment.
+pub fn shade_triangles(
+    setups: &[TriangleSetup],
+    vertices: &[[ShadedVertex; 3]],
+) -> Vec<ShadedTriangle> {
+    let mut out: Vec<ShadedTriangle> = vertices
+        .iter()
+        .map(|v| ShadedTriangle::constant_depth(*v))
+        .collect();
+    for s in setups {
+        if let Some(slot) = out.get_mut(s.id as usize) {
+            *slot = ShadedTriangle::new(s, slot.vertices);
+        }
+    }
+    out
 }
 
 /// A line segment as the fragment stage needs it.
@@ -148,7 +274,7 @@ pub fn from_rgba8(c: [u8; 4]) -> Vec4 {
 pub struct FragmentStage<'a> {
     target: &'a mut RenderTarget,
     shader: &'a dyn FragmentShader,
-    triangles: &'a [[ShadedVertex; 3]],
+    triangles: &'a [ShadedTriangle],
     lines: &'a [ShadedLine],
     /// Depth comparison and write mask.
     pub depth: DepthState,
@@ -174,8 +300,8 @@ impl<'a> FragmentStage<'a> {
         }
     }
 
-    /// Vertex data of the triangles, indexed by triangle id.
-    pub fn with_triangles(mut self, triangles: &'a [[ShadedVertex; 3]]) -> Self {
+    /// Vertex data and depth planes of the triangles, indexed by triangle id.
+    pub fn with_triangles(mut self, triangles: &'a [ShadedTriangle]) -> Self {
         self.triangles = triangles;
         self
     }
@@ -268,18 +394,14 @@ struct Sample<const N: usize> {
 
 impl FragmentSink for FragmentStage<'_> {
     fn triangle_fragment(&mut self, f: &TriangleFragment) {
-        let Some(v) = self.triangles.get(f.triangle as usize).copied() else {
+        let Some(t) = self.triangles.get(f.triangle as usize).copied() else {
             debug_assert!(false, "no vertex data for triangle {}", f.triangle);
             return;
         };
         let area = (f.edges[0] + f.edges[1] + f.edges[2]) as f64;
-        let beta = f.edges[1] as f64 / area;
-        let gamma = f.edges[2] as f64 / area;
-        let alpha = f.edges[0] as f64 / area;
-        let z0 = f64::from(v[0].depth);
-        let z = (z0 + beta * (f64::from(v[1].depth) - z0) + gamma * (f64::from(v[2].depth) - z0))
-            as f32;
-        let screen = [alpha as f32, beta as f32, gamma as f32];
+        let screen = f.edges.map(|e| (e as f64 / area) as f32);
+        let z = t.depth.at(f.x, f.y);
+        let v = t.vertices;
         self.resolve(Sample {
             x: f.x,
             y: f.y,
