@@ -152,10 +152,13 @@ impl DepthPlane {
         self.z_origin + self.dz_dy * (i64::from(y) - self.origin_y) as f32
     }
 
-    /// The depth at column `x` of a row whose [`row`](Self::row) value is `row`.
+    /// The depth at column `x` of a row whose [`row`](Self::row) value is
+    /// `row`, clamped to `[0, 1]` as Direct3D and Vulkan clamp to the
+    /// viewport's depth range (rounding in a huge clipped triangle's plane
+    /// can otherwise step outside it).
     #[inline]
     pub fn in_row(&self, row: f32, x: u32) -> f32 {
-        row + self.dz_dx * (i64::from(x) - self.origin_x) as f32
+        (row + self.dz_dx * (i64::from(x) - self.origin_x) as f32).clamp(0.0, 1.0)
     }
 
     /// The depth at the centre of pixel `(x, y)`.
@@ -444,3 +447,10 @@ impl FragmentSink for FragmentStage<'_> {
         });
     }
 }
+
+crate::pipeline::named_enum!(
+    Interpolation,
+    "interpolation",
+    PerspectiveCorrect = "perspective",
+    Linear = "linear"
+);

@@ -146,13 +146,7 @@ impl RenderTarget {
     ///
     /// Errors on a zero side or a side over [`MAX_TARGET_SIDE`].
     pub fn new(width: u32, height: u32) -> Result<RenderTarget> {
-        if width == 0 || height == 0 || width > MAX_TARGET_SIDE || height > MAX_TARGET_SIDE {
-            return Err(Error::InvalidTargetSize {
-                width: width.into(),
-                height: height.into(),
-                max: MAX_TARGET_SIDE,
-            });
-        }
+        Self::check_size(width, height)?;
         let n = width as usize * height as usize;
         Ok(RenderTarget {
             width,
@@ -161,6 +155,18 @@ impl RenderTarget {
             depth: vec![1.0; n],
             coverage: vec![0; n],
         })
+    }
+
+    /// Errors unless both sides are between 1 and [`MAX_TARGET_SIDE`].
+    pub fn check_size(width: u32, height: u32) -> Result<()> {
+        if width == 0 || height == 0 || width > MAX_TARGET_SIDE || height > MAX_TARGET_SIDE {
+            return Err(Error::InvalidTargetSize {
+                width: width.into(),
+                height: height.into(),
+                max: MAX_TARGET_SIDE,
+            });
+        }
+        Ok(())
     }
 
     /// Width in pixels.

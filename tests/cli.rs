@@ -166,3 +166,88 @@ fn unknown_backends_rules_and_zero_sizes_fail_cleanly() {
             .starts_with("rasterlab: error:"));
     }
 }
+
+#[test]
+fn render_draws_a_bundled_mesh() {
+    let out_png =
+        std::env::temp_dir().join(format!("rasterlab-cli-bunny-{}.png", std::process::id()));
+    let bunny = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bunny.ply");
+    let out = rasterlab(&[
+        "render",
+        bunny,
+        "--backend",
+        "incremental",
+        "--size",
+        "80x60",
+        "--frames",
+        "2",
+        "--wireframe",
+        "dda",
+        "--out",
+        out_png.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("3674 triangles"), "{text}");
+    assert!(text.contains("time per frame (median of 2)"), "{text}");
+    let image = image::open(&out_png).unwrap();
+    assert_eq!((image.width(), image.height()), (80, 60));
+}
+
+/// Malformed meshes: the error names the file and the line, exit code 2,
+/// no panic.
+#[test]
+fn malformed_meshes_name_file_and_line() {
+    let header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    let cases = [
+        ("short.ply", format!("{header}0 0 0\n1 0 0\n"), ":12"),
+        (
+            "word.ply",
+            format!("{header}0 0 0\n1 one 0\n0 1 0\n3 0 1 2\n"),
+            ":11:",
+        ),
+        (
+            "index.ply",
+            format!("{header}0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n"),
+            ":13:",
+        ),
+        (
+            "header.ply",
+            "ply\nformat ascii 1.0\nelement vertex x\n".to_string(),
+            ":3:",
+        ),
+        (
+            "index.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n".to_string(),
+            ":5:",
+        ),
+        ("number.obj", "v 0 0 0\nv 1 0 zero\n".to_string(), ":2:"),
+    ];
+    for (name, text, line) in cases {
+        let path = temp_file(name, &text);
+        let out = rasterlab(&["render", path.to_str().unwrap(), "--out", "/dev/null"]);
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
+        assert!(
+            stderr.contains(&format!("{name}{line}")),
+            "{name}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+    }
+    let out = rasterlab(&["render", "/nonexistent/mesh.ply", "--out", "/dev/null"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = rasterlab(&[
+        "render",
+        concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bunny.ply"),
+        "--shading",
+        "glossy",
+        "--out",
+        "/dev/null",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown shading `glossy`"));
+}

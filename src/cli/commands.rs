@@ -1,18 +1,27 @@
 //! One function per subcommand.
 
 use clap::Args;
-use rasterlab::backend::{all_backends, backend, triangle_backend, triangle_backends, Backend};
+use rasterlab::backend::{
+    all_backends, backend, line_backend, triangle_backend, triangle_backends, Backend,
+};
 use rasterlab::edge::FillRule;
 use rasterlab::edge::PixelRect;
 use rasterlab::fragment::FragmentList;
+use rasterlab::fragment::WorkCounters;
 use rasterlab::input::{read_shapes, Shapes};
 use rasterlab::line::{Connectivity, Endpoints, LineOptions, LineSetup};
+use rasterlab::mesh::Mesh;
+use rasterlab::pipeline::{CullMode, PipelineOptions};
+use rasterlab::render::{Frame, MeshRenderer, RenderSettings};
 use rasterlab::scene::{setup_triangles, Scene2D};
 use rasterlab::shader::Flat;
 use rasterlab::target::{DepthState, DepthTest, RenderTarget};
+use rasterlab::triangle::TriangleRasterizer;
 use rasterlab::{Error, Result};
 use std::io::Write;
+use std::path::Path;
 use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
 /// A `WxH` size.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -164,26 +173,96 @@ fn kind_mismatch(file: &std::path::Path, name: &str, draws: &str, holds: &str) -
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Back-end name (see `rasterlab backends`).
-    #[arg(long, default_value = "incremental")]
+    /// A mesh (.ply, .ply.gz, .obj) or a triangle soup file.
+    input: Option<PathBuf>,
+    /// Triangle back-end name (see `rasterlab backends`).
+    #[arg(long, default_value = "scanline")]
     backend: String,
-    /// Target size `WxH` (defaults to the scene's own size).
+    /// Target size `WxH` (meshes: 640x480 by default; scenes: their own size).
     #[arg(long)]
     size: Option<Size>,
-    /// Fill rule.
+    /// Fill rule: top-left, bottom-right, offscreen-point, inclusive, exclusive.
     #[arg(long, default_value = "top-left")]
     rule: String,
     /// Depth test: never, less, equal, less-equal, greater, not-equal, greater-equal, always.
     #[arg(long, default_value = "less")]
     depth_test: String,
-    /// Built-in scene instead of a file: depth-example, split-square, pinwheel, fan.
+    /// Built-in 2D scene instead of a file: depth-example, split-square, pinwheel, fan.
     #[arg(long, conflicts_with = "input")]
     scene: Option<String>,
     /// Output PNG file.
     #[arg(long)]
     out: PathBuf,
-    /// Triangle soup file.
-    input: Option<PathBuf>,
+    #[command(flatten)]
+    mesh: MeshArgs,
+}
+
+/// Options for rendering a mesh.
+#[derive(Args, Debug)]
+pub struct MeshArgs {
+    /// Shading: flat, gouraud, diffuse, normals, texture.
+    #[arg(long, default_value = "diffuse")]
+    shading: String,
+    /// Texture filter for --shading texture: nearest, bilinear.
+    #[arg(long, default_value = "bilinear")]
+    filter: String,
+    /// Varying interpolation: perspective (correct) or linear (to see the difference).
+    #[arg(long, default_value = "perspective")]
+    interpolation: String,
+    /// Back-face culling: none, back, front.
+    #[arg(long, default_value = "back")]
+    cull: String,
+    /// Winding of front faces as seen on screen: ccw, cw.
+    #[arg(long, default_value = "ccw")]
+    front_face: String,
+    /// Draw the triangle edges over the surface with this line back-end (e.g. bresenham).
+    #[arg(long)]
+    wireframe: Option<String>,
+    /// Camera angle around the vertical axis, degrees.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    azimuth: f32,
+    /// Camera angle above the horizon, degrees.
+    #[arg(long, default_value_t = 15.0, allow_negative_numbers = true)]
+    elevation: f32,
+    /// Zoom factor; 1 frames the whole mesh.
+    #[arg(long, default_value_t = 1.0)]
+    zoom: f32,
+    /// Render the same view this many times and report the time per frame
+    /// (the file is loaded once).
+    #[arg(long, default_value_t = 1)]
+    frames: u32,
+}
+
+impl MeshArgs {
+    fn settings(
+        &self,
+        size: Option<Size>,
+        rule: FillRule,
+        depth: DepthState,
+    ) -> Result<RenderSettings> {
+        let size = size.unwrap_or(Size {
+            width: 640,
+            height: 480,
+        });
+        Ok(RenderSettings {
+            width: size.width,
+            height: size.height,
+            azimuth: self.azimuth,
+            elevation: self.elevation,
+            zoom: self.zoom,
+            shading: self.shading.parse()?,
+            filter: self.filter.parse()?,
+            interpolation: self.interpolation.parse()?,
+            pipeline: PipelineOptions {
+                rule,
+                cull: self.cull.parse()?,
+                front_face: self.front_face.parse()?,
+            },
+            depth,
+            wireframe: self.wireframe.as_deref().map(line_backend).transpose()?,
+            ..RenderSettings::default()
+        })
+    }
 }
 
 pub fn render(args: &RenderArgs) -> Result<()> {
@@ -193,6 +272,9 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         test: args.depth_test.parse::<DepthTest>()?,
         write: true,
     };
+    if let Some(path) = args.input.as_deref().filter(|p| Mesh::is_mesh_path(p)) {
+        return render_mesh(path, backend, args, rule, depth);
+    }
     let scene = match (&args.scene, &args.input) {
         (Some(name), _) => Scene2D::built_in(name)?,
         (None, Some(path)) => match read_shapes(path)? {
@@ -211,7 +293,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         },
         (None, None) => {
             return Err(Error::InvalidArgument(
-                "give a triangle soup file or --scene NAME".into(),
+                "give a mesh or triangle soup file, or --scene NAME".into(),
             ))
         }
     };
@@ -232,6 +314,66 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
+fn render_mesh(
+    path: &Path,
+    backend: &'static dyn TriangleRasterizer,
+    args: &RenderArgs,
+    rule: FillRule,
+    depth: DepthState,
+) -> Result<()> {
+    if args.mesh.frames == 0 {
+        return Err(Error::InvalidArgument("--frames must be at least 1".into()));
+    }
+    let start = Instant::now();
+    let mesh = Mesh::load(path)?;
+    let load_time = start.elapsed();
+    let renderer = MeshRenderer::new(&mesh, args.mesh.settings(args.size, rule, depth)?)?;
+    let mut frames = Vec::with_capacity(args.mesh.frames as usize);
+    for _ in 0..args.mesh.frames {
+        frames.push(renderer.render(backend)?);
+    }
+    let median = |f: &dyn Fn(&Frame) -> Duration| {
+        let mut t: Vec<Duration> = frames.iter().map(f).collect();
+        t.sort();
+        t[t.len() / 2]
+    };
+    let geometry = median(&|f| f.geometry_time);
+    let raster = median(&|f| f.raster_time);
+    let total = median(&|f| f.geometry_time + f.raster_time);
+    let last = frames.pop().expect("at least one frame");
+    last.target.save_png(&args.out)?;
+    let g = last.geometry;
+    let s = renderer.settings();
+    println!(
+        "{}: {} vertices, {} triangles (loaded in {:.0} ms)",
+        path.display(),
+        mesh.positions.len(),
+        mesh.triangles.len(),
+        load_time.as_secs_f64() * 1e3
+    );
+    println!(
+        "pipeline: {} rejected, {} clipped, {} culled, {} degenerate, {} rasterized",
+        g.rejected, g.clipped, g.culled, g.degenerate, g.triangles
+    );
+    println!(
+        "{} at {}x{}: {} samples tested, {} fragments",
+        backend.name(),
+        s.width,
+        s.height,
+        last.work.samples_tested,
+        last.work.fragments
+    );
+    println!(
+        "time per frame (median of {}): {:.2} ms = geometry {:.2} ms + raster {:.2} ms",
+        args.mesh.frames,
+        total.as_secs_f64() * 1e3,
+        geometry.as_secs_f64() * 1e3,
+        raster.as_secs_f64() * 1e3
+    );
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
+
 #[derive(Args, Debug)]
 pub struct DemoArgs {
     /// Directory the pictures are written to.
@@ -239,27 +381,48 @@ pub struct DemoArgs {
     out: PathBuf,
 }
 
+/// The bundled meshes the demo renders, relative to the crate root.
+const DEMO_MESHES: [(&str, &str); 2] = [
+    ("bunny", "assets/bunny.ply"),
+    ("dragon-res4", "assets/dragon_vrip_res4.ply.gz"),
+];
+
 pub fn demo(args: &DemoArgs) -> Result<()> {
     std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, &e))?;
     println!(
-        "{:<16} {:<12} {:>10} {:>10}  identical to naive",
-        "scene", "back-end", "tested", "fragments"
+        "{:<16} {:<12} {:>10} {:>10} {:>9}  identical to naive",
+        "scene", "back-end", "tested", "fragments", "time"
     );
     let mut all_identical = true;
+    let mut report = |name: &str,
+                      backend: &dyn TriangleRasterizer,
+                      work: &WorkCounters,
+                      time: Duration,
+                      identical: bool| {
+        all_identical &= identical;
+        println!(
+            "{:<16} {:<12} {:>10} {:>10} {:>7.2}ms  {}",
+            name,
+            backend.name(),
+            work.samples_tested,
+            work.fragments,
+            time.as_secs_f64() * 1e3,
+            if identical { "yes" } else { "NO" }
+        );
+    };
     for name in Scene2D::BUILT_IN {
         let scene = Scene2D::built_in(name)?;
         let mut reference: Option<RenderTarget> = None;
         for backend in triangle_backends() {
+            let start = Instant::now();
             let (target, work) = scene.render(*backend, FillRule::TopLeft, &Flat)?;
-            let identical = reference.as_ref().is_none_or(|r| *r == target);
-            all_identical &= identical;
-            println!(
-                "{:<16} {:<12} {:>10} {:>10}  {}",
+            let time = start.elapsed();
+            report(
                 name,
-                backend.name(),
-                work.samples_tested,
-                work.fragments,
-                if identical { "yes" } else { "NO" }
+                *backend,
+                &work,
+                time,
+                reference.as_ref().is_none_or(|r| *r == target),
             );
             if reference.is_none() {
                 target.save_png(&args.out.join(format!("{name}.png")))?;
@@ -267,6 +430,37 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
             }
         }
     }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (name, file) in DEMO_MESHES {
+        let mesh = Mesh::load(&root.join(file))?;
+        let settings = RenderSettings {
+            width: 320,
+            height: 240,
+            azimuth: 30.0,
+            pipeline: PipelineOptions {
+                cull: CullMode::Back,
+                ..PipelineOptions::default()
+            },
+            ..RenderSettings::default()
+        };
+        let renderer = MeshRenderer::new(&mesh, settings)?;
+        let mut reference: Option<RenderTarget> = None;
+        for backend in triangle_backends() {
+            let frame = renderer.render(*backend)?;
+            let identical = reference.as_ref().is_none_or(|r| *r == frame.target);
+            report(name, *backend, &frame.work, frame.raster_time, identical);
+            if reference.is_none() {
+                frame
+                    .target
+                    .save_png(&args.out.join(format!("{name}.png")))?;
+                reference = Some(frame.target);
+            }
+        }
+    }
+    println!(
+        "pictures in {}/ (meshes: Stanford 3D Scanning Repository)",
+        args.out.display()
+    );
     if all_identical {
         println!("every back-end produced bit-identical colour, depth and coverage buffers");
         Ok(())

@@ -1,0 +1,327 @@
+//! Rendering a mesh end to end: camera, vertex shader, pipeline, back-end,
+//! fragment shader, optional wireframe. What `rasterlab render` and
+//! `rasterlab demo` run.
+//!
+//! ```
+//! use rasterlab::{backend, mesh::Mesh, render::{MeshRenderer, RenderSettings}};
+//! use std::path::Path;
+//!
+//! let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
+//! let settings = RenderSettings { width: 64, height: 48, ..RenderSettings::default() };
+//! let renderer = MeshRenderer::new(&bunny, settings).unwrap();
+//! let a = renderer.render(backend::triangle_backend("scanline").unwrap()).unwrap();
+//! let b = renderer.render(backend::triangle_backend("incremental").unwrap()).unwrap();
+//! assert_eq!(a.target, b.target); // bit-identical colour, depth and coverage
+//! assert!(a.work.fragments > 0);
+//! ```
+
+use crate::error::{Error, Result};
+use crate::fragment::WorkCounters;
+use crate::line::{LineOptions, LineRasterizer, LineSetup};
+use crate::mesh::Mesh;
+use crate::pipeline::camera::Camera;
+use crate::pipeline::vertex::{DirectionalLight, MeshVertex, Transform};
+use crate::pipeline::{self, Geometry, GeometryStats, PipelineOptions, Viewport};
+use crate::shader::{Diffuse, Filter, Flat, Gouraud, NormalColors, Texture, Textured};
+use crate::stage::{FragmentShader, FragmentStage, Interpolation, ShadedLine};
+use crate::target::{DepthState, DepthTest, RenderTarget};
+use crate::triangle::TriangleRasterizer;
+use glam::{Mat4, Vec4};
+use std::time::{Duration, Instant};
+
+/// How a mesh is coloured.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Shading {
+    /// Lit per vertex, one colour per triangle (its first vertex's).
+    Flat,
+    /// Lit per vertex, colours interpolated (Gouraud).
+    Gouraud,
+    /// Lit per fragment with the interpolated normal (diffuse, seed 003).
+    #[default]
+    Diffuse,
+    /// The interpolated normal as a colour.
+    Normals,
+    /// A checkerboard texture at the mesh's (or generated) UVs, lit per fragment.
+    Texture,
+}
+
+crate::pipeline::named_enum!(
+    Shading,
+    "shading",
+    Flat = "flat",
+    Gouraud = "gouraud",
+    Diffuse = "diffuse",
+    Normals = "normals",
+    Texture = "texture"
+);
+
+/// Everything about a rendering except the back-end.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+    /// Camera direction around the vertical axis, degrees (0 = from +Z).
+    pub azimuth: f32,
+    /// Camera elevation above the horizon, degrees.
+    pub elevation: f32,
+    /// Zoom factor (1 frames the whole mesh).
+    pub zoom: f32,
+    /// Colouring.
+    pub shading: Shading,
+    /// Texture filter for [`Shading::Texture`].
+    pub filter: Filter,
+    /// Perspective-correct or linear varyings.
+    pub interpolation: Interpolation,
+    /// Fill rule and culling.
+    pub pipeline: PipelineOptions,
+    /// Depth test and write.
+    pub depth: DepthState,
+    /// Surface colour where the mesh has none.
+    pub color: Vec4,
+    /// The light.
+    pub light: DirectionalLight,
+    /// Line back-end drawing the triangle edges over the surface, if any.
+    pub wireframe: Option<&'static dyn LineRasterizer>,
+    /// Background colour.
+    pub background: [u8; 4],
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            width: 640,
+            height: 480,
+            azimuth: 0.0,
+            elevation: 15.0,
+            zoom: 1.0,
+            shading: Shading::Diffuse,
+            filter: Filter::Bilinear,
+            interpolation: Interpolation::PerspectiveCorrect,
+            pipeline: PipelineOptions::default(),
+            depth: DepthState::DEFAULT,
+            color: Vec4::new(0.85, 0.78, 0.62, 1.0),
+            light: DirectionalLight::default(),
+            wireframe: None,
+            background: [24, 26, 32, 255],
+        }
+    }
+}
+
+impl std::fmt::Debug for dyn LineRasterizer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl PartialEq for dyn LineRasterizer {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name()
+    }
+}
+
+/// One rendered frame and what it cost.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// The colour, depth and coverage buffers.
+    pub target: RenderTarget,
+    /// What the pipeline did with the triangles.
+    pub geometry: GeometryStats,
+    /// The triangle back-end's work.
+    pub work: WorkCounters,
+    /// Time in the vertex shader, clipping and set-up.
+    pub geometry_time: Duration,
+    /// Time clearing, rasterizing and shading (including the wireframe).
+    pub raster_time: Duration,
+}
+
+/// A mesh prepared for rendering from one view.
+pub struct MeshRenderer {
+    settings: RenderSettings,
+    vertices: Vec<MeshVertex>,
+    triangles: Vec<[u32; 3]>,
+    edges: Vec<[u32; 2]>,
+    transform: Transform,
+    shader: Box<dyn FragmentShader>,
+}
+
+impl MeshRenderer {
+    /// Frames `mesh` with a camera and prepares its vertices and shaders.
+    ///
+    /// Errors: a zero-size or oversized target, a non-finite zoom.
+    pub fn new(mesh: &Mesh, settings: RenderSettings) -> Result<MeshRenderer> {
+        RenderTarget::check_size(settings.width, settings.height)?;
+        for v in [settings.azimuth, settings.elevation, settings.zoom] {
+            if !v.is_finite() {
+                return Err(Error::NonFinite {
+                    value: f64::from(v),
+                });
+            }
+        }
+        if settings.zoom <= 0.0 {
+            return Err(Error::InvalidArgument(format!(
+                "zoom must be > 0, not {}",
+                settings.zoom
+            )));
+        }
+        let aspect = settings.width as f32 / settings.height as f32;
+        let camera = Camera::framing(
+            mesh.bounds(),
+            aspect,
+            settings.azimuth,
+            settings.elevation,
+            settings.zoom,
+        );
+        let mut transform = Transform::new(Mat4::IDENTITY, camera.view(), camera.projection());
+        if matches!(settings.shading, Shading::Flat | Shading::Gouraud) {
+            transform = transform.with_vertex_light(settings.light);
+        }
+        let uvs = (settings.shading == Shading::Texture).then(|| mesh.uvs_or_generated());
+        let vertices = (0..mesh.positions.len())
+            .map(|i| MeshVertex {
+                position: mesh.positions[i],
+                normal: mesh.normals[i],
+                uv: uvs.as_ref().map_or(glam::Vec2::ZERO, |u| u[i]),
+                color: mesh.colors.as_ref().map_or(settings.color, |c| c[i]),
+            })
+            .collect();
+        let shader: Box<dyn FragmentShader> = match settings.shading {
+            Shading::Flat => Box::new(Flat),
+            Shading::Gouraud => Box::new(Gouraud),
+            Shading::Diffuse => Box::new(Diffuse(settings.light)),
+            Shading::Normals => Box::new(NormalColors),
+            Shading::Texture => Box::new(Textured {
+                texture: Texture::checkerboard(16, 8, settings.color, settings.color * 0.35),
+                filter: settings.filter,
+                light: Some(settings.light),
+            }),
+        };
+        let edges = if settings.wireframe.is_some() {
+            unique_edges(&mesh.triangles)
+        } else {
+            Vec::new()
+        };
+        Ok(MeshRenderer {
+            settings,
+            vertices,
+            triangles: mesh.triangles.clone(),
+            edges,
+            transform,
+            shader,
+        })
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    /// The vertex shader in use.
+    pub fn transform(&self) -> &Transform {
+        &self.transform
+    }
+
+    fn viewport(&self) -> Viewport {
+        Viewport {
+            width: self.settings.width,
+            height: self.settings.height,
+        }
+    }
+
+    /// Runs the geometry stages (vertex shader, clipping, set-up).
+    pub fn geometry(&self) -> Result<Geometry> {
+        pipeline::process_triangles(
+            &self.vertices,
+            &self.triangles,
+            &self.transform,
+            self.viewport(),
+            &self.settings.pipeline,
+        )
+    }
+
+    /// Renders one frame with `backend`.
+    pub fn render(&self, backend: &dyn TriangleRasterizer) -> Result<Frame> {
+        let start = Instant::now();
+        let geometry = self.geometry()?;
+        let lines = if self.edges.is_empty() {
+            Vec::new()
+        } else {
+            pipeline::process_lines(
+                &self.vertices,
+                &self.edges,
+                &self.transform,
+                self.viewport(),
+            )?
+        };
+        let geometry_time = start.elapsed();
+        let start = Instant::now();
+        let mut target = RenderTarget::new(self.settings.width, self.settings.height)?;
+        target.clear_color(self.settings.background);
+        let work = pipeline::draw(
+            &geometry,
+            backend,
+            self.shader.as_ref(),
+            self.settings.depth,
+            self.settings.interpolation,
+            &mut target,
+        );
+        if let Some(line_backend) = self.settings.wireframe {
+            self.draw_wireframe(line_backend, &lines, &mut target);
+        }
+        Ok(Frame {
+            target,
+            geometry: geometry.stats,
+            work,
+            geometry_time,
+            raster_time: start.elapsed(),
+        })
+    }
+
+    /// Draws the edges in a contrasting constant colour, depth-tested with
+    /// `less-equal` and pulled slightly towards the viewer so the surface
+    /// they lie on does not hide them.
+    fn draw_wireframe(
+        &self,
+        backend: &dyn LineRasterizer,
+        lines: &[ShadedLine],
+        target: &mut RenderTarget,
+    ) {
+        let setups: Vec<LineSetup> = lines
+            .iter()
+            .enumerate()
+            .map(|(i, l)| LineSetup {
+                id: i as u32,
+                from: l.from,
+                to: l.to,
+            })
+            .collect();
+        let shader = crate::shader::Constant(Vec4::new(0.1, 0.1, 0.12, 1.0));
+        let viewport = crate::edge::PixelRect::of_target(target.width(), target.height());
+        let mut stage = FragmentStage::new(target, &shader)
+            .with_lines(lines)
+            .with_depth(DepthState {
+                test: DepthTest::LessEqual,
+                write: false,
+            });
+        stage.line_depth_offset = -2e-4;
+        backend.rasterize(&setups, &LineOptions::DEFAULT, viewport, &mut stage);
+    }
+}
+
+/// Every edge of the triangles once, as (smaller index, larger index), in
+/// order of first appearance.
+pub fn unique_edges(triangles: &[[u32; 3]]) -> Vec<[u32; 2]> {
+    let mut seen = std::collections::HashSet::new();
+    let mut edges = Vec::new();
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let e = [a.min(b), a.max(b)];
+            if seen.insert(e) {
+                edges.push(e);
+            }
+        }
+    }
+    edges
+}

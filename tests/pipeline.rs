@@ -1,0 +1,671 @@
+//! The 3D pipeline: assembly, clipping, culling, interpolation, depth and
+//! meshes, each rendered by every triangle back-end.
+
+mod common;
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+use proptest::prelude::*;
+use rasterlab::backend::{triangle_backend, triangle_backends};
+use rasterlab::edge::FillRule;
+use rasterlab::fragment::FragmentList;
+use rasterlab::mesh::Mesh;
+use rasterlab::pipeline::assembly::{assemble, Topology};
+use rasterlab::pipeline::clip::ClipVertex;
+use rasterlab::pipeline::vertex::{positions_from_floats, Transform};
+use rasterlab::pipeline::{
+    draw, process_triangles, CullMode, FrontFace, PipelineOptions, Viewport,
+};
+use rasterlab::render::{MeshRenderer, RenderSettings, Shading};
+use rasterlab::scene::Scene2D;
+use rasterlab::shader::{Constant, Filter, Flat, Texture, Textured};
+use rasterlab::stage::{Interpolation, ShadedVertex, Varyings};
+use rasterlab::target::{DepthState, RenderTarget};
+use rasterlab::Error;
+use std::path::Path;
+
+fn asset(name: &str) -> Mesh {
+    Mesh::load(
+        &Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("assets")
+            .join(name),
+    )
+    .unwrap()
+}
+
+fn ascii(target: &RenderTarget) -> Vec<String> {
+    (0..target.height())
+        .map(|y| {
+            (0..target.width())
+                .map(|x| {
+                    if target.coverage[target.index(x, y)] > 0 {
+                        '#'
+                    } else {
+                        '.'
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Seed 000's vertex array, `-1,0,0, 0,-1,0, -1,-1,0`, taken unchanged by
+/// the vertex shader (positions are clip space, w = 1), lands on the
+/// screen at (0, 4), (4, 8), (0, 8) of an 8x8 target. Its diagonal is a
+/// right edge, so pixel centres on it belong to the neighbour: six pixels.
+#[test]
+fn seed_000_vertex_array_renders_exactly() {
+    let positions = positions_from_floats(&[-1., 0., 0., 0., -1., 0., -1., -1., 0.]).unwrap();
+    let triangles = assemble(Topology::List, None, positions.len()).unwrap();
+    let geometry = process_triangles(
+        &positions,
+        &triangles,
+        &Transform::identity(),
+        Viewport {
+            width: 8,
+            height: 8,
+        },
+        &PipelineOptions::default(),
+    )
+    .unwrap();
+    let expected = [
+        "........", "........", "........", "........", "........", "#.......", "##......",
+        "###.....",
+    ];
+    for b in triangle_backends() {
+        let mut target = RenderTarget::new(8, 8).unwrap();
+        draw(
+            &geometry,
+            *b,
+            &Flat,
+            DepthState::DEFAULT,
+            Interpolation::PerspectiveCorrect,
+            &mut target,
+        );
+        assert_eq!(ascii(&target), expected, "{}", b.name());
+    }
+    // v0 top-left, v1 bottom-right, v2 bottom-left: clockwise as seen, so
+    // a back face under the default counter-clockwise front face.
+    let culled = PipelineOptions {
+        cull: CullMode::Back,
+        ..PipelineOptions::default()
+    };
+    let g = process_triangles(
+        &positions,
+        &triangles,
+        &Transform::identity(),
+        Viewport {
+            width: 8,
+            height: 8,
+        },
+        &culled,
+    )
+    .unwrap();
+    assert_eq!((g.stats.culled, g.stats.triangles), (1, 0));
+    let cw = PipelineOptions {
+        cull: CullMode::Back,
+        front_face: FrontFace::Clockwise,
+        ..PipelineOptions::default()
+    };
+    let g = process_triangles(
+        &positions,
+        &triangles,
+        &Transform::identity(),
+        Viewport {
+            width: 8,
+            height: 8,
+        },
+        &cw,
+    )
+    .unwrap();
+    assert_eq!((g.stats.culled, g.stats.triangles), (0, 1));
+}
+
+#[test]
+fn bad_indices_and_arrays_are_errors() {
+    let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
+    let vp = Viewport {
+        width: 4,
+        height: 4,
+    };
+    let opts = PipelineOptions::default();
+    assert!(matches!(
+        process_triangles(&positions, &[[0, 1, 3]], &Transform::identity(), vp, &opts),
+        Err(Error::IndexOutOfRange { index: 3, count: 3 })
+    ));
+    assert!(matches!(
+        assemble(Topology::List, None, 4),
+        Err(Error::BadArrayLength { .. })
+    ));
+    assert!(matches!(
+        assemble(Topology::Strip, Some(&[0, 1, 2, 7]), 3),
+        Err(Error::IndexOutOfRange { index: 7, .. })
+    ));
+    let nan = vec![Vec3::ZERO, Vec3::new(f32::NAN, 0., 0.), Vec3::Y];
+    assert!(matches!(
+        process_triangles(&nan, &[[0, 1, 2]], &Transform::identity(), vp, &opts),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        vp.to_screen(Vec4::new(0., 0., 0., 0.)),
+        Err(Error::NonPositiveW { .. })
+    ));
+    assert!(matches!(
+        vp.to_screen(Vec4::new(0., 0., 0., -1.)),
+        Err(Error::NonPositiveW { .. })
+    ));
+}
+
+#[test]
+fn strips_and_fans_keep_one_winding() {
+    // A strip and a fan over the same square: with back-face culling on,
+    // nothing is culled, and both cover the same pixels as the list.
+    let square = vec![
+        Vec3::new(-1., -1., 0.),
+        Vec3::new(1., -1., 0.),
+        Vec3::new(-1., 1., 0.),
+        Vec3::new(1., 1., 0.),
+    ];
+    let opts = PipelineOptions {
+        cull: CullMode::Back,
+        ..PipelineOptions::default()
+    };
+    let vp = Viewport {
+        width: 6,
+        height: 6,
+    };
+    for (topology, indices) in [
+        (Topology::Strip, vec![0, 1, 2, 3]),
+        (Topology::Fan, vec![0, 1, 3, 2]),
+    ] {
+        let tris = assemble(topology, Some(&indices), 4).unwrap();
+        let g = process_triangles(&square, &tris, &Transform::identity(), vp, &opts).unwrap();
+        assert_eq!((g.stats.culled, g.stats.triangles), (0, 2), "{topology}");
+        let mut target = RenderTarget::new(6, 6).unwrap();
+        draw(
+            &g,
+            triangle_backends()[1],
+            &Flat,
+            DepthState::DEFAULT,
+            Interpolation::Linear,
+            &mut target,
+        );
+        assert_eq!(
+            target.pixels_with_coverage(1),
+            36,
+            "{topology}: every pixel exactly once"
+        );
+    }
+}
+
+fn small_settings(shading: Shading) -> RenderSettings {
+    RenderSettings {
+        width: 96,
+        height: 72,
+        azimuth: 40.0,
+        shading,
+        ..RenderSettings::default()
+    }
+}
+
+/// A rendered mesh is bit-identical across every triangle back-end, for
+/// every shading, both interpolations, culling on and off.
+#[test]
+fn meshes_are_bit_identical_across_backends() {
+    for (mesh, name) in [
+        (asset("bunny.ply"), "bunny"),
+        (asset("dragon_vrip_res4.ply.gz"), "dragon"),
+    ] {
+        for shading in [
+            Shading::Flat,
+            Shading::Gouraud,
+            Shading::Diffuse,
+            Shading::Normals,
+            Shading::Texture,
+        ] {
+            for (interpolation, cull) in [
+                (Interpolation::PerspectiveCorrect, CullMode::Back),
+                (Interpolation::Linear, CullMode::None),
+            ] {
+                let mut settings = small_settings(shading);
+                settings.interpolation = interpolation;
+                settings.pipeline.cull = cull;
+                let renderer = MeshRenderer::new(&mesh, settings).unwrap();
+                let reference = renderer.render(triangle_backends()[0]).unwrap();
+                assert!(reference.work.fragments > 500, "{name} is drawn");
+                for b in &triangle_backends()[1..] {
+                    let frame = renderer.render(*b).unwrap();
+                    assert!(
+                        frame.target == reference.target,
+                        "{name}, {shading}, {interpolation}, {cull}: {} differs from naive",
+                        b.name()
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Golden images, compared exactly. `RASTERLAB_BLESS=1 cargo test` rewrites them.
+#[test]
+fn golden_images() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden");
+    let bless = std::env::var_os("RASTERLAB_BLESS").is_some();
+    let mut cases: Vec<(&str, RenderTarget)> = Vec::new();
+    let bunny = asset("bunny.ply");
+    let dragon = asset("dragon_vrip_res4.ply.gz");
+    let render = |mesh: &Mesh, settings: RenderSettings| {
+        MeshRenderer::new(mesh, settings)
+            .unwrap()
+            .render(triangle_backend("scanline").unwrap())
+            .unwrap()
+            .target
+    };
+    cases.push((
+        "bunny-diffuse",
+        render(&bunny, small_settings(Shading::Diffuse)),
+    ));
+    cases.push((
+        "bunny-gouraud-cull-back",
+        render(
+            &bunny,
+            RenderSettings {
+                pipeline: PipelineOptions {
+                    cull: CullMode::Back,
+                    ..PipelineOptions::default()
+                },
+                ..small_settings(Shading::Gouraud)
+            },
+        ),
+    ));
+    cases.push((
+        "dragon-texture-nearest",
+        render(
+            &dragon,
+            RenderSettings {
+                filter: Filter::Nearest,
+                zoom: 1.5,
+                ..small_settings(Shading::Texture)
+            },
+        ),
+    ));
+    cases.push((
+        "bunny-wireframe",
+        render(
+            &bunny,
+            RenderSettings {
+                width: 160,
+                height: 120,
+                zoom: 2.0,
+                wireframe: Some(rasterlab::backend::line_backend("bresenham").unwrap()),
+                ..small_settings(Shading::Flat)
+            },
+        ),
+    ));
+    cases.push((
+        "depth-example",
+        Scene2D::depth_example(true)
+            .render(triangle_backends()[0], FillRule::TopLeft, &Flat)
+            .unwrap()
+            .0,
+    ));
+    for (name, target) in cases {
+        let path = dir.join(format!("{name}.png"));
+        if bless {
+            target.save_png(&path).unwrap();
+            continue;
+        }
+        let golden = image::open(&path)
+            .unwrap_or_else(|e| {
+                panic!(
+                    "{}: {e} (run with RASTERLAB_BLESS=1 to create it)",
+                    path.display()
+                )
+            })
+            .to_rgba8();
+        assert!(
+            golden == target.to_image(),
+            "{name} differs from {}",
+            path.display()
+        );
+    }
+}
+
+/// A floor quad receding from the camera, textured with an 8x8
+/// checkerboard sampled nearest. Perspective-correct interpolation puts
+/// every pixel's colour where the analytic ray-plane intersection says;
+/// linear interpolation gets many wrong.
+#[test]
+fn perspective_correct_checkerboard_matches_the_analytic_answer() {
+    let (w, h) = (64u32, 48u32);
+    let projection = Mat4::perspective_rh_gl(60f32.to_radians(), w as f32 / h as f32, 0.5, 50.0);
+    let view = Mat4::look_at_rh(Vec3::new(0., 1., 0.), Vec3::new(0., 0., -6.), Vec3::Y);
+    let transform = Transform::new(Mat4::IDENTITY, view, projection);
+    // The floor y = 0 for x in [-2, 2], z in [-1, -9]; uv = ((x+2)/4, (z+1)/-8).
+    let corners = [(-2., -1.), (2., -1.), (2., -9.), (-2., -9.)];
+    let vertices: Vec<(Vec3, Vec2)> = corners
+        .iter()
+        .map(|&(x, z)| {
+            (
+                Vec3::new(x, 0., z),
+                Vec2::new((x + 2.) / 4., (z + 1.) / -8.),
+            )
+        })
+        .collect();
+    let shader = |v: &(Vec3, Vec2)| ClipVertex {
+        position: transform.mvp * v.0.extend(1.0),
+        varyings: Varyings {
+            uv: v.1,
+            ..Varyings::default()
+        },
+    };
+    let geometry = process_triangles(
+        &vertices,
+        &[[0, 1, 2], [0, 2, 3]],
+        &shader,
+        Viewport {
+            width: w,
+            height: h,
+        },
+        &PipelineOptions::default(),
+    )
+    .unwrap();
+    let (black, white) = (Vec4::new(0., 0., 0., 1.), Vec4::ONE);
+    let texture = Textured {
+        texture: Texture::checkerboard(8, 1, white, black),
+        filter: Filter::Nearest,
+        light: None,
+    };
+    let inverse = transform.mvp.inverse();
+    let mut wrong = [0usize; 2];
+    let mut checked = 0;
+    for (k, interpolation) in [Interpolation::PerspectiveCorrect, Interpolation::Linear]
+        .into_iter()
+        .enumerate()
+    {
+        let mut target = RenderTarget::new(w, h).unwrap();
+        draw(
+            &geometry,
+            triangle_backends()[2],
+            &texture,
+            DepthState::DEFAULT,
+            interpolation,
+            &mut target,
+        );
+        for y in 0..h {
+            for x in 0..w {
+                if target.coverage[target.index(x, y)] == 0 {
+                    continue;
+                }
+                // The ray through the pixel centre, intersected with y = 0.
+                let ndc = Vec2::new(
+                    (x as f32 + 0.5) / w as f32 * 2. - 1.,
+                    1. - (y as f32 + 0.5) / h as f32 * 2.,
+                );
+                let near = inverse.project_point3(ndc.extend(-1.0));
+                let far = inverse.project_point3(ndc.extend(1.0));
+                let t = near.y / (near.y - far.y);
+                let p = near + (far - near) * t;
+                let (u, v) = (((p.x + 2.) / 4.) * 8., ((p.z + 1.) / -8.) * 8.);
+                // Skip pixels whose centre is within a hair of a square's border.
+                if (u - u.round()).abs() < 0.02 || (v - v.round()).abs() < 0.02 {
+                    continue;
+                }
+                let expected = if (u.floor() as i64 + v.floor() as i64) % 2 == 0 {
+                    [255, 255, 255, 255]
+                } else {
+                    [0, 0, 0, 255]
+                };
+                if k == 0 {
+                    checked += 1;
+                }
+                if target.color[target.index(x, y)] != expected {
+                    wrong[k] += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 1000, "{checked} pixels checked");
+    assert_eq!(
+        wrong[0], 0,
+        "perspective-correct interpolation misplaces {} pixels",
+        wrong[0]
+    );
+    assert!(
+        wrong[1] > 100,
+        "linear interpolation should visibly differ, only {} pixels did",
+        wrong[1]
+    );
+}
+
+/// Solves for the clip-space barycentrics of the point of the triangle that
+/// projects to `ndc`, and says whether it is in the triangle and in the
+/// frustum; `None` when the pixel is too close to a border to decide.
+fn oracle(t: &[Vec4; 3], ndc: (f64, f64)) -> Option<bool> {
+    let p = t.map(|v| v.as_dvec4());
+    // sum b_i (x_i - nx w_i) = 0, sum b_i (y_i - ny w_i) = 0, sum b_i = 1.
+    let row = |f: &dyn Fn(glam::DVec4) -> f64| glam::DVec3::new(f(p[0]), f(p[1]), f(p[2]));
+    let m = glam::DMat3::from_cols(
+        row(&|v| v.x - ndc.0 * v.w),
+        row(&|v| v.y - ndc.1 * v.w),
+        glam::DVec3::ONE,
+    )
+    .transpose();
+    if m.determinant().abs() < 1e-9 {
+        return None;
+    }
+    let b = m.inverse() * glam::DVec3::new(0., 0., 1.);
+    let q = p[0] * b.x + p[1] * b.y + p[2] * b.z;
+    // Inside the triangle, beyond the w >= W_MIN plane, between near and far.
+    let w_min = f64::from(rasterlab::pipeline::clip::W_MIN);
+    let margins = [
+        b.x,
+        b.y,
+        b.z,
+        (q.w - w_min) / w_min,
+        (q.z + q.w) / q.w.abs().max(1e-300),
+        (q.w - q.z) / q.w.abs().max(1e-300),
+    ];
+    if margins.iter().any(|m| m.abs() < 1e-3) {
+        return None;
+    }
+    Some(margins.iter().all(|m| *m > 0.0))
+}
+
+/// Clip-space coordinates: ordinary ones, large ones (a million times the
+/// screen), and ones near zero (w near zero).
+fn clip_coordinate() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        4 => -3.0f32..3.0,
+        1 => -1e6f32..1e6,
+        1 => -1e-6f32..1e-6,
+        1 => Just(0.0f32),
+    ]
+}
+
+/// Extreme clip-space coordinates, beyond what f64 intersects exactly.
+fn extreme_coordinate() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        Just(f32::MAX),
+        Just(-f32::MAX),
+        Just(1e30f32),
+        Just(-1e30f32),
+        Just(1e-30f32),
+        Just(0.0f32),
+        -3.0f32..3.0,
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(4000))]
+
+    /// Triangles anywhere in clip space (across the near plane, behind the
+    /// camera, huge, with w near zero): no error, every fragment lies where
+    /// the clip-space triangle really is inside the frustum, and every pixel
+    /// the triangle clearly covers inside the frustum is drawn.
+    #[test]
+    fn clipping_draws_exactly_the_visible_part(
+        t in proptest::array::uniform3((clip_coordinate(), clip_coordinate(), clip_coordinate(), clip_coordinate()))
+    ) {
+        let (w, h) = (24u32, 16u32);
+        let tri = t.map(|(x, y, z, w)| Vec4::new(x, y, z, w));
+        let shader = |v: &Vec4| ClipVertex { position: *v, varyings: Varyings::default() };
+        let geometry = process_triangles(&tri, &[[0, 1, 2]], &shader, Viewport { width: w, height: h }, &PipelineOptions::default()).unwrap();
+        let mut list = FragmentList::default();
+        triangle_backends()[2].rasterize(&geometry.setups, rasterlab::edge::PixelRect::of_target(w, h), &mut list);
+        let mut covered = vec![false; (w * h) as usize];
+        for f in &list.triangles {
+            prop_assert!(!covered[(f.y * w + f.x) as usize], "pixel ({}, {}) drawn twice", f.x, f.y);
+            covered[(f.y * w + f.x) as usize] = true;
+            let z = geometry.triangles[f.triangle as usize].depth.at(f.x, f.y);
+            prop_assert!((-1e-3..=1.001).contains(&z), "depth {z} outside [0, 1]");
+        }
+        for y in 0..h {
+            for x in 0..w {
+                // The oracle at the pixel centre and 1/50 px around it: a
+                // pixel is checked only when all five agree, so snapping
+                // (1/512 px) cannot decide it.
+                let probe = |dx: f64, dy: f64| {
+                    oracle(&tri, ((x as f64 + 0.5 + dx) / w as f64 * 2. - 1., 1. - (y as f64 + 0.5 + dy) / h as f64 * 2.))
+                };
+                let d = 0.02;
+                let probes = [probe(0., 0.), probe(d, 0.), probe(-d, 0.), probe(0., d), probe(0., -d)];
+                if probes.iter().all(|p| *p == probes[0]) {
+                    let Some(inside) = probes[0] else { continue };
+                    prop_assert_eq!(covered[(y * w + x) as usize], inside, "pixel ({}, {}), stats {:?}", x, y, geometry.stats);
+                }
+            }
+        }
+    }
+
+    /// Extreme coordinates (up to f32::MAX) are no error and no panic; what
+    /// is drawn stays on the target with depths in range.
+    #[test]
+    fn extreme_coordinates_never_fail(
+        t in proptest::array::uniform3((extreme_coordinate(), extreme_coordinate(), extreme_coordinate(), extreme_coordinate()))
+    ) {
+        let tri = t.map(|(x, y, z, w)| Vec4::new(x, y, z, w));
+        let shader = |v: &Vec4| ClipVertex { position: *v, varyings: Varyings::default() };
+        let geometry = process_triangles(&tri, &[[0, 1, 2]], &shader, Viewport { width: 24, height: 16 }, &PipelineOptions::default()).unwrap();
+        let mut target = RenderTarget::new(24, 16).unwrap();
+        for b in triangle_backends() {
+            draw(&geometry, *b, &Flat, DepthState::DEFAULT, Interpolation::PerspectiveCorrect, &mut target);
+        }
+        prop_assert!(target.depth.iter().all(|z| (-1e-3..=1.001).contains(z)));
+    }
+
+    /// With a depth test and no two triangles at equal depth, the image
+    /// does not depend on the drawing order.
+    #[test]
+    fn the_depth_buffer_makes_drawing_order_irrelevant(
+        soup in common::triangle_soup(12),
+        order in Just((0..12usize).collect::<Vec<_>>()).prop_shuffle(),
+    ) {
+        let n = soup.len();
+        let vertex = |i: usize| {
+            // Distinct constant depths, distinct colours.
+            [ShadedVertex::flat((i as f32 + 1.0) / 16.0, rasterlab::scene::palette(i)); 3]
+        };
+        let order: Vec<usize> = order.into_iter().filter(|&i| i < n).collect();
+        let scene = |idx: &[usize]| Scene2D {
+            width: common::SIZE,
+            height: common::SIZE,
+            triangles: idx.iter().map(|&i| soup[i]).collect(),
+            vertices: idx.iter().map(|&i| vertex(i)).collect(),
+        };
+        let identity: Vec<usize> = (0..n).collect();
+        for b in &triangle_backends()[1..] {
+            let render = |s: Scene2D| {
+                let mut t = RenderTarget::new(common::SIZE, common::SIZE).unwrap();
+                s.draw(*b, FillRule::TopLeft, DepthState::DEFAULT, &Flat, &mut t);
+                t
+            };
+            prop_assert!(render(scene(&identity)) == render(scene(&order)), "{}", b.name());
+        }
+    }
+}
+
+/// A wall crossing the near plane: the part in front of the camera is
+/// drawn, to the bottom edge of the screen.
+#[test]
+fn a_triangle_through_the_camera_is_cut_at_the_near_plane() {
+    let (w, h) = (32u32, 24u32);
+    let projection = Mat4::perspective_rh_gl(90f32.to_radians(), w as f32 / h as f32, 0.1, 100.0);
+    let transform = Transform::new(Mat4::IDENTITY, Mat4::IDENTITY, projection);
+    // A floor under the camera reaching from behind it (z = +5) to z = -20.
+    let floor = [
+        Vec3::new(-30., -1., 5.),
+        Vec3::new(30., -1., 5.),
+        Vec3::new(0., -1., -20.),
+    ];
+    let geometry = process_triangles(
+        &floor,
+        &[[0, 1, 2]],
+        &transform,
+        Viewport {
+            width: w,
+            height: h,
+        },
+        &PipelineOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(geometry.stats.clipped, 1);
+    let mut target = RenderTarget::new(w, h).unwrap();
+    draw(
+        &geometry,
+        triangle_backends()[3],
+        &Constant(Vec4::ONE),
+        DepthState::DEFAULT,
+        Interpolation::PerspectiveCorrect,
+        &mut target,
+    );
+    // The whole bottom half is floor; the top half is sky.
+    for x in 0..w {
+        assert!(
+            target.coverage[target.index(x, h - 1)] == 1,
+            "bottom row, column {x}"
+        );
+        assert!(
+            target.coverage[target.index(x, 0)] == 0,
+            "top row, column {x}"
+        );
+    }
+}
+
+/// Shrunk from `clipping_draws_exactly_the_visible_part`: a vertex at
+/// infinity (w = 0) whose edge, clipped at the guard band 16,000 px away,
+/// passes 1/200 px from pixel (9, 10)'s centre. The pixel is inside.
+#[test]
+fn regression_edge_to_a_point_at_infinity_passes_a_hair_above_a_pixel_centre() {
+    let tri = [
+        Vec4::new(-2.7202687, 0.5258993, 0.0, 0.0),
+        Vec4::new(0.66660595, -1.158189, 0.0, 2.9193134),
+        Vec4::new(0.0, -0.72356486, 0.0, 2.8196368),
+    ];
+    let shader = |v: &Vec4| ClipVertex {
+        position: *v,
+        varyings: Varyings::default(),
+    };
+    let geometry = process_triangles(
+        &tri,
+        &[[0, 1, 2]],
+        &shader,
+        Viewport {
+            width: 24,
+            height: 16,
+        },
+        &PipelineOptions::default(),
+    )
+    .unwrap();
+    assert_eq!((geometry.stats.clipped, geometry.stats.triangles), (1, 2));
+    let mut target = RenderTarget::new(24, 16).unwrap();
+    draw(
+        &geometry,
+        triangle_backends()[0],
+        &Flat,
+        DepthState::DEFAULT,
+        Interpolation::PerspectiveCorrect,
+        &mut target,
+    );
+    assert_eq!(target.coverage[target.index(9, 10)], 1);
+    assert_eq!(target.coverage[target.index(9, 11)], 0);
+}
