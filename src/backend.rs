@@ -8,7 +8,7 @@ use crate::line::{
     bresenham::Bresenham, dda::Dda, diamond::Diamond, direct::Direct, wu::Wu, LineRasterizer,
 };
 use crate::triangle::{
-    bbox::BoundingBox, incremental::Incremental, naive::Naive, scanline::Scanline,
+    bbox::BoundingBox, incremental::Incremental, naive::Naive, scanline::Scanline, tiled::Tiled,
     TriangleRasterizer,
 };
 use std::fmt;
@@ -42,8 +42,8 @@ pub struct BackendInfo {
     pub description: &'static str,
 }
 
-static TRIANGLE_BACKENDS: [&dyn TriangleRasterizer; 4] =
-    [&Naive, &BoundingBox, &Scanline, &Incremental];
+static TRIANGLE_BACKENDS: [&dyn TriangleRasterizer; 5] =
+    [&Naive, &BoundingBox, &Scanline, &Incremental, &Tiled];
 
 /// Every triangle back-end; `naive`, the reference, first.
 pub fn triangle_backends() -> &'static [&'static dyn TriangleRasterizer] {

@@ -14,6 +14,7 @@
 //! | [`bbox`] | only pixels in the triangle's bounding box, edge functions evaluated directly | 1 inside the box |
 //! | [`scanline`] | per row, solve exactly where the row enters and leaves the triangle | 0 |
 //! | [`incremental`] | bounding box, edge functions stepped by additions (Pineda) | 1 inside the box |
+//! | [`tiled`] | 8x8 blocks, trivial reject / accept from the corners, per-pixel tests only on edges | 1 in straddling blocks, 0 elsewhere |
 //!
 //! Every back-end emits, for each pixel, that pixel's fragments in
 //! ascending triangle order, so the shared stage's depth test resolves ties
@@ -23,6 +24,7 @@ pub mod bbox;
 pub mod incremental;
 pub mod naive;
 pub mod scanline;
+pub mod tiled;
 
 use crate::edge::{PixelRect, TriangleSetup};
 use crate::fragment::{FragmentSink, TriangleFragment, WorkCounters};
