@@ -61,6 +61,7 @@ pub mod scene;
 pub mod shader;
 pub mod stage;
 pub mod target;
+pub mod trace;
 pub mod triangle;
 
 pub use error::{Error, Result};

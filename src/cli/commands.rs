@@ -470,3 +470,64 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
         ))
     }
 }
+
+#[derive(Args, Debug)]
+pub struct ExplainArgs {
+    /// Back-end to trace: bresenham, direct, dda (a line: x0 y0 x1 y1, in
+    /// pixels), or bbox, naive (a triangle: x0 y0 x1 y1 x2 y2, in screen
+    /// coordinates).
+    #[arg(long)]
+    backend: String,
+    /// Fill rule for triangles.
+    #[arg(long, default_value = "top-left")]
+    rule: String,
+    /// Grid size for triangles, `WxH`.
+    #[arg(long, default_value = "16x16")]
+    size: Size,
+    /// The coordinates.
+    #[arg(allow_negative_numbers = true, required = true)]
+    coordinates: Vec<f32>,
+}
+
+pub fn explain(args: &ExplainArgs) -> Result<()> {
+    let c = &args.coordinates;
+    let want = |n: usize, what: &str| {
+        if c.len() == n {
+            Ok(())
+        } else {
+            Err(Error::InvalidArgument(format!(
+                "{} traces {what}: give {n} numbers, not {}",
+                args.backend,
+                c.len()
+            )))
+        }
+    };
+    let text = match args.backend.as_str() {
+        "bresenham" => {
+            want(4, "a line")?;
+            rasterlab::trace::bresenham_trace(c[0], c[1], c[2], c[3])?
+        }
+        "direct" | "dda" => {
+            want(4, "a line")?;
+            rasterlab::trace::line_trace(&args.backend, c[0], c[1], c[2], c[3])?
+        }
+        "bbox" | "naive" => {
+            want(6, "a triangle")?;
+            rasterlab::trace::triangle_trace(
+                &args.backend,
+                [(c[0], c[1]), (c[2], c[3]), (c[4], c[5])],
+                args.rule.parse()?,
+                args.size.width,
+                args.size.height,
+            )?
+        }
+        other => {
+            backend(other)?;
+            return Err(Error::InvalidArgument(format!(
+                "no trace for `{other}` yet (traces: bresenham, direct, dda, bbox, naive)"
+            )));
+        }
+    };
+    print!("{text}");
+    Ok(())
+}

@@ -22,6 +22,8 @@ enum Command {
     Fragments(commands::FragmentsArgs),
     /// Render a triangle soup or a built-in scene to a PNG file.
     Render(commands::RenderArgs),
+    /// Trace one algorithm step by step on a small input, in the course's terms.
+    Explain(commands::ExplainArgs),
     /// Render the bundled scenes with every back-end and check the images are identical.
     Demo(commands::DemoArgs),
 }
@@ -34,6 +36,7 @@ pub fn main() -> ExitCode {
         Command::Fragments(args) => commands::fragments(&args),
         Command::Render(args) => commands::render(&args),
         Command::Demo(args) => commands::demo(&args),
+        Command::Explain(args) => commands::explain(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

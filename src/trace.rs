@@ -1,0 +1,259 @@
+//! Step-by-step traces of one algorithm on one small input, in the
+//! course's terms, as plain-text tables (what `rasterlab explain` prints).
+//!
+//! * [`bresenham_trace`]: seed 004's midpoint loop, each column's `x`, `y`,
+//!   decision variable `d = f(x + 1, y + 1/2)` and the choice it makes;
+//! * [`line_trace`] for `direct` and `dda`: each column's exact `y` and
+//!   the row it rounds to;
+//! * [`triangle_trace`] for `bbox` and `naive`: every pixel tested, its
+//!   three edge values, its barycentric coordinates, inside or not, and
+//!   why (which edge rejected it, or which tie rule decided).
+//!
+//! Line endpoints are pixels: `0 0 7 3` means from the centre of pixel
+//! (0, 0) to the centre of pixel (7, 3), as in the course. Edge values are
+//! printed in square pixels (the fixed-point value divided by 256^2).
+//!
+//! ```
+//! let text = rasterlab::trace::bresenham_trace(0.0, 0.0, 7.0, 3.0).unwrap();
+//! assert!(text.lines().nth(2).unwrap().contains("0.500"));
+//! ```
+
+use crate::edge::{FillRule, PixelRect, TriangleSetup};
+use crate::error::{Error, Result};
+use crate::fixed::{FixedPoint, SUBPIXEL_SCALE};
+use crate::line::bresenham::Bresenham;
+use crate::line::OctantFrame;
+use std::fmt::Write;
+
+/// Square pixels per fixed-point edge unit.
+const AREA_UNIT: f64 = (SUBPIXEL_SCALE * SUBPIXEL_SCALE) as f64;
+
+fn centre(x: f32, y: f32) -> Result<FixedPoint> {
+    FixedPoint::snap(x + 0.5, y + 0.5)
+}
+
+fn frame_note(frame: &OctantFrame) -> String {
+    let mut notes = Vec::new();
+    if frame.swap {
+        notes.push("steep: x and y swapped");
+    }
+    if frame.flip_major {
+        notes.push("major axis mirrored");
+    }
+    if frame.flip_minor {
+        notes.push("minor axis mirrored");
+    }
+    if notes.is_empty() {
+        "first octant: no symmetry needed".to_string()
+    } else {
+        format!(
+            "walked in the first octant ({}), pixels mapped back",
+            notes.join(", ")
+        )
+    }
+}
+
+/// Seed 004's midpoint / Bresenham loop on the line between two pixels.
+pub fn bresenham_trace(x0: f32, y0: f32, x1: f32, y1: f32) -> Result<String> {
+    let frame = OctantFrame::new(centre(x0, y0)?, centre(x1, y1)?);
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "bresenham (midpoint) from pixel ({x0}, {y0}) to ({x1}, {y1}); {}",
+        frame_note(&frame)
+    );
+    let _ = writeln!(
+        out,
+        "{:>4} {:>6} {:>6} {:>12}  choice",
+        "x", "y", "pixel", "d"
+    );
+    for step in Bresenham::steps(&frame) {
+        let (px, py) = frame.to_screen(step.i, step.k);
+        let d = step.d as f64 / AREA_UNIT;
+        let choice = if step.step_up {
+            "d < 0: midpoint below the line, y = y + 1"
+        } else {
+            "d >= 0: midpoint on or above the line, keep y"
+        };
+        let _ = writeln!(
+            out,
+            "{:>4} {:>6} {:>6} {:>12.3}  {choice}",
+            step.i,
+            step.k,
+            format!("{px},{py}"),
+            d
+        );
+    }
+    let _ = writeln!(
+        out,
+        "d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame"
+    );
+    Ok(out)
+}
+
+/// Direct evaluation (`y = m x + b`, rounded) or DDA (`y += m`, rounded)
+/// on the line between two pixels: each column's exact and rounded `y`.
+pub fn line_trace(backend: &str, x0: f32, y0: f32, x1: f32, y1: f32) -> Result<String> {
+    let frame = OctantFrame::new(centre(x0, y0)?, centre(x1, y1)?);
+    let scale = SUBPIXEL_SCALE as f64;
+    let du = frame.du() as f64;
+    let m = if du > 0.0 {
+        frame.dv() as f64 / du
+    } else {
+        0.0
+    };
+    let mut out = String::new();
+    let how = match backend {
+        "direct" => "y = m (x - x0) + y0, evaluated exactly per column, then rounded",
+        "dda" => "y starts at y0 and grows by m per column (y = y + m), then rounded",
+        _ => {
+            return Err(Error::InvalidArgument(format!(
+                "no line trace for `{backend}` (traces: direct, dda, bresenham)"
+            )))
+        }
+    };
+    let _ = writeln!(
+        out,
+        "{backend} from pixel ({x0}, {y0}) to ({x1}, {y1}), m = {m:.4}: {how}; {}",
+        frame_note(&frame)
+    );
+    let _ = writeln!(
+        out,
+        "{:>4} {:>10} {:>6} {:>6}",
+        "x", "exact y", "y", "pixel"
+    );
+    let mut y = (frame.v0 as f64 + m * (frame.i0 as f64 * scale - frame.u0 as f64)) / scale;
+    for i in frame.i0..=frame.i1 {
+        let (exact, k) = match backend {
+            "direct" => (
+                frame.scaled_v_at(i) as f64 / (du.max(1.0) * scale),
+                frame.nearest_row(i),
+            ),
+            _ => (y, (y - 0.5).ceil() as i64),
+        };
+        let (px, py) = frame.to_screen(i, k);
+        let _ = writeln!(
+            out,
+            "{:>4} {:>10.4} {:>6} {:>6}",
+            i,
+            exact,
+            k,
+            format!("{px},{py}")
+        );
+        y += m;
+    }
+    let _ = writeln!(
+        out,
+        "rounding: the nearest row; a tie (exactly .5) goes to the row nearer the start"
+    );
+    Ok(out)
+}
+
+/// The bounding-box (`bbox`) or every-pixel (`naive`) loop on one
+/// triangle given in screen pixels, on a `width` x `height` grid.
+pub fn triangle_trace(
+    backend: &str,
+    vertices: [(f32, f32); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    let grid = PixelRect::of_target(width, height);
+    let points = vertices
+        .iter()
+        .map(|&(x, y)| FixedPoint::snap(x, y))
+        .collect::<Result<Vec<_>>>()?;
+    let mut out = String::new();
+    let Some(t) = TriangleSetup::new(0, [points[0], points[1], points[2]], rule) else {
+        let _ = writeln!(
+            out,
+            "the snapped triangle has zero area: no pixel is tested, nothing is drawn"
+        );
+        return Ok(out);
+    };
+    let region = match backend {
+        "bbox" => t.bounds_within(grid),
+        "naive" => grid,
+        _ => {
+            return Err(Error::InvalidArgument(format!(
+                "no triangle trace for `{backend}` (traces: naive, bbox)"
+            )))
+        }
+    };
+    let _ = writeln!(
+        out,
+        "{backend}, {} rule: triangle {:?}, twice its area = {:.4} px^2, {}",
+        rule.name(),
+        vertices,
+        t.area as f64 / AREA_UNIT,
+        if t.winding > 0 {
+            "counter-clockwise on screen"
+        } else {
+            "clockwise on screen (edges flipped so inside is positive)"
+        }
+    );
+    if backend == "bbox" {
+        let _ = writeln!(
+            out,
+            "bounding box: pixels x {}..={}, y {}..={}",
+            region.x0, region.x1, region.y0, region.y1
+        );
+    }
+    for k in 0..3 {
+        let e = t.edges[k];
+        let _ = writeln!(
+            out,
+            "E{k} (opposite v{k}): {} edge; {}",
+            e.kind(),
+            rule.explain_tie(&e)
+        );
+    }
+    let _ = writeln!(
+        out,
+        "{:>4} {:>4} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7}  verdict",
+        "x", "y", "E0", "E1", "E2", "alpha", "beta", "gamma"
+    );
+    let mut inside_count = 0;
+    if !region.is_empty() {
+        for y in region.y0..=region.y1 {
+            for x in region.x0..=region.x1 {
+                let e = t.edge_values_at_pixel(x, y);
+                let [alpha, beta, gamma] = t.barycentric(e);
+                let inside = t.inside(e);
+                inside_count += usize::from(inside);
+                let verdict = match t.rejecting_edge(e) {
+                    Some(k) if e[k] < 0 => format!("outside: E{k} < 0"),
+                    Some(k) => format!(
+                        "outside: on E{k}, a {} edge that does not own its ties",
+                        t.edges[k].kind()
+                    ),
+                    None => match (0..3).find(|&k| e[k] == 0) {
+                        Some(k) => format!(
+                            "inside: on E{k}, a {} edge that owns its ties",
+                            t.edges[k].kind()
+                        ),
+                        None => "inside".to_string(),
+                    },
+                };
+                let _ = writeln!(
+                    out,
+                    "{:>4} {:>4} {:>9.4} {:>9.4} {:>9.4} {:>7.3} {:>7.3} {:>7.3}  {verdict}",
+                    x,
+                    y,
+                    e[0] as f64 / AREA_UNIT,
+                    e[1] as f64 / AREA_UNIT,
+                    e[2] as f64 / AREA_UNIT,
+                    alpha,
+                    beta,
+                    gamma
+                );
+            }
+        }
+    }
+    let _ = writeln!(
+        out,
+        "{} pixels tested, {inside_count} fragments",
+        region.area()
+    );
+    Ok(out)
+}
