@@ -29,7 +29,12 @@
 //! * [`backend`]: the registry of back-ends by name;
 //! * [`line`](mod@line): the line back-ends, one file each, and their options;
 //! * [`polygon`]: simple polygons and their spade triangulation;
-//! * [`input`] and [`scene`]: text inputs and small 2D scenes.
+//! * [`input`] and [`scene`]: text inputs and small 2D scenes;
+//! * [`mesh`]: PLY and OBJ meshes;
+//! * [`pipeline`]: vertex shaders, assembly, clipping, divide, culling,
+//!   viewport (the course's five steps for 3D input);
+//! * [`render`]: a mesh rendered end to end (camera, shading, wireframe);
+//! * [`trace`]: step-by-step traces of the algorithms for teaching.
 //!
 //! ```
 //! use rasterlab::{backend, edge::FillRule, scene::Scene2D, shader::Flat};
