@@ -119,6 +119,32 @@ impl Error {
         }
     }
 
+    /// Errors with [`Error::NonFinite`] on the first value that is NaN or
+    /// infinite.
+    pub fn check_finite(values: impl IntoIterator<Item = f32>) -> Result<()> {
+        match values.into_iter().find(|v| !v.is_finite()) {
+            Some(v) => Err(Error::NonFinite {
+                value: f64::from(v),
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Errors with [`Error::IndexOutOfRange`] on the first index that does
+    /// not name one of `count` vertices.
+    pub fn check_indices<'a>(
+        indices: impl IntoIterator<Item = &'a u32>,
+        count: usize,
+    ) -> Result<()> {
+        match indices.into_iter().find(|&&i| i as usize >= count) {
+            Some(&index) => Err(Error::IndexOutOfRange {
+                index: u64::from(index),
+                count,
+            }),
+            None => Ok(()),
+        }
+    }
+
     /// Attaches a file and line to an error found while reading that line.
     pub fn at_line(self, path: impl Into<PathBuf>, line: usize) -> Self {
         Error::Parse {

@@ -152,13 +152,7 @@ impl MeshRenderer {
     /// Errors: a zero-size or oversized target, a non-finite zoom.
     pub fn new(mesh: &Mesh, settings: RenderSettings) -> Result<MeshRenderer> {
         RenderTarget::check_size(settings.width, settings.height)?;
-        for v in [settings.azimuth, settings.elevation, settings.zoom] {
-            if !v.is_finite() {
-                return Err(Error::NonFinite {
-                    value: f64::from(v),
-                });
-            }
-        }
+        Error::check_finite([settings.azimuth, settings.elevation, settings.zoom])?;
         if settings.zoom <= 0.0 {
             return Err(Error::InvalidArgument(format!(
                 "zoom must be > 0, not {}",

@@ -138,28 +138,8 @@ fn validate(positions: &[Vec3], triangles: &[[u32; 3]]) -> Result<()> {
     if triangles.is_empty() {
         return Err(Error::Empty("mesh (no triangles)".into()));
     }
-    if let Some(p) = positions.iter().find(|p| !p.is_finite()) {
-        let bad = p
-            .to_array()
-            .into_iter()
-            .find(|c| !c.is_finite())
-            .unwrap_or(f32::NAN);
-        return Err(Error::NonFinite {
-            value: f64::from(bad),
-        });
-    }
-    check_indices(triangles, positions.len())
-}
-
-/// Every index of every triangle must name a vertex.
-pub(crate) fn check_indices(triangles: &[[u32; 3]], count: usize) -> Result<()> {
-    match triangles.iter().flatten().find(|&&i| i as usize >= count) {
-        Some(&index) => Err(Error::IndexOutOfRange {
-            index: u64::from(index),
-            count,
-        }),
-        None => Ok(()),
-    }
+    Error::check_finite(positions.iter().flat_map(|p| p.to_array()))?;
+    Error::check_indices(triangles.iter().flatten(), positions.len())
 }
 
 /// Area-weighted vertex normals; vertices on no face get `+Z`.

@@ -13,7 +13,7 @@
 //! numbers, non-finite coordinates, faces with fewer than three vertices and
 //! indices out of range all name their line.
 
-use super::{check_indices, fan, Mesh};
+use super::{fan, Mesh};
 use crate::error::{Error, Result};
 use glam::{Vec2, Vec3, Vec4};
 use ply_rs_bw::parser::{Parser, Reader};
@@ -130,7 +130,6 @@ pub fn read<R: BufRead>(source: R, path: &Path) -> Result<Mesh> {
         }
         fan(&f.indices, &mut triangles);
     }
-    check_indices(&triangles, positions.len())?;
     let mut mesh =
         Mesh::new(positions, triangles).map_err(|e| located(face_line, e.to_string()))?;
     if vertices.iter().all(|v| v.has_normal) {

@@ -57,12 +57,7 @@ pub fn assemble(
 ) -> Result<Vec<[u32; 3]>> {
     let stream: Vec<u32> = match indices {
         Some(ix) => {
-            if let Some(&bad) = ix.iter().find(|&&i| i as usize >= vertex_count) {
-                return Err(Error::IndexOutOfRange {
-                    index: u64::from(bad),
-                    count: vertex_count,
-                });
-            }
+            Error::check_indices(ix, vertex_count)?;
             ix.to_vec()
         }
         None => {

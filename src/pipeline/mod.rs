@@ -242,15 +242,10 @@ pub fn process_triangles<V, S: VertexShader<V>>(
     viewport: Viewport,
     options: &PipelineOptions,
 ) -> Result<Geometry> {
-    crate::mesh::check_indices(triangles, vertices.len())?;
+    Error::check_indices(triangles.iter().flatten(), vertices.len())?;
     let clip = ClipVolume::new(viewport.width, viewport.height);
     let shaded: Vec<ClipVertex> = vertices.iter().map(|v| shader.shade(v)).collect();
-    if let Some(bad) = shaded.iter().find(|v| !v.position.is_finite()) {
-        let value = bad.position.to_array().into_iter().find(|c| !c.is_finite());
-        return Err(Error::NonFinite {
-            value: f64::from(value.unwrap_or(f32::NAN)),
-        });
-    }
+    Error::check_finite(shaded.iter().flat_map(|v| v.position.to_array()))?;
     let codes: Vec<u8> = shaded.iter().map(|v| clip.outcode(v.position)).collect();
     // Vertices inside the clip volume are divided and snapped once, however
     // many triangles share them.
@@ -336,27 +331,17 @@ pub fn process_lines<V, S: VertexShader<V>>(
     shader: &S,
     viewport: Viewport,
 ) -> Result<Vec<ShadedLine>> {
-    if let Some(&bad) = segments
-        .iter()
-        .flatten()
-        .find(|&&i| i as usize >= vertices.len())
-    {
-        return Err(Error::IndexOutOfRange {
-            index: u64::from(bad),
-            count: vertices.len(),
-        });
-    }
+    Error::check_indices(segments.iter().flatten(), vertices.len())?;
     let clip = ClipVolume::new(viewport.width, viewport.height);
     let mut lines = Vec::with_capacity(segments.len());
     for s in segments {
         let [a, b] = s.map(|i| shader.shade(&vertices[i as usize]));
-        for v in [&a, &b] {
-            if let Some(c) = v.position.to_array().into_iter().find(|c| !c.is_finite()) {
-                return Err(Error::NonFinite {
-                    value: f64::from(c),
-                });
-            }
-        }
+        Error::check_finite(
+            a.position
+                .to_array()
+                .into_iter()
+                .chain(b.position.to_array()),
+        )?;
         if let Some([a, b]) = clip.clip_segment(&a, &b) {
             let (a, b) = (
                 to_screen_vertex(&viewport, &a)?,
