@@ -27,7 +27,7 @@ pub mod camera;
 pub mod clip;
 pub mod vertex;
 
-use crate::edge::{FillRule, PixelRect, TriangleSetup};
+use crate::edge::{EdgeFunction, FillRule, PixelRect, TriangleSetup};
 use crate::error::{Error, Result};
 use crate::fixed::{Fixed, FixedPoint};
 use crate::fragment::WorkCounters;
@@ -203,10 +203,18 @@ fn to_screen_vertex(viewport: &Viewport, v: &ClipVertex) -> Result<ScreenVertex>
 
 impl Geometry {
     /// Sets up one screen-space triangle and keeps it unless it is
-    /// degenerate or culled.
-    fn push(&mut self, v: [ScreenVertex; 3], source: u32, options: &PipelineOptions) {
+    /// degenerate, of a winding other than `winding` (when given), or culled.
+    fn push(
+        &mut self,
+        v: [ScreenVertex; 3],
+        source: u32,
+        winding: Option<i8>,
+        options: &PipelineOptions,
+    ) {
         let id = self.setups.len() as u32;
-        let Some(setup) = TriangleSetup::new(id, v.map(|s| s.point), options.rule) else {
+        let Some(setup) = TriangleSetup::new(id, v.map(|s| s.point), options.rule)
+            .filter(|s| winding.is_none_or(|w| w == s.winding))
+        else {
             self.stats.degenerate += 1;
             return;
         };
@@ -273,7 +281,7 @@ pub fn process_triangles<V, S: VertexShader<V>>(
         let source = index as u32;
         let idx = t.map(|i| i as usize);
         if let [Some(a), Some(b), Some(c)] = idx.map(|i| screen[i]) {
-            geometry.push([a, b, c], source, options);
+            geometry.push([a, b, c], source, None, options);
             continue;
         }
         let corners = idx.map(|i| shaded[i]);
@@ -296,24 +304,18 @@ pub fn process_triangles<V, S: VertexShader<V>>(
                 // The fan of a convex polygon keeps one winding. Cut points
                 // that are nearly collinear can snap into a sliver of the
                 // opposite winding, which would overlap its neighbour; the
-                // polygon's winding (the sign of its area) decides which
-                // slivers are dropped.
-                let twice_area: i64 = (0..screen.len())
-                    .map(|i| {
-                        let (a, b) = (screen[i].point, screen[(i + 1) % screen.len()].point);
-                        a.x.raw() * b.y.raw() - b.x.raw() * a.y.raw()
-                    })
+                // polygon's winding (the sign of its area, the sum of its fan
+                // triangles' signed areas) decides which slivers are dropped.
+                let fan: Vec<[ScreenVertex; 3]> = (1..screen.len().saturating_sub(1))
+                    .map(|i| [screen[0], screen[i], screen[i + 1]])
+                    .collect();
+                let twice_area: i64 = fan
+                    .iter()
+                    .map(|[a, b, c]| EdgeFunction::through(b.point, c.point).eval(a.point))
                     .sum();
-                for i in 1..screen.len().saturating_sub(1) {
-                    let fan = [screen[0], screen[i], screen[i + 1]];
-                    let [a, b, c] = fan.map(|s| s.point);
-                    let cross = (b.x.raw() - a.x.raw()) * (c.y.raw() - a.y.raw())
-                        - (b.y.raw() - a.y.raw()) * (c.x.raw() - a.x.raw());
-                    if cross != 0 && (cross > 0) != (twice_area > 0) {
-                        geometry.stats.degenerate += 1;
-                        continue;
-                    }
-                    geometry.push(fan, source, options);
+                let winding = if twice_area < 0 { -1 } else { 1 };
+                for triangle in fan {
+                    geometry.push(triangle, source, Some(winding), options);
                 }
             }
         }
