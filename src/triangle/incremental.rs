@@ -47,29 +47,43 @@ impl TriangleRasterizer for Incremental {
         for t in triangles {
             work.primitives += 1;
             let r = t.bounds_within(viewport);
-            if r.is_empty() {
-                continue;
-            }
-            let step_x = t.edges.map(|e| e.a * SUBPIXEL_SCALE);
-            let step_y = t.edges.map(|e| e.b * SUBPIXEL_SCALE);
-            let mut row = t.edge_values_at_pixel(r.x0, r.y0);
-            for y in r.y0..=r.y1 {
-                let mut e = row;
-                for x in r.x0..=r.x1 {
-                    work.samples_tested += 1;
-                    if t.inside(e) {
-                        work.fragments += 1;
-                        emit(sink, t, x, y, e);
-                    }
-                    for k in 0..3 {
-                        e[k] += step_x[k];
-                    }
-                }
-                for k in 0..3 {
-                    row[k] += step_y[k];
-                }
+            if !r.is_empty() {
+                step_over(t, r, true, sink, &mut work);
             }
         }
         work
+    }
+}
+
+/// Walks the pixels of `r` (non-empty) row by row, stepping the edge
+/// values by additions, and emits those inside `t`; with `test` false,
+/// every pixel is emitted untested (for a rectangle known to lie inside).
+pub(crate) fn step_over(
+    t: &TriangleSetup,
+    r: PixelRect,
+    test: bool,
+    sink: &mut dyn FragmentSink,
+    work: &mut WorkCounters,
+) {
+    let step_x = t.edges.map(|e| e.a * SUBPIXEL_SCALE);
+    let step_y = t.edges.map(|e| e.b * SUBPIXEL_SCALE);
+    let mut row = t.edge_values_at_pixel(r.x0, r.y0);
+    for y in r.y0..=r.y1 {
+        let mut e = row;
+        for x in r.x0..=r.x1 {
+            if !test || t.inside(e) {
+                work.fragments += 1;
+                emit(sink, t, x, y, e);
+            }
+            for k in 0..3 {
+                e[k] += step_x[k];
+            }
+        }
+        for k in 0..3 {
+            row[k] += step_y[k];
+        }
+    }
+    if test {
+        work.samples_tested += r.area();
     }
 }

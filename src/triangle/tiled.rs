@@ -13,7 +13,7 @@
 //!   inside: **trivial accept**, every pixel of the block is emitted with
 //!   its edge values stepped by additions, without a test;
 //! * otherwise the block straddles an edge and each of its pixels is
-//!   tested, as in [`incremental`](super::incremental).
+//!   tested by [`incremental`](super::incremental)'s loop.
 //!
 //! Triangles whose bounding box fits in one block skip the block step and
 //! go straight to the per-pixel loop (cheap set-up for small triangles).
@@ -28,9 +28,9 @@
 //!   else:                       test each pixel of B
 //! ```
 
-use super::{emit, TriangleRasterizer};
+use super::incremental::step_over;
+use super::TriangleRasterizer;
 use crate::edge::{PixelRect, TriangleSetup};
-use crate::fixed::SUBPIXEL_SCALE;
 use crate::fragment::{FragmentSink, WorkCounters};
 
 /// Block side in pixels.
@@ -75,37 +75,6 @@ pub fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
     }
 }
 
-/// Emits the pixels of `r`, testing each one unless `accept_all`.
-fn walk(
-    t: &TriangleSetup,
-    r: PixelRect,
-    accept_all: bool,
-    sink: &mut dyn FragmentSink,
-    work: &mut WorkCounters,
-) {
-    let step_x = t.edges.map(|e| e.a * SUBPIXEL_SCALE);
-    let step_y = t.edges.map(|e| e.b * SUBPIXEL_SCALE);
-    let mut row = t.edge_values_at_pixel(r.x0, r.y0);
-    for y in r.y0..=r.y1 {
-        let mut e = row;
-        for x in r.x0..=r.x1 {
-            if accept_all || t.inside(e) {
-                work.fragments += 1;
-                emit(sink, t, x, y, e);
-            }
-            for k in 0..3 {
-                e[k] += step_x[k];
-            }
-        }
-        for k in 0..3 {
-            row[k] += step_y[k];
-        }
-    }
-    if !accept_all {
-        work.samples_tested += r.area();
-    }
-}
-
 impl TriangleRasterizer for Tiled {
     fn name(&self) -> &'static str {
         "tiled"
@@ -129,7 +98,7 @@ impl TriangleRasterizer for Tiled {
                 continue;
             }
             if r.x1 - r.x0 < BLOCK && r.y1 - r.y0 < BLOCK {
-                walk(t, r, false, sink, &mut work);
+                step_over(t, r, true, sink, &mut work);
                 continue;
             }
             let (bx0, by0) = (r.x0.div_euclid(BLOCK), r.y0.div_euclid(BLOCK));
@@ -146,8 +115,8 @@ impl TriangleRasterizer for Tiled {
                     work.spans += 1;
                     match classify_block(t, block) {
                         BlockClass::Outside => {}
-                        BlockClass::Inside => walk(t, block, true, sink, &mut work),
-                        BlockClass::Partial => walk(t, block, false, sink, &mut work),
+                        BlockClass::Inside => step_over(t, block, false, sink, &mut work),
+                        BlockClass::Partial => step_over(t, block, true, sink, &mut work),
                     }
                 }
             }
