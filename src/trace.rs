@@ -22,6 +22,7 @@ use crate::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::error::{Error, Result};
 use crate::fixed::{FixedPoint, SUBPIXEL_SCALE};
 use crate::line::bresenham::Bresenham;
+use crate::line::dda::Dda;
 use crate::line::OctantFrame;
 use std::fmt::Write;
 
@@ -122,15 +123,16 @@ pub fn line_trace(backend: &str, x0: f32, y0: f32, x1: f32, y1: f32) -> Result<S
         "{:>4} {:>10} {:>6} {:>6}",
         "x", "exact y", "y", "pixel"
     );
-    let mut y = (frame.v0 as f64 + m * (frame.i0 as f64 * scale - frame.u0 as f64)) / scale;
-    for i in frame.i0..=frame.i1 {
-        let (exact, k) = match backend {
-            "direct" => (
-                frame.scaled_v_at(i) as f64 / (du.max(1.0) * scale),
-                frame.nearest_row(i),
-            ),
-            _ => (y, (y - 0.5).ceil() as i64),
-        };
+    let columns: Vec<(i64, f64, i64)> = match backend {
+        "direct" => (frame.i0..=frame.i1)
+            .map(|i| {
+                let exact = frame.scaled_v_at(i) as f64 / (du.max(1.0) * scale);
+                (i, exact, frame.nearest_row(i))
+            })
+            .collect(),
+        _ => Dda::columns(&frame),
+    };
+    for (i, exact, k) in columns {
         let (px, py) = frame.to_screen(i, k);
         let _ = writeln!(
             out,
@@ -140,7 +142,6 @@ pub fn line_trace(backend: &str, x0: f32, y0: f32, x1: f32, y1: f32) -> Result<S
             k,
             format!("{px},{py}")
         );
-        y += m;
     }
     let _ = writeln!(
         out,

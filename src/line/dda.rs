@@ -15,7 +15,10 @@
 //! `direct`. Every pixel is still within half a pixel (plus that error) of
 //! the ideal line, which the property tests check.
 
-use super::{finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup};
+use super::{
+    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup,
+    OctantFrame,
+};
 use crate::edge::PixelRect;
 use crate::fixed::SUBPIXEL_SCALE;
 use crate::fragment::{FragmentSink, WorkCounters};
@@ -28,18 +31,28 @@ impl Dda {
     /// The pixels of one segment, in the order of travel.
     pub fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
         let (frame, reversed) = walk_frame(line, options);
+        let rows: Vec<(i64, i64)> = Dda::columns(&frame)
+            .into_iter()
+            .map(|(i, _, k)| (i, k))
+            .collect();
+        finish_pixels(&frame, &rows, reversed, options)
+    }
+
+    /// Each column of a frame as `(i, y, k)`: the accumulated `y` (in
+    /// pixels, `y += m` per column) and the row it rounds to.
+    pub fn columns(frame: &OctantFrame) -> Vec<(i64, f64, i64)> {
         let scale = SUBPIXEL_SCALE as f64;
         let (du, dv) = (frame.du() as f64, frame.dv() as f64);
         let m = if du > 0.0 { dv / du } else { 0.0 };
         // y at the first column's centre, in pixels.
         let mut y = (frame.v0 as f64 + m * (frame.i0 as f64 * scale - frame.u0 as f64)) / scale;
-        let mut rows = Vec::with_capacity((frame.i1 - frame.i0 + 1) as usize);
+        let mut columns = Vec::with_capacity((frame.i1 - frame.i0 + 1) as usize);
         for i in frame.i0..=frame.i1 {
             // Nearest row, ties to the lower row (the start's side).
-            rows.push((i, (y - 0.5).ceil() as i64));
+            columns.push((i, y, (y - 0.5).ceil() as i64));
             y += m;
         }
-        finish_pixels(&frame, &rows, reversed, options)
+        columns
     }
 }
 
