@@ -109,18 +109,6 @@ impl Default for RenderSettings {
     }
 }
 
-impl std::fmt::Debug for dyn LineRasterizer {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl PartialEq for dyn LineRasterizer {
-    fn eq(&self, other: &Self) -> bool {
-        self.name() == other.name()
-    }
-}
-
 /// One rendered frame and what it cost.
 #[derive(Clone, Debug)]
 pub struct Frame {

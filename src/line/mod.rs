@@ -150,6 +150,20 @@ pub trait LineRasterizer: Send + Sync {
     ) -> WorkCounters;
 }
 
+/// Back-ends are told apart by name (so settings holding one can be
+/// compared and printed).
+impl std::fmt::Debug for dyn LineRasterizer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl PartialEq for dyn LineRasterizer {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name()
+    }
+}
+
 /// The pixel index containing a snapped coordinate (a coordinate exactly on
 /// a pixel boundary belongs to the pixel after it).
 pub fn pixel_containing(raw: i64) -> i64 {

@@ -67,27 +67,20 @@ impl Mesh {
 
     /// Loads a mesh by file extension: `.ply`, `.ply.gz` or `.obj`.
     pub fn load(path: &Path) -> Result<Mesh> {
-        let name = path
-            .file_name()
-            .map(|n| n.to_string_lossy().to_lowercase())
-            .unwrap_or_default();
-        if name.ends_with(".ply") || name.ends_with(".ply.gz") {
-            ply::load(path)
-        } else if name.ends_with(".obj") {
-            obj::load(path)
-        } else {
-            Err(Error::Parse {
+        match MeshFormat::of(path) {
+            Some(MeshFormat::Ply) => ply::load(path),
+            Some(MeshFormat::Obj) => obj::load(path),
+            None => Err(Error::Parse {
                 path: path.to_path_buf(),
                 line: None,
                 message: "unknown mesh format: expected a .ply, .ply.gz or .obj file".into(),
-            })
+            }),
         }
     }
 
     /// Whether a path names a mesh file this module can load.
     pub fn is_mesh_path(path: &Path) -> bool {
-        let name = path.to_string_lossy().to_lowercase();
-        name.ends_with(".ply") || name.ends_with(".ply.gz") || name.ends_with(".obj")
+        MeshFormat::of(path).is_some()
     }
 
     /// Replaces the normals by area-weighted face normals (the cross product
@@ -130,6 +123,27 @@ impl Mesh {
     /// The texture coordinates from the file, or generated ones.
     pub fn uvs_or_generated(&self) -> Vec<Vec2> {
         self.uvs.clone().unwrap_or_else(|| self.planar_uvs())
+    }
+}
+
+/// The mesh formats, told apart by file name.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum MeshFormat {
+    Ply,
+    Obj,
+}
+
+impl MeshFormat {
+    /// `.ply` or `.ply.gz`, `.obj` (any case); `None` otherwise.
+    fn of(path: &Path) -> Option<MeshFormat> {
+        let name = path.file_name()?.to_string_lossy().to_lowercase();
+        if name.ends_with(".ply") || name.ends_with(".ply.gz") {
+            Some(MeshFormat::Ply)
+        } else if name.ends_with(".obj") {
+            Some(MeshFormat::Obj)
+        } else {
+            None
+        }
     }
 }
 
