@@ -336,8 +336,10 @@ pub fn process_lines<V, S: VertexShader<V>>(
     Error::check_indices(segments.iter().flatten(), vertices.len())?;
     let clip = ClipVolume::new(viewport.width, viewport.height);
     let mut lines = Vec::with_capacity(segments.len());
+    // Each vertex is shaded once, however many segments share it.
+    let shaded: Vec<ClipVertex> = vertices.iter().map(|v| shader.shade(v)).collect();
     for s in segments {
-        let [a, b] = s.map(|i| shader.shade(&vertices[i as usize]));
+        let [a, b] = s.map(|i| shaded[i as usize]);
         Error::check_finite(
             a.position
                 .to_array()
