@@ -37,10 +37,55 @@ pub struct LineFragment {
     pub coverage: f32,
 }
 
+/// A run of covered pixels of one triangle on one row: pixels `x0..=x1` of
+/// row `y`. Triangles are convex, so the covered pixels of a row are always
+/// one run; back-ends that know the run hand it over whole.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct TriangleSpan {
+    /// Pixel row.
+    pub y: u32,
+    /// First pixel column.
+    pub x0: u32,
+    /// Last pixel column (inclusive, `>= x0`).
+    pub x1: u32,
+    /// The triangle's id.
+    pub triangle: u32,
+    /// The edge values at pixel `x0`'s sample point.
+    pub edges: [i64; 3],
+    /// What the edge values gain per pixel to the right.
+    pub step: [i64; 3],
+}
+
+impl TriangleSpan {
+    /// The span's fragments, left to right.
+    pub fn fragments(&self) -> impl Iterator<Item = TriangleFragment> + '_ {
+        (self.x0..=self.x1).scan(self.edges, |e, x| {
+            let f = TriangleFragment {
+                x,
+                y: self.y,
+                triangle: self.triangle,
+                edges: *e,
+            };
+            for k in 0..3 {
+                e[k] += self.step[k];
+            }
+            Some(f)
+        })
+    }
+}
+
 /// Receives fragments from rasterizer back-ends.
 pub trait FragmentSink {
     /// One covered pixel of a triangle.
     fn triangle_fragment(&mut self, fragment: &TriangleFragment);
+    /// A run of covered pixels of a triangle on one row: the same as each
+    /// of [`TriangleSpan::fragments`] in turn, which is what the default
+    /// does; sinks override it to do per-span work once.
+    fn triangle_span(&mut self, span: &TriangleSpan) {
+        for f in span.fragments() {
+            self.triangle_fragment(&f);
+        }
+    }
     /// One pixel of a line.
     fn line_fragment(&mut self, fragment: &LineFragment);
 }

@@ -20,6 +20,10 @@ impl FragmentShader for Flat {
     fn shade(&self, input: &FragmentInput) -> Vec4 {
         input.flat.color
     }
+
+    fn uniform_per_primitive(&self) -> bool {
+        true
+    }
 }
 
 /// Vertex colours interpolated across the primitive.
@@ -39,6 +43,10 @@ pub struct Constant(pub Vec4);
 impl FragmentShader for Constant {
     fn shade(&self, _input: &FragmentInput) -> Vec4 {
         self.0
+    }
+
+    fn uniform_per_primitive(&self) -> bool {
+        true
     }
 }
 

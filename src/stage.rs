@@ -25,10 +25,10 @@
 //! integer edge values, back-ends that emit the same fragments in the same
 //! per-pixel order produce bit-identical colour, depth and coverage buffers.
 
-use crate::edge::TriangleSetup;
+use crate::edge::{PixelRect, TriangleSetup};
 use crate::fixed::{FixedPoint, SUBPIXEL_SCALE};
-use crate::fragment::{FragmentSink, LineFragment, TriangleFragment};
-use crate::target::{DepthState, RenderTarget};
+use crate::fragment::{FragmentSink, LineFragment, TriangleFragment, TriangleSpan};
+use crate::target::{DepthState, DepthTest, RenderTarget, TargetRows};
 use glam::{Vec2, Vec3, Vec4};
 
 /// Per-vertex values interpolated across a primitive.
@@ -257,6 +257,14 @@ pub struct FragmentInput {
 pub trait FragmentShader: Sync {
     /// The fragment's linear RGBA colour; components are clamped to `[0, 1]`.
     fn shade(&self, input: &FragmentInput) -> Vec4;
+
+    /// True when the colour depends only on the primitive (`flat` and
+    /// `primitive`), never on the pixel: the stage then shades a span once
+    /// and writes that colour to every pixel of the span that passes the
+    /// depth test. The default, `false`, shades every fragment.
+    fn uniform_per_primitive(&self) -> bool {
+        false
+    }
 }
 
 /// Converts a colour in `[0, 1]` to RGBA8 (clamped, rounded).
@@ -275,7 +283,7 @@ pub fn from_rgba8(c: [u8; 4]) -> Vec4 {
 /// The shared fragment stage: a [`FragmentSink`] that depth-tests, shades
 /// and writes fragments into a [`RenderTarget`].
 pub struct FragmentStage<'a> {
-    target: &'a mut RenderTarget,
+    target: TargetRows<'a>,
     shader: &'a dyn FragmentShader,
     triangles: &'a [ShadedTriangle],
     lines: &'a [ShadedLine],
@@ -292,6 +300,12 @@ impl<'a> FragmentStage<'a> {
     /// A stage writing into `target` with `shader`, default depth state and
     /// perspective-correct interpolation, and no primitive data yet.
     pub fn new(target: &'a mut RenderTarget, shader: &'a dyn FragmentShader) -> Self {
+        Self::on_rows(target.rows_mut(), shader)
+    }
+
+    /// A stage writing into some rows of a target only (one band of a
+    /// binned draw); fragments must lie in those rows.
+    pub fn on_rows(target: TargetRows<'a>, shader: &'a dyn FragmentShader) -> Self {
         FragmentStage {
             target,
             shader,
@@ -327,9 +341,9 @@ impl<'a> FragmentStage<'a> {
         self
     }
 
-    /// The target's width and height.
-    pub fn size(&self) -> (u32, u32) {
-        (self.target.width(), self.target.height())
+    /// The pixels this stage writes, in target coordinates.
+    pub fn rect(&self) -> PixelRect {
+        self.target.rect()
     }
 
     /// Interpolation weights for the varyings from screen-space weights.
@@ -383,6 +397,42 @@ impl<'a> FragmentStage<'a> {
     }
 }
 
+/// The buffers under one span, for the uniform-colour fast path.
+struct SpanRows<'s> {
+    color: &'s mut [[u8; 4]],
+    depth: &'s mut [f32],
+    coverage: &'s mut [u16],
+}
+
+impl SpanRows<'_> {
+    /// Counts coverage, then depth-tests each pixel against the plane
+    /// (evaluated exactly as [`DepthPlane::at`] does) and writes `color`
+    /// (and the depth when `write`) where `passes`.
+    #[inline(always)]
+    fn fill(
+        self,
+        plane: DepthPlane,
+        row: f32,
+        x0: u32,
+        color: [u8; 4],
+        write: bool,
+        passes: impl Fn(f32, f32) -> bool,
+    ) {
+        for c in self.coverage.iter_mut() {
+            *c = c.saturating_add(1);
+        }
+        for (i, (d, c)) in self.depth.iter_mut().zip(self.color.iter_mut()).enumerate() {
+            let z = plane.in_row(row, x0 + i as u32);
+            if passes(z, *d) {
+                *c = color;
+                if write {
+                    *d = z;
+                }
+            }
+        }
+    }
+}
+
 /// A fragment after interpolation of its depth, before the depth test.
 struct Sample<const N: usize> {
     x: u32,
@@ -414,6 +464,54 @@ impl FragmentSink for FragmentStage<'_> {
             vertices: v,
             coverage: 1.0,
         });
+    }
+
+    fn triangle_span(&mut self, span: &TriangleSpan) {
+        if !self.shader.uniform_per_primitive() {
+            for f in span.fragments() {
+                self.triangle_fragment(&f);
+            }
+            return;
+        }
+        let Some(t) = self.triangles.get(span.triangle as usize).copied() else {
+            debug_assert!(false, "no vertex data for triangle {}", span.triangle);
+            return;
+        };
+        // The colour is the same for every pixel: shade the first one.
+        let first = span.fragments().next().expect("a span has a pixel");
+        let area = (first.edges[0] + first.edges[1] + first.edges[2]) as f64;
+        let screen = first.edges.map(|e| (e as f64 / area) as f32);
+        let weights = self.varying_weights(screen, &t.vertices);
+        let input = FragmentInput {
+            x: span.x0,
+            y: span.y,
+            depth: t.depth.at(span.x0, span.y),
+            varyings: Varyings::weighted(&t.vertices.map(|v| v.varyings), weights),
+            flat: t.vertices[0].varyings,
+            primitive: span.triangle,
+        };
+        let color = to_rgba8(self.shader.shade(&input).clamp(Vec4::ZERO, Vec4::ONE));
+        let start = self.target.index(span.x0, span.y);
+        let end = start + (span.x1 - span.x0) as usize + 1;
+        let rows = SpanRows {
+            color: &mut self.target.color[start..end],
+            depth: &mut self.target.depth[start..end],
+            coverage: &mut self.target.coverage[start..end],
+        };
+        let (plane, row, x0) = (t.depth, t.depth.row(span.y), span.x0);
+        let write = self.depth.write;
+        // One monomorphic loop per comparison, so the compare is not
+        // re-dispatched per pixel.
+        match self.depth.test {
+            DepthTest::Never => rows.fill(plane, row, x0, color, write, |_, _| false),
+            DepthTest::Less => rows.fill(plane, row, x0, color, write, |z, d| z < d),
+            DepthTest::Equal => rows.fill(plane, row, x0, color, write, |z, d| z == d),
+            DepthTest::LessEqual => rows.fill(plane, row, x0, color, write, |z, d| z <= d),
+            DepthTest::Greater => rows.fill(plane, row, x0, color, write, |z, d| z > d),
+            DepthTest::NotEqual => rows.fill(plane, row, x0, color, write, |z, d| z != d),
+            DepthTest::GreaterEqual => rows.fill(plane, row, x0, color, write, |z, d| z >= d),
+            DepthTest::Always => rows.fill(plane, row, x0, color, write, |_, _| true),
+        }
     }
 
     fn line_fragment(&mut self, f: &LineFragment) {

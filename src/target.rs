@@ -7,6 +7,7 @@
 //! rasterlab shows double-drawn pixels (count 2) and gaps (count 0) on
 //! shared edges.
 
+use crate::edge::PixelRect;
 use crate::error::{Error, Result};
 use std::fmt;
 use std::path::Path;
@@ -211,9 +212,94 @@ impl RenderTarget {
         })
     }
 
+    /// All rows of the buffers, borrowed as one [`TargetRows`].
+    pub fn rows_mut(&mut self) -> TargetRows<'_> {
+        TargetRows {
+            width: self.width,
+            first_row: 0,
+            rows: self.height,
+            color: &mut self.color,
+            depth: &mut self.depth,
+            coverage: &mut self.coverage,
+        }
+    }
+
+    /// The buffers cut into horizontal bands of `rows_per_band` rows (the
+    /// last may be shorter), each borrowed separately so that bands can be
+    /// drawn on different threads.
+    pub fn bands_mut(&mut self, rows_per_band: u32) -> Vec<TargetRows<'_>> {
+        let width = self.width;
+        let rows_per_band = rows_per_band.max(1);
+        let n = width as usize * rows_per_band as usize;
+        self.color
+            .chunks_mut(n)
+            .zip(self.depth.chunks_mut(n))
+            .zip(self.coverage.chunks_mut(n))
+            .enumerate()
+            .map(|(i, ((color, depth), coverage))| TargetRows {
+                width,
+                first_row: i as u32 * rows_per_band,
+                rows: (color.len() / width as usize) as u32,
+                color,
+                depth,
+                coverage,
+            })
+            .collect()
+    }
+
     /// Pixels whose coverage count is exactly `n`.
     pub fn pixels_with_coverage(&self, n: u16) -> usize {
         self.coverage.iter().filter(|&&c| c == n).count()
+    }
+}
+
+/// Consecutive full rows of a [`RenderTarget`]'s buffers, borrowed mutably:
+/// the whole target ([`RenderTarget::rows_mut`]) or one band of it
+/// ([`RenderTarget::bands_mut`]). Pixels are addressed in target
+/// coordinates.
+#[derive(Debug)]
+pub struct TargetRows<'a> {
+    width: u32,
+    first_row: u32,
+    rows: u32,
+    /// Colours of these rows.
+    pub color: &'a mut [[u8; 4]],
+    /// Depths of these rows.
+    pub depth: &'a mut [f32],
+    /// Coverage counts of these rows.
+    pub coverage: &'a mut [u16],
+}
+
+impl TargetRows<'_> {
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// The target row of the first row held.
+    pub fn first_row(&self) -> u32 {
+        self.first_row
+    }
+
+    /// The number of rows held.
+    pub fn rows(&self) -> u32 {
+        self.rows
+    }
+
+    /// The pixels held, as a rectangle in target coordinates.
+    pub fn rect(&self) -> PixelRect {
+        PixelRect {
+            x0: 0,
+            y0: i64::from(self.first_row),
+            x1: i64::from(self.width) - 1,
+            y1: i64::from(self.first_row) + i64::from(self.rows) - 1,
+        }
+    }
+
+    /// The buffer index of target pixel `(x, y)` (`y` among the rows held).
+    #[inline]
+    pub fn index(&self, x: u32, y: u32) -> usize {
+        (y - self.first_row) as usize * self.width as usize + x as usize
     }
 }
 
@@ -232,6 +318,16 @@ mod tests {
         let t = RenderTarget::new(3, 2).unwrap();
         assert_eq!(t.depth, vec![1.0; 6]);
         assert_eq!(t.to_image().dimensions(), (3, 2));
+    }
+
+    #[test]
+    fn bands_cover_every_row_once() {
+        let mut t = RenderTarget::new(3, 7).unwrap();
+        let bands = t.bands_mut(3);
+        let rows: Vec<(u32, u32)> = bands.iter().map(|b| (b.first_row(), b.rows())).collect();
+        assert_eq!(rows, [(0, 3), (3, 3), (6, 1)]);
+        assert_eq!(bands[1].index(2, 4), 5);
+        assert_eq!(bands[2].rect(), PixelRect { x0: 0, y0: 6, x1: 2, y1: 6 });
     }
 
     #[test]

@@ -14,12 +14,13 @@
 //! for each row of the box
 //!   e = row
 //!   for each pixel of the row
-//!     if e + bias >= 0 on all edges: emit
+//!     if e + bias >= 0 on all edges: add the pixel to the row's span
 //!     e += step_x
+//!   emit the row's span (one run: the triangle is convex)
 //!   row += step_y
 //! ```
 
-use super::{emit, TriangleRasterizer};
+use super::{emit_span, TriangleRasterizer};
 use crate::edge::{PixelRect, TriangleSetup};
 use crate::fixed::SUBPIXEL_SCALE;
 use crate::fragment::{FragmentSink, WorkCounters};
@@ -56,8 +57,10 @@ impl TriangleRasterizer for Incremental {
 }
 
 /// Walks the pixels of `r` (non-empty) row by row, stepping the edge
-/// values by additions, and emits those inside `t`; with `test` false,
-/// every pixel is emitted untested (for a rectangle known to lie inside).
+/// values by additions, and emits those inside `t`, one span per row (the
+/// inside pixels of a row are consecutive, the triangle being convex); with
+/// `test` false, every pixel is emitted untested (for a rectangle known to
+/// lie inside).
 pub(crate) fn step_over(
     t: &TriangleSetup,
     r: PixelRect,
@@ -69,21 +72,66 @@ pub(crate) fn step_over(
     let step_y = t.edges.map(|e| e.b * SUBPIXEL_SCALE);
     let mut row = t.edge_values_at_pixel(r.x0, r.y0);
     for y in r.y0..=r.y1 {
-        let mut e = row;
-        for x in r.x0..=r.x1 {
-            if !test || t.inside(e) {
-                work.fragments += 1;
-                emit(sink, t, x, y, e);
+        if test {
+            let (run, tested) = run_in_row(t, row, step_x, r.x0, r.x1);
+            work.samples_tested += tested;
+            if let Some(run) = run {
+                work.fragments += (run.last - run.first + 1) as u64;
+                emit_span(sink, t, y, run.first, run.last, run.edges);
             }
-            for k in 0..3 {
-                e[k] += step_x[k];
-            }
+        } else {
+            work.fragments += (r.x1 - r.x0 + 1) as u64;
+            emit_span(sink, t, y, r.x0, r.x1, row);
         }
         for k in 0..3 {
             row[k] += step_y[k];
         }
     }
-    if test {
-        work.samples_tested += r.area();
+}
+
+/// The inside pixels of one row, found by testing each.
+pub(crate) struct Run {
+    /// First inside column.
+    pub first: i64,
+    /// Last inside column.
+    pub last: i64,
+    /// Edge values at `first`.
+    pub edges: [i64; 3],
+}
+
+/// Tests pixels `x0..=x1` of a row whose edge values at `x0` are `e`, left
+/// to right, and returns the run of inside pixels, if any, and how many
+/// pixels were tested (the walk stops at the first outside pixel after the
+/// run: the triangle is convex, so nothing further right is inside).
+#[inline]
+pub(crate) fn run_in_row(
+    t: &TriangleSetup,
+    mut e: [i64; 3],
+    step_x: [i64; 3],
+    x0: i64,
+    x1: i64,
+) -> (Option<Run>, u64) {
+    let mut run: Option<Run> = None;
+    let mut tested = 0;
+    for x in x0..=x1 {
+        tested += 1;
+        if t.inside(e) {
+            match &mut run {
+                Some(r) => r.last = x,
+                None => {
+                    run = Some(Run {
+                        first: x,
+                        last: x,
+                        edges: e,
+                    })
+                }
+            }
+        } else if run.is_some() {
+            break;
+        }
+        for k in 0..3 {
+            e[k] += step_x[k];
+        }
     }
+    (run, tested)
 }

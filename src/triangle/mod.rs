@@ -27,7 +27,8 @@ pub mod scanline;
 pub mod tiled;
 
 use crate::edge::{PixelRect, TriangleSetup};
-use crate::fragment::{FragmentSink, TriangleFragment, WorkCounters};
+use crate::fragment::{FragmentSink, TriangleFragment, TriangleSpan, WorkCounters};
+use crate::fixed::SUBPIXEL_SCALE;
 
 /// A triangle rasterization algorithm.
 pub trait TriangleRasterizer: Send + Sync {
@@ -59,5 +60,26 @@ pub(crate) fn emit(
         y: y as u32,
         triangle: triangle.id,
         edges,
+    });
+}
+
+/// Emits pixels `x0..=x1` of row `y` (inside the viewport, `x0 <= x1`) as
+/// one span, given the edge values `edges` at `x0`.
+#[inline]
+pub(crate) fn emit_span(
+    sink: &mut dyn FragmentSink,
+    triangle: &TriangleSetup,
+    y: i64,
+    x0: i64,
+    x1: i64,
+    edges: [i64; 3],
+) {
+    sink.triangle_span(&TriangleSpan {
+        y: y as u32,
+        x0: x0 as u32,
+        x1: x1 as u32,
+        triangle: triangle.id,
+        edges,
+        step: triangle.edges.map(|e| e.a * SUBPIXEL_SCALE),
     });
 }

@@ -25,9 +25,10 @@
 //!
 //! with integer floor and ceiling, so the spans agree with the per-pixel
 //! test of the other back-ends to the pixel, fill rule included. No pixel
-//! is tested: the work is one solve per active edge per row.
+//! is tested: the work is one solve per active edge per row, and each
+//! row's pixels go to the fragment stage as one span.
 
-use super::{emit, TriangleRasterizer};
+use super::{emit_span, TriangleRasterizer};
 use crate::edge::{EdgeFunction, PixelRect, TriangleSetup};
 use crate::fixed::{
     first_sample_at_or_after, last_sample_at_or_before, HALF_PIXEL, SUBPIXEL_SCALE,
@@ -145,16 +146,10 @@ impl TriangleRasterizer for Scanline {
                 if span.is_empty() {
                     continue;
                 }
-                let step = t.edges.map(|e| e.a * SUBPIXEL_SCALE);
-                let mut e = t.edge_values_at_pixel(span.first, j);
-                for x in span.first..=span.last {
-                    debug_assert!(t.inside(e), "span pixel ({x}, {j}) fails the inside test");
-                    work.fragments += 1;
-                    emit(sink, t, x, j, e);
-                    for k in 0..3 {
-                        e[k] += step[k];
-                    }
-                }
+                let e = t.edge_values_at_pixel(span.first, j);
+                debug_assert!(t.inside(e), "span start ({}, {j}) fails the inside test", span.first);
+                work.fragments += (span.last - span.first + 1) as u64;
+                emit_span(sink, t, j, span.first, span.last, e);
             }
         }
         work

@@ -15,6 +15,11 @@
 //! * otherwise the block straddles an edge and each of its pixels is
 //!   tested by [`incremental`](super::incremental)'s loop.
 //!
+//! The blocks of one block row are classified first; then each pixel row
+//! is walked across them, so that a row's inside pixels (one run, the
+//! triangle being convex) reach the fragment stage as one span however
+//! many blocks it crosses.
+//!
 //! Triangles whose bounding box fits in one block skip the block step and
 //! go straight to the per-pixel loop (cheap set-up for small triangles).
 //! The work counters show the saving: `spans` counts blocks visited,
@@ -24,12 +29,14 @@
 //! for each block B meeting the bounding box
 //!   c[k] = E_k + bias_k at B's four corner samples
 //!   if some k has all c[k] < 0: skip B
-//!   else if every c >= 0:       emit every pixel of B
+//!   else if every c >= 0:       every pixel of B is inside
 //!   else:                       test each pixel of B
+//! for each pixel row: emit the run of inside pixels across the blocks
 //! ```
 
-use super::incremental::step_over;
-use super::TriangleRasterizer;
+use super::incremental::{run_in_row, step_over, Run};
+use super::{emit_span, TriangleRasterizer};
+use crate::fixed::SUBPIXEL_SCALE;
 use crate::edge::{PixelRect, TriangleSetup};
 use crate::fragment::{FragmentSink, WorkCounters};
 
@@ -91,6 +98,7 @@ impl TriangleRasterizer for Tiled {
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
         let mut work = WorkCounters::default();
+        let mut blocks: Vec<(PixelRect, BlockClass)> = Vec::new();
         for t in triangles {
             work.primitives += 1;
             let r = t.bounds_within(viewport);
@@ -101,26 +109,90 @@ impl TriangleRasterizer for Tiled {
                 step_over(t, r, true, sink, &mut work);
                 continue;
             }
+            let step_x = t.edges.map(|e| e.a * SUBPIXEL_SCALE);
+            let step_y = t.edges.map(|e| e.b * SUBPIXEL_SCALE);
             let (bx0, by0) = (r.x0.div_euclid(BLOCK), r.y0.div_euclid(BLOCK));
             let (bx1, by1) = (r.x1.div_euclid(BLOCK), r.y1.div_euclid(BLOCK));
+            let mut row = t.edge_values_at_pixel(r.x0, r.y0);
             for by in by0..=by1 {
+                // One row of blocks: classify each block once ...
+                let y0 = (by * BLOCK).max(r.y0);
+                let y1 = (by * BLOCK + BLOCK - 1).min(r.y1);
+                blocks.clear();
                 for bx in bx0..=bx1 {
                     let block = PixelRect {
-                        x0: bx * BLOCK,
-                        y0: by * BLOCK,
-                        x1: bx * BLOCK + BLOCK - 1,
-                        y1: by * BLOCK + BLOCK - 1,
-                    }
-                    .intersect(r);
+                        x0: (bx * BLOCK).max(r.x0),
+                        y0,
+                        x1: (bx * BLOCK + BLOCK - 1).min(r.x1),
+                        y1,
+                    };
                     work.spans += 1;
-                    match classify_block(t, block) {
-                        BlockClass::Outside => {}
-                        BlockClass::Inside => step_over(t, block, false, sink, &mut work),
-                        BlockClass::Partial => step_over(t, block, true, sink, &mut work),
+                    blocks.push((block, classify_block(t, block)));
+                }
+                // ... then walk its pixel rows across the blocks.
+                for y in y0..=y1 {
+                    let at = |x: i64| {
+                        let n = x - r.x0;
+                        [0, 1, 2].map(|k| row[k] + step_x[k] * n)
+                    };
+                    if let Some(run) = row_run(t, &blocks, step_x, at, &mut work) {
+                        work.fragments += (run.last - run.first + 1) as u64;
+                        emit_span(sink, t, y, run.first, run.last, run.edges);
+                    }
+                    for k in 0..3 {
+                        row[k] += step_y[k];
                     }
                 }
             }
         }
         work
     }
+}
+
+/// The inside pixels of one pixel row, across a row of classified blocks:
+/// outside blocks are skipped, inside blocks join the run untested, and
+/// only straddling blocks are tested pixel by pixel. `at(x)` gives the
+/// edge values at column `x` of the row.
+fn row_run(
+    t: &TriangleSetup,
+    blocks: &[(PixelRect, BlockClass)],
+    step_x: [i64; 3],
+    at: impl Fn(i64) -> [i64; 3],
+    work: &mut WorkCounters,
+) -> Option<Run> {
+    let mut run: Option<Run> = None;
+    for &(block, class) in blocks {
+        let (x0, x1) = (block.x0, block.x1);
+        let (first, last, edges) = match class {
+            BlockClass::Outside if run.is_some() => break,
+            BlockClass::Outside => continue,
+            BlockClass::Inside => (x0, x1, None),
+            BlockClass::Partial => {
+                let (part, tested) = run_in_row(t, at(x0), step_x, x0, x1);
+                work.samples_tested += tested;
+                match part {
+                    Some(p) => (p.first, p.last, Some(p.edges)),
+                    None if run.is_some() => break,
+                    None => continue,
+                }
+            }
+        };
+        match &mut run {
+            Some(r) => {
+                debug_assert_eq!(first, r.last + 1, "a row's inside pixels are one run");
+                r.last = last;
+            }
+            None => {
+                run = Some(Run {
+                    first,
+                    last,
+                    edges: edges.unwrap_or_else(|| at(first)),
+                })
+            }
+        }
+        if last < x1 {
+            break; // the run ended inside this block
+        }
+    }
+    run
 }
