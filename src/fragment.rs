@@ -66,9 +66,7 @@ impl TriangleSpan {
                 triangle: self.triangle,
                 edges: *e,
             };
-            for k in 0..3 {
-                e[k] += self.step[k];
-            }
+            *e = [0, 1, 2].map(|k| e[k] + self.step[k]);
             Some(f)
         })
     }

@@ -222,7 +222,8 @@ impl MeshRenderer {
         )
     }
 
-    /// Renders one frame with `backend`.
+    /// Renders one frame with `backend`, on rayon's threads
+    /// ([`crate::binning`]): the image does not depend on their number.
     pub fn render(&self, backend: &dyn TriangleRasterizer) -> Result<Frame> {
         let start = Instant::now();
         let geometry = self.geometry()?;
@@ -240,7 +241,7 @@ impl MeshRenderer {
         let start = Instant::now();
         let mut target = RenderTarget::new(self.settings.width, self.settings.height)?;
         target.clear_color(self.settings.background);
-        let work = pipeline::draw(
+        let work = crate::binning::draw_binned(
             &geometry,
             backend,
             self.shader.as_ref(),

@@ -327,7 +327,15 @@ mod tests {
         let rows: Vec<(u32, u32)> = bands.iter().map(|b| (b.first_row(), b.rows())).collect();
         assert_eq!(rows, [(0, 3), (3, 3), (6, 1)]);
         assert_eq!(bands[1].index(2, 4), 5);
-        assert_eq!(bands[2].rect(), PixelRect { x0: 0, y0: 6, x1: 2, y1: 6 });
+        assert_eq!(
+            bands[2].rect(),
+            PixelRect {
+                x0: 0,
+                y0: 6,
+                x1: 2,
+                y1: 6
+            }
+        );
     }
 
     #[test]

@@ -10,6 +10,10 @@ mod commands;
 #[derive(Parser, Debug)]
 #[command(name = "rasterlab", version, about)]
 pub struct Cli {
+    /// Worker threads for geometry and binned rasterization (default: all
+    /// cores, or RAYON_NUM_THREADS).
+    #[arg(long, global = true, value_name = "N")]
+    threads: Option<usize>,
     #[command(subcommand)]
     command: Command,
 }
@@ -31,12 +35,16 @@ enum Command {
 /// Runs the command line; errors are printed to stderr.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result: Result<()> = match cli.command {
+    let run = || match &cli.command {
         Command::Backends => commands::backends(),
-        Command::Fragments(args) => commands::fragments(&args),
-        Command::Render(args) => commands::render(&args),
-        Command::Demo(args) => commands::demo(&args),
-        Command::Explain(args) => commands::explain(&args),
+        Command::Fragments(args) => commands::fragments(args),
+        Command::Render(args) => commands::render(args),
+        Command::Demo(args) => commands::demo(args),
+        Command::Explain(args) => commands::explain(args),
+    };
+    let result = match cli.threads {
+        None => run(),
+        Some(threads) => thread_pool(threads).and_then(|pool| pool.install(run)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -48,4 +56,17 @@ pub fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// A pool of `threads` workers (at least one).
+fn thread_pool(threads: usize) -> Result<rayon::ThreadPool> {
+    if threads == 0 {
+        return Err(Error::InvalidArgument(
+            "--threads must be at least 1".to_string(),
+        ));
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::InvalidArgument(format!("cannot start {threads} threads: {e}")))
 }

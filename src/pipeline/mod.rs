@@ -37,6 +37,7 @@ use crate::stage::{
 use crate::target::{DepthState, RenderTarget};
 use crate::triangle::TriangleRasterizer;
 use clip::{ClipResult, ClipVertex, ClipVolume};
+use rayon::prelude::*;
 use vertex::VertexShader;
 
 /// Which faces back-face culling removes.
@@ -169,6 +170,19 @@ pub struct GeometryStats {
     pub triangles: u64,
 }
 
+impl GeometryStats {
+    /// Adds another set of counts to these.
+    pub fn add(&mut self, other: &GeometryStats) {
+        self.primitives += other.primitives;
+        self.rejected += other.rejected;
+        self.clipped += other.clipped;
+        self.culled += other.culled;
+        self.degenerate += other.degenerate;
+        self.unresolvable += other.unresolvable;
+        self.triangles += other.triangles;
+    }
+}
+
 /// Triangles ready for a back-end, and their data for the fragment stage.
 #[derive(Clone, Debug, Default)]
 pub struct Geometry {
@@ -202,6 +216,51 @@ fn to_screen_vertex(viewport: &Viewport, v: &ClipVertex) -> Result<ScreenVertex>
 }
 
 impl Geometry {
+    /// The parts one after the other, triangle ids renumbered from 0; the
+    /// copying is spread over rayon's threads.
+    fn join(parts: &[Geometry]) -> Geometry {
+        let mut starts = Vec::with_capacity(parts.len());
+        let mut total = 0;
+        let mut stats = GeometryStats::default();
+        for p in parts {
+            starts.push(total);
+            total += p.setups.len();
+            stats.add(&p.stats);
+        }
+        // The part holding triangle i, and i's index in it.
+        let locate = |i: usize| {
+            let part = starts.partition_point(|&s| s <= i) - 1;
+            (&parts[part], i - starts[part])
+        };
+        Geometry {
+            setups: (0..total)
+                .into_par_iter()
+                .map(|i| {
+                    let (p, j) = locate(i);
+                    TriangleSetup {
+                        id: i as u32,
+                        ..p.setups[j]
+                    }
+                })
+                .collect(),
+            triangles: (0..total)
+                .into_par_iter()
+                .map(|i| {
+                    let (p, j) = locate(i);
+                    p.triangles[j]
+                })
+                .collect(),
+            source: (0..total)
+                .into_par_iter()
+                .map(|i| {
+                    let (p, j) = locate(i);
+                    p.source[j]
+                })
+                .collect(),
+            stats,
+        }
+    }
+
     /// Sets up one screen-space triangle and keeps it unless it is
     /// degenerate, of a winding other than `winding` (when given), or culled.
     fn push(
@@ -237,13 +296,93 @@ impl Geometry {
     }
 }
 
+/// Triangles assembled per task, at least.
+const MIN_TRIANGLE_CHUNK: usize = 16_384;
+
+/// The shaded vertices of a draw, shared by the tasks that assemble its
+/// triangles.
+struct AssemblyInput<'a> {
+    shaded: &'a [ClipVertex],
+    codes: &'a [u8],
+    screen: &'a [Option<ScreenVertex>],
+    clip: &'a ClipVolume,
+    viewport: &'a Viewport,
+    options: &'a PipelineOptions,
+}
+
+impl AssemblyInput<'_> {
+    /// Assembles, clips, culls and sets up `triangles`, the first of which
+    /// is primitive number `first` of the draw; ids start at 0.
+    fn process(&self, triangles: &[[u32; 3]], first: usize) -> Geometry {
+        let (viewport, options) = (self.viewport, self.options);
+        let mut geometry = Geometry {
+            setups: Vec::with_capacity(triangles.len()),
+            triangles: Vec::with_capacity(triangles.len()),
+            source: Vec::with_capacity(triangles.len()),
+            stats: GeometryStats::default(),
+        };
+        let mut polygon = Vec::with_capacity(10);
+        for (index, t) in triangles.iter().enumerate() {
+            geometry.stats.primitives += 1;
+            let source = (first + index) as u32;
+            let idx = t.map(|i| i as usize);
+            if let [Some(a), Some(b), Some(c)] = idx.map(|i| self.screen[i]) {
+                geometry.push([a, b, c], source, None, options);
+                continue;
+            }
+            let corners = idx.map(|i| self.shaded[i]);
+            let codes = idx.map(|i| self.codes[i]);
+            match self.clip.clip_triangle(&corners, codes, &mut polygon) {
+                ClipResult::Inside => unreachable!("inside vertices all have screen positions"),
+                ClipResult::Outside => geometry.stats.rejected += 1,
+                ClipResult::Cut(_) => {
+                    geometry.stats.clipped += 1;
+                    // A cut vertex can miss its plane when the triangle's
+                    // coordinates differ by more than f64 resolves (say 1e30
+                    // next to 1e-5); such a polygon is dropped, never drawn wrong.
+                    let Ok(screen) = polygon
+                        .iter()
+                        .map(|v| to_screen_vertex(viewport, v))
+                        .collect::<Result<Vec<ScreenVertex>>>()
+                    else {
+                        geometry.stats.unresolvable += 1;
+                        continue;
+                    };
+                    // The fan of a convex polygon keeps one winding. Cut points
+                    // that are nearly collinear can snap into a sliver of the
+                    // opposite winding, which would overlap its neighbour; the
+                    // polygon's winding (the sign of its area, the sum of its fan
+                    // triangles' signed areas) decides which slivers are dropped.
+                    let fan: Vec<[ScreenVertex; 3]> = (1..screen.len().saturating_sub(1))
+                        .map(|i| [screen[0], screen[i], screen[i + 1]])
+                        .collect();
+                    let twice_area: i64 = fan
+                        .iter()
+                        .map(|[a, b, c]| EdgeFunction::through(b.point, c.point).eval(a.point))
+                        .sum();
+                    let winding = if twice_area < 0 { -1 } else { 1 };
+                    for triangle in fan {
+                        geometry.push(triangle, source, Some(winding), options);
+                    }
+                }
+            }
+        }
+        geometry
+    }
+}
+
 /// Runs the vertex shader on every vertex, assembles `triangles` (indices
 /// into `vertices`), clips, divides, maps to the viewport, snaps, culls and
 /// sets up what is left.
 ///
+/// The work is spread over rayon's threads: vertices are shaded in
+/// parallel, triangles are processed in chunks in parallel, and the chunks'
+/// results are joined in input order, so the result (ids included) does not
+/// depend on the number of threads.
+///
 /// Errors: an index out of range, or a vertex shader output that is not
 /// finite.
-pub fn process_triangles<V, S: VertexShader<V>>(
+pub fn process_triangles<V: Sync, S: VertexShader<V>>(
     vertices: &[V],
     triangles: &[[u32; 3]],
     shader: &S,
@@ -252,13 +391,16 @@ pub fn process_triangles<V, S: VertexShader<V>>(
 ) -> Result<Geometry> {
     Error::check_indices(triangles.iter().flatten(), vertices.len())?;
     let clip = ClipVolume::new(viewport.width, viewport.height);
-    let shaded: Vec<ClipVertex> = vertices.iter().map(|v| shader.shade(v)).collect();
+    let shaded: Vec<ClipVertex> = vertices.par_iter().map(|v| shader.shade(v)).collect();
     Error::check_finite(shaded.iter().flat_map(|v| v.position.to_array()))?;
-    let codes: Vec<u8> = shaded.iter().map(|v| clip.outcode(v.position)).collect();
+    let codes: Vec<u8> = shaded
+        .par_iter()
+        .map(|v| clip.outcode(v.position))
+        .collect();
     // Vertices inside the clip volume are divided and snapped once, however
     // many triangles share them.
     let screen: Vec<Option<ScreenVertex>> = shaded
-        .iter()
+        .par_iter()
         .zip(&codes)
         .map(|(v, &c)| {
             if c == 0 {
@@ -268,61 +410,35 @@ pub fn process_triangles<V, S: VertexShader<V>>(
             }
         })
         .collect::<Result<_>>()?;
-
-    let mut geometry = Geometry {
-        setups: Vec::with_capacity(triangles.len()),
-        triangles: Vec::with_capacity(triangles.len()),
-        source: Vec::with_capacity(triangles.len()),
-        stats: GeometryStats::default(),
+    let vertices = AssemblyInput {
+        shaded: &shaded,
+        codes: &codes,
+        screen: &screen,
+        clip: &clip,
+        viewport: &viewport,
+        options,
     };
-    let mut polygon = Vec::with_capacity(10);
-    for (index, t) in triangles.iter().enumerate() {
-        geometry.stats.primitives += 1;
-        let source = index as u32;
-        let idx = t.map(|i| i as usize);
-        if let [Some(a), Some(b), Some(c)] = idx.map(|i| screen[i]) {
-            geometry.push([a, b, c], source, None, options);
-            continue;
-        }
-        let corners = idx.map(|i| shaded[i]);
-        match clip.clip_triangle(&corners, idx.map(|i| codes[i]), &mut polygon) {
-            ClipResult::Inside => unreachable!("inside vertices all have screen positions"),
-            ClipResult::Outside => geometry.stats.rejected += 1,
-            ClipResult::Cut(_) => {
-                geometry.stats.clipped += 1;
-                // A cut vertex can miss its plane when the triangle's
-                // coordinates differ by more than f64 resolves (say 1e30
-                // next to 1e-5); such a polygon is dropped, never drawn wrong.
-                let Ok(screen) = polygon
-                    .iter()
-                    .map(|v| to_screen_vertex(&viewport, v))
-                    .collect::<Result<Vec<ScreenVertex>>>()
-                else {
-                    geometry.stats.unresolvable += 1;
-                    continue;
-                };
-                // The fan of a convex polygon keeps one winding. Cut points
-                // that are nearly collinear can snap into a sliver of the
-                // opposite winding, which would overlap its neighbour; the
-                // polygon's winding (the sign of its area, the sum of its fan
-                // triangles' signed areas) decides which slivers are dropped.
-                let fan: Vec<[ScreenVertex; 3]> = (1..screen.len().saturating_sub(1))
-                    .map(|i| [screen[0], screen[i], screen[i + 1]])
-                    .collect();
-                let twice_area: i64 = fan
-                    .iter()
-                    .map(|[a, b, c]| EdgeFunction::through(b.point, c.point).eval(a.point))
-                    .sum();
-                let winding = if twice_area < 0 { -1 } else { 1 };
-                for triangle in fan {
-                    geometry.push(triangle, source, Some(winding), options);
-                }
-            }
-        }
+    // Several chunks per thread balance the load; one thread takes one
+    // chunk and skips the join.
+    let threads = rayon::current_num_threads();
+    let chunk = if threads == 1 {
+        triangles.len().max(1)
+    } else {
+        triangles
+            .len()
+            .div_ceil(4 * threads)
+            .max(MIN_TRIANGLE_CHUNK)
+    };
+    let mut parts: Vec<Geometry> = triangles
+        .par_chunks(chunk)
+        .enumerate()
+        .map(|(c, part)| vertices.process(part, c * chunk))
+        .collect();
+    if parts.len() <= 1 {
+        return Ok(parts.pop().unwrap_or_default());
     }
-    Ok(geometry)
+    Ok(Geometry::join(&parts))
 }
-
 /// Runs the vertex shader on the end points of `segments` (index pairs
 /// into `vertices`), clips each segment, divides and maps it to the viewport.
 /// Segments entirely outside the clip volume are dropped; the rest keep

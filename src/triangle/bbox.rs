@@ -14,8 +14,8 @@
 //!     if p is inside t: emit a fragment
 //! ```
 
-use super::{emit, TriangleRasterizer};
-use crate::edge::{PixelRect, TriangleSetup};
+use super::{emit, TriangleRasterizer, TriangleSelection};
+use crate::edge::PixelRect;
 use crate::fragment::{FragmentSink, WorkCounters};
 
 /// Bounding box plus a direct edge-function test per pixel.
@@ -31,14 +31,14 @@ impl TriangleRasterizer for BoundingBox {
         "bounding box, then the barycentric / edge-function test evaluated per pixel"
     }
 
-    fn rasterize(
+    fn rasterize_selection(
         &self,
-        triangles: &[TriangleSetup],
+        triangles: TriangleSelection<'_>,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
         let mut work = WorkCounters::default();
-        for t in triangles {
+        for t in triangles.iter() {
             work.primitives += 1;
             let r = t.bounds_within(viewport);
             for y in r.y0..=r.y1 {

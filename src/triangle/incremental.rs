@@ -20,7 +20,7 @@
 //!   row += step_y
 //! ```
 
-use super::{emit_span, TriangleRasterizer};
+use super::{emit_span, TriangleRasterizer, TriangleSelection};
 use crate::edge::{PixelRect, TriangleSetup};
 use crate::fixed::SUBPIXEL_SCALE;
 use crate::fragment::{FragmentSink, WorkCounters};
@@ -38,14 +38,14 @@ impl TriangleRasterizer for Incremental {
         "bounding box with edge functions stepped by additions (Pineda), no multiplication per pixel"
     }
 
-    fn rasterize(
+    fn rasterize_selection(
         &self,
-        triangles: &[TriangleSetup],
+        triangles: TriangleSelection<'_>,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
         let mut work = WorkCounters::default();
-        for t in triangles {
+        for t in triangles.iter() {
             work.primitives += 1;
             let r = t.bounds_within(viewport);
             if !r.is_empty() {

@@ -27,8 +27,8 @@ pub mod scanline;
 pub mod tiled;
 
 use crate::edge::{PixelRect, TriangleSetup};
-use crate::fragment::{FragmentSink, TriangleFragment, TriangleSpan, WorkCounters};
 use crate::fixed::SUBPIXEL_SCALE;
+use crate::fragment::{FragmentSink, TriangleFragment, TriangleSpan, WorkCounters};
 
 /// A triangle rasterization algorithm.
 pub trait TriangleRasterizer: Send + Sync {
@@ -36,6 +36,15 @@ pub trait TriangleRasterizer: Send + Sync {
     fn name(&self) -> &'static str;
     /// One-line description.
     fn description(&self) -> &'static str;
+    /// Emits every fragment of the selected triangles whose pixel lies in
+    /// `viewport`, and returns the work done.
+    fn rasterize_selection(
+        &self,
+        triangles: TriangleSelection<'_>,
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+    ) -> WorkCounters;
+
     /// Emits every fragment of `triangles` whose pixel lies in `viewport`,
     /// and returns the work done.
     fn rasterize(
@@ -43,7 +52,53 @@ pub trait TriangleRasterizer: Send + Sync {
         triangles: &[TriangleSetup],
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
-    ) -> WorkCounters;
+    ) -> WorkCounters {
+        self.rasterize_selection(TriangleSelection::all(triangles), viewport, sink)
+    }
+}
+
+/// The triangles a back-end is asked to draw: all of a slice, or those at
+/// some indices of it (a bin), in the order given.
+#[derive(Copy, Clone, Debug)]
+pub struct TriangleSelection<'a> {
+    setups: &'a [TriangleSetup],
+    indices: Option<&'a [u32]>,
+}
+
+impl<'a> TriangleSelection<'a> {
+    /// Every triangle of `setups`.
+    pub fn all(setups: &'a [TriangleSetup]) -> Self {
+        TriangleSelection {
+            setups,
+            indices: None,
+        }
+    }
+
+    /// The triangles of `setups` at `indices`, in that order.
+    pub fn indexed(setups: &'a [TriangleSetup], indices: &'a [u32]) -> Self {
+        TriangleSelection {
+            setups,
+            indices: Some(indices),
+        }
+    }
+
+    /// The number of triangles selected.
+    pub fn len(&self) -> usize {
+        self.indices.map_or(self.setups.len(), <[u32]>::len)
+    }
+
+    /// True when nothing is selected.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The selected triangles, in order.
+    pub fn iter(&self) -> impl Iterator<Item = &'a TriangleSetup> + 'a {
+        let (setups, indices) = (self.setups, self.indices);
+        let all = indices.is_none().then(|| setups.iter());
+        let some = indices.map(|i| i.iter().map(move |&i| &setups[i as usize]));
+        all.into_iter().flatten().chain(some.into_iter().flatten())
+    }
 }
 
 /// Emits one fragment (pixel indices already inside the viewport).

@@ -14,8 +14,8 @@
 //! reference every other back-end is checked against, and the red/green
 //! picture of seed 002's "checking every pixel" slide.
 
-use super::{emit, TriangleRasterizer};
-use crate::edge::{PixelRect, TriangleSetup};
+use super::{emit, TriangleRasterizer, TriangleSelection};
+use crate::edge::PixelRect;
 use crate::fragment::{FragmentSink, WorkCounters};
 
 /// Every pixel tested against every triangle.
@@ -31,9 +31,9 @@ impl TriangleRasterizer for Naive {
         "course pseudocode: every pixel of the target tested against every triangle"
     }
 
-    fn rasterize(
+    fn rasterize_selection(
         &self,
-        triangles: &[TriangleSetup],
+        triangles: TriangleSelection<'_>,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
@@ -43,7 +43,7 @@ impl TriangleRasterizer for Naive {
         };
         for y in viewport.y0..=viewport.y1 {
             for x in viewport.x0..=viewport.x1 {
-                for t in triangles {
+                for t in triangles.iter() {
                     work.samples_tested += 1;
                     let e = t.edge_values_at_pixel(x, y);
                     if t.inside(e) {

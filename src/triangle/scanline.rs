@@ -28,7 +28,7 @@
 //! is tested: the work is one solve per active edge per row, and each
 //! row's pixels go to the fragment stage as one span.
 
-use super::{emit_span, TriangleRasterizer};
+use super::{emit_span, TriangleRasterizer, TriangleSelection};
 use crate::edge::{EdgeFunction, PixelRect, TriangleSetup};
 use crate::fixed::{
     first_sample_at_or_after, last_sample_at_or_before, HALF_PIXEL, SUBPIXEL_SCALE,
@@ -129,14 +129,14 @@ impl TriangleRasterizer for Scanline {
         "classic scanline: sort vertices by y, walk the edges row by row, fill exact integer spans"
     }
 
-    fn rasterize(
+    fn rasterize_selection(
         &self,
-        triangles: &[TriangleSetup],
+        triangles: TriangleSelection<'_>,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
         let mut work = WorkCounters::default();
-        for t in triangles {
+        for t in triangles.iter() {
             work.primitives += 1;
             let order = sorted_by_y(t);
             let (first_row, last_row) = row_range(t, order, viewport);
@@ -147,7 +147,11 @@ impl TriangleRasterizer for Scanline {
                     continue;
                 }
                 let e = t.edge_values_at_pixel(span.first, j);
-                debug_assert!(t.inside(e), "span start ({}, {j}) fails the inside test", span.first);
+                debug_assert!(
+                    t.inside(e),
+                    "span start ({}, {j}) fails the inside test",
+                    span.first
+                );
                 work.fragments += (span.last - span.first + 1) as u64;
                 emit_span(sink, t, j, span.first, span.last, e);
             }

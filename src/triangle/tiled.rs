@@ -35,9 +35,9 @@
 //! ```
 
 use super::incremental::{run_in_row, step_over, Run};
-use super::{emit_span, TriangleRasterizer};
-use crate::fixed::SUBPIXEL_SCALE;
+use super::{emit_span, TriangleRasterizer, TriangleSelection};
 use crate::edge::{PixelRect, TriangleSetup};
+use crate::fixed::SUBPIXEL_SCALE;
 use crate::fragment::{FragmentSink, WorkCounters};
 
 /// Block side in pixels.
@@ -91,15 +91,15 @@ impl TriangleRasterizer for Tiled {
         "8x8 blocks: trivial reject and trivial accept from the corners, per-pixel edge tests only where a block straddles an edge"
     }
 
-    fn rasterize(
+    fn rasterize_selection(
         &self,
-        triangles: &[TriangleSetup],
+        triangles: TriangleSelection<'_>,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
         let mut work = WorkCounters::default();
         let mut blocks: Vec<(PixelRect, BlockClass)> = Vec::new();
-        for t in triangles {
+        for t in triangles.iter() {
             work.primitives += 1;
             let r = t.bounds_within(viewport);
             if r.is_empty() {

@@ -1,0 +1,157 @@
+//! Binning and parallel drawing: the same image, drawn band by band on
+//! every core.
+//!
+//! The target is cut into horizontal **bands** of full rows, a few per
+//! thread ([`band_rows`]). Each set-up triangle is **binned**: its index goes into
+//! the list of every band its bounding box meets. The bands are then drawn in
+//! parallel with `rayon`, each by its own [`FragmentStage`] writing only its
+//! own rows, with the back-end's viewport narrowed to the band.
+//!
+//! Why the image is bit-identical to a single-threaded draw: a pixel lies in
+//! exactly one band, and that band receives its triangles in ascending id
+//! order (binning keeps the order: triangles are binned in chunks, and each
+//! band walks its chunk lists in chunk order). Every back-end emits a
+//! pixel's fragments in triangle order, and the stage is a pure function of
+//! the fragment, so each pixel sees exactly the same sequence of fragments
+//! as in [`draw`](crate::pipeline::draw).
+//!
+//! With one thread there is nothing to share out, and the draw is
+//! [`pipeline::draw`](crate::pipeline::draw) itself. The number of threads
+//! is rayon's: all cores by default,
+//! `RAYON_NUM_THREADS` or a pool installed by the caller (`--threads N` on
+//! the command line). Work counters are summed over bands, so a triangle
+//! met by three bands counts three primitives.
+
+use crate::edge::{PixelRect, TriangleSetup};
+use crate::fragment::WorkCounters;
+use crate::pipeline::Geometry;
+use crate::stage::{FragmentShader, FragmentStage, Interpolation};
+use crate::target::{DepthState, RenderTarget};
+use crate::triangle::{TriangleRasterizer, TriangleSelection};
+use rayon::prelude::*;
+
+/// Bands per thread: enough for rayon to balance a mesh that covers only
+/// part of the screen.
+const BANDS_PER_THREAD: u32 = 8;
+/// Triangles binned per task, at least.
+const MIN_CHUNK: usize = 4096;
+
+/// Rows per band for a target `height` rows high drawn by `threads`
+/// threads: [`BANDS_PER_THREAD`] bands per thread, rounded up to a multiple
+/// of 8 rows (the tiled back-end's block).
+///
+/// Bands are kept few and tall on purpose. Each band walks the triangle
+/// list in order, skipping the triangles of other bands; the fewer the
+/// bands, the more of each band's walk is a sequential stream through the
+/// set-up data, which is what a dragon frame is bound by. On the full
+/// dragon at 1920x1080 with two threads, 16-row bands (one band's buffers
+/// in a 256 KiB cache) drew in 24 ms, 64-row bands in 20 ms.
+pub fn band_rows(height: u32, threads: usize) -> u32 {
+    let bands = (threads as u32).saturating_mul(BANDS_PER_THREAD).max(1);
+    height.div_ceil(bands).div_ceil(8).max(1) * 8
+}
+
+/// Triangles binned by band: `chunks[c][b]` holds, in id order, the
+/// indices of the triangles of chunk `c` whose bounds meet band `b`.
+#[derive(Clone, Debug, Default)]
+pub struct Bins {
+    /// Rows per band.
+    pub band_rows: u32,
+    /// Per chunk of the input, per band, the triangles meeting the band.
+    pub chunks: Vec<Vec<Vec<u32>>>,
+}
+
+impl Bins {
+    /// Bins `setups` into bands of `band_rows` rows of a `width` x `height`
+    /// target, in parallel.
+    pub fn new(setups: &[TriangleSetup], width: u32, height: u32, band_rows: u32) -> Bins {
+        let band_rows = band_rows.max(1);
+        let bands = height.div_ceil(band_rows) as usize;
+        let viewport = PixelRect::of_target(width, height);
+        let chunk = setups
+            .len()
+            .div_ceil(4 * rayon::current_num_threads())
+            .max(MIN_CHUNK);
+        let chunks = setups
+            .par_chunks(chunk)
+            .enumerate()
+            .map(|(c, triangles)| {
+                let mut per_band: Vec<Vec<u32>> = vec![Vec::new(); bands];
+                for (i, t) in triangles.iter().enumerate() {
+                    let r = t.bounds_within(viewport);
+                    if r.is_empty() {
+                        continue;
+                    }
+                    let rows = i64::from(band_rows);
+                    for band in &mut per_band[(r.y0 / rows) as usize..=(r.y1 / rows) as usize] {
+                        band.push((c * chunk + i) as u32);
+                    }
+                }
+                per_band
+            })
+            .collect();
+        Bins { band_rows, chunks }
+    }
+
+    /// The number of (triangle, band) pairs: triangles counted once per
+    /// band they meet.
+    pub fn binned(&self) -> usize {
+        self.chunks.iter().flatten().map(Vec::len).sum()
+    }
+}
+
+/// Rasterizes `geometry` with `backend` into `target` through the shared
+/// fragment stage, band by band in parallel; bit-identical to
+/// [`pipeline::draw`](crate::pipeline::draw).
+pub fn draw_binned(
+    geometry: &Geometry,
+    backend: &dyn TriangleRasterizer,
+    shader: &dyn FragmentShader,
+    depth: DepthState,
+    interpolation: Interpolation,
+    target: &mut RenderTarget,
+) -> WorkCounters {
+    let threads = rayon::current_num_threads();
+    if threads == 1 {
+        return crate::pipeline::draw(geometry, backend, shader, depth, interpolation, target);
+    }
+    let (width, height) = (target.width(), target.height());
+    let bins = Bins::new(&geometry.setups, width, height, band_rows(height, threads));
+    target
+        .bands_mut(bins.band_rows)
+        .into_par_iter()
+        .enumerate()
+        .map(|(b, rows)| {
+            let viewport = rows.rect();
+            let mut stage = FragmentStage::on_rows(rows, shader)
+                .with_triangles(&geometry.triangles)
+                .with_depth(depth)
+                .with_interpolation(interpolation);
+            let mut work = WorkCounters::default();
+            for chunk in &bins.chunks {
+                if !chunk[b].is_empty() {
+                    let selection = TriangleSelection::indexed(&geometry.setups, &chunk[b]);
+                    work.add(&backend.rasterize_selection(selection, viewport, &mut stage));
+                }
+            }
+            work
+        })
+        .reduce(WorkCounters::default, |mut a, b| {
+            a.add(&b);
+            a
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bands_are_a_few_per_thread_and_align_to_blocks() {
+        assert_eq!(band_rows(1080, 2), 72);
+        assert_eq!(band_rows(1080, 1), 136);
+        assert_eq!(band_rows(1, 64), 8);
+        assert!((1..3000).all(|h| band_rows(h, 3).is_multiple_of(8)));
+        assert!((1..3000u32).all(|h| h.div_ceil(band_rows(h, 2)) <= 16));
+    }
+}

@@ -1,0 +1,155 @@
+//! Binned, multi-threaded drawing and the stage's span path give the very
+//! same bits as the single-threaded, fragment-by-fragment path.
+
+mod common;
+
+use glam::Vec4;
+use proptest::prelude::*;
+use rasterlab::backend::triangle_backends;
+use rasterlab::binning::draw_binned;
+use rasterlab::edge::FillRule;
+use rasterlab::fixed::FixedPoint;
+use rasterlab::fragment::{FragmentList, FragmentSink};
+use rasterlab::mesh::Mesh;
+use rasterlab::pipeline::{draw, CullMode, Geometry};
+use rasterlab::render::{MeshRenderer, RenderSettings, Shading};
+use rasterlab::scene::setup_triangles;
+use rasterlab::shader::{Constant, Flat, Gouraud};
+use rasterlab::stage::{
+    shade_triangles, FragmentShader, FragmentStage, Interpolation, ShadedVertex,
+};
+use rasterlab::target::{DepthState, DepthTest, RenderTarget};
+use std::path::Path;
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+}
+
+/// A 2D soup as a draw: depths and colours per triangle from `depths`.
+fn soup_geometry(soup: &[[FixedPoint; 3]], depths: &[f32]) -> Geometry {
+    let setups = setup_triangles(soup, FillRule::TopLeft);
+    let vertices: Vec<[ShadedVertex; 3]> = (0..soup.len())
+        .map(|i| {
+            let z = depths[i % depths.len()];
+            let c = Vec4::new(z, 1.0 - z, (i % 7) as f32 / 7.0, 1.0);
+            [0.0, 0.1, 0.2].map(|dz| ShadedVertex::flat((z + dz).min(1.0), c + Vec4::splat(dz)))
+        })
+        .collect();
+    Geometry {
+        triangles: shade_triangles(&setups, &vertices),
+        source: (0..setups.len() as u32).collect(),
+        setups,
+        stats: Default::default(),
+    }
+}
+
+/// The bunny (69k triangles: several geometry chunks and bins) is
+/// processed and drawn identically on 1, 2 and 3 threads by every back-end.
+#[test]
+fn meshes_render_identically_on_any_number_of_threads() {
+    let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
+    for (shading, cull) in [
+        (Shading::Flat, CullMode::None),
+        (Shading::Diffuse, CullMode::Back),
+    ] {
+        let mut settings = RenderSettings {
+            width: 200,
+            height: 150,
+            azimuth: 30.0,
+            shading,
+            ..RenderSettings::default()
+        };
+        settings.pipeline.cull = cull;
+        let renderer = MeshRenderer::new(&bunny, settings).unwrap();
+        let reference = pool(1).install(|| renderer.render(triangle_backends()[2]).unwrap());
+        assert!(reference.work.fragments > 5000);
+        let geometry = pool(1).install(|| renderer.geometry().unwrap());
+        for threads in [2, 3] {
+            let parallel = pool(threads).install(|| renderer.geometry().unwrap());
+            assert_eq!(parallel.setups, geometry.setups, "{threads} threads");
+            assert_eq!(parallel.triangles, geometry.triangles, "{threads} threads");
+            assert_eq!(parallel.source, geometry.source, "{threads} threads");
+            assert_eq!(parallel.stats, geometry.stats, "{threads} threads");
+            for b in triangle_backends().iter().skip(1) {
+                let frame = pool(threads).install(|| renderer.render(*b).unwrap());
+                assert!(
+                    frame.target == reference.target,
+                    "{shading}, {threads} threads, {}",
+                    b.name()
+                );
+                assert_eq!(frame.work.fragments, reference.work.fragments);
+            }
+        }
+    }
+}
+
+/// Feeds the fragments of `list` to a stage one at a time.
+fn replay(
+    list: &FragmentList,
+    geometry: &Geometry,
+    shader: &dyn FragmentShader,
+    depth: DepthState,
+    target: &mut RenderTarget,
+) {
+    let mut stage = FragmentStage::new(target, shader)
+        .with_triangles(&geometry.triangles)
+        .with_depth(depth);
+    for f in &list.triangles {
+        stage.triangle_fragment(f);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(600))]
+
+    /// Soups drawn in bands on 2 and 3 threads (8-row bands on this small
+    /// target, so triangles cross bands) equal the single-threaded draw.
+    #[test]
+    fn binned_soups_equal_the_single_threaded_draw(
+        soup in common::triangle_soup(24),
+        depths in proptest::collection::vec(0.0f32..1.0, 1..8),
+        backend in 0usize..5,
+    ) {
+        let geometry = soup_geometry(&soup, &depths);
+        let b = triangle_backends()[backend];
+        for shader in [&Flat as &dyn FragmentShader, &Gouraud] {
+            let mut reference = RenderTarget::new(common::SIZE, common::SIZE).unwrap();
+            draw(&geometry, b, shader, DepthState::DEFAULT, Interpolation::PerspectiveCorrect, &mut reference);
+            for threads in [2, 3] {
+                let mut target = RenderTarget::new(common::SIZE, common::SIZE).unwrap();
+                pool(threads).install(|| draw_binned(&geometry, b, shader, DepthState::DEFAULT, Interpolation::PerspectiveCorrect, &mut target));
+                prop_assert!(target == reference, "{} on {} threads", b.name(), threads);
+            }
+        }
+    }
+
+    /// The stage's span path (one shading per span for uniform shaders,
+    /// one loop per depth comparison) writes what the fragment-by-fragment
+    /// path writes, for every depth comparison, with and without depth writes.
+    #[test]
+    fn spans_equal_fragment_by_fragment(
+        soup in common::triangle_soup(16),
+        depths in proptest::collection::vec(0.0f32..1.0, 1..8),
+        write in any::<bool>(),
+    ) {
+        let geometry = soup_geometry(&soup, &depths);
+        let scanline = triangle_backends()[2];
+        let mut list = FragmentList::default();
+        scanline.rasterize(&geometry.setups, common::viewport(), &mut list);
+        let constant = Constant(Vec4::new(0.2, 0.4, 0.6, 1.0));
+        for shader in [&Flat as &dyn FragmentShader, &constant, &Gouraud] {
+            for test in DepthTest::ALL {
+                let depth = DepthState { test, write };
+                let mut spans = RenderTarget::new(common::SIZE, common::SIZE).unwrap();
+                spans.depth.fill(0.5);
+                let mut fragments = spans.clone();
+                draw(&geometry, scanline, shader, depth, Interpolation::PerspectiveCorrect, &mut spans);
+                replay(&list, &geometry, shader, depth, &mut fragments);
+                prop_assert!(spans == fragments, "{} {}", test, write);
+            }
+        }
+    }
+}
