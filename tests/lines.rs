@@ -572,3 +572,65 @@ fn the_cli_prints_line_fragments_and_wu_weights() {
         .unwrap()
         .contains("draws triangles, but the file holds line segments"));
 }
+
+/// Draws `lines` with a line back-end through the shared stage: constant
+/// colour, depth test off.
+fn through_stage(lines: &[LineSetup], w: u32, h: u32) -> rasterlab::target::RenderTarget {
+    use rasterlab::stage::{FragmentStage, ShadedLine, ShadedVertex};
+    use rasterlab::target::{DepthState, DepthTest, RenderTarget};
+    let mut target = RenderTarget::new(w, h).unwrap();
+    let shaded: Vec<ShadedLine> = lines
+        .iter()
+        .map(|l| ShadedLine {
+            from: l.from,
+            to: l.to,
+            vertices: [ShadedVertex::flat(0.5, glam::Vec4::ONE); 2],
+        })
+        .collect();
+    let shader = rasterlab::shader::Constant(glam::Vec4::ONE);
+    let mut stage = FragmentStage::new(&mut target, &shader)
+        .with_lines(&shaded)
+        .with_depth(DepthState {
+            test: DepthTest::Always,
+            write: false,
+        });
+    Bresenham.rasterize(lines, &LineOptions::DEFAULT, PixelRect::of_target(w, h), &mut stage);
+    target
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(3000))]
+
+    /// The fast path writes exactly the pixels the `bresenham` back-end
+    /// sends through the stage (colour and coverage), lines partly or wholly
+    /// off the target included.
+    #[test]
+    fn fast_path_equals_bresenham_through_the_stage(
+        lines in proptest::collection::vec((endpoint(), endpoint()), 1..6),
+        (w, h) in (1u32..48, 1u32..48),
+    ) {
+        let lines: Vec<LineSetup> = lines
+            .into_iter()
+            .enumerate()
+            .map(|(i, (a, b))| LineSetup { id: i as u32, ..seg(a, b) })
+            .collect();
+        let expected = through_stage(&lines, w, h);
+        let mut fast = rasterlab::target::RenderTarget::new(w, h).unwrap();
+        let written = rasterlab::line::fast::draw_lines(&mut fast, &lines, [255; 4]);
+        prop_assert!(fast == expected);
+        let counted: u64 = expected.coverage.iter().map(|&c| u64::from(c)).sum();
+        prop_assert_eq!(written, counted);
+    }
+}
+
+/// Long lines far outside the target are clipped, not walked.
+#[test]
+fn fast_path_clips_lines_crossing_the_guard_band() {
+    let a = snap(-16000.25, -9000.5);
+    let b = snap(16000.75, 9010.5);
+    let expected = through_stage(&[seg(a, b)], 64, 48);
+    let mut fast = rasterlab::target::RenderTarget::new(64, 48).unwrap();
+    let written = rasterlab::line::fast::draw_lines(&mut fast, &[seg(a, b)], [255; 4]);
+    assert_eq!(written, 64);
+    assert!(fast == expected);
+}

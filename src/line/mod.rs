@@ -25,6 +25,7 @@
 
 pub mod bresenham;
 pub mod dda;
+pub mod fast;
 pub mod diamond;
 pub mod direct;
 pub mod wu;

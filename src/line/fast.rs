@@ -1,0 +1,152 @@
+//! The fast line path: Bresenham written straight into the buffers.
+//!
+//! The [`bresenham`](super::bresenham) back-end builds each segment's pixel
+//! list and hands every pixel to a [`FragmentSink`](crate::fragment::FragmentSink):
+//! clear for teaching and tracing, but a call and a viewport test per pixel.
+//! [`draw_lines`] draws the very same pixels (the default
+//! [`LineOptions`](super::LineOptions): 8-connected, both endpoints)
+//! without that overhead:
+//!
+//! 1. **clip first**: the segment's frame columns are cut to those whose
+//!    pixel lies on the target. The major axis gives a column range
+//!    directly; the row of each column, `nearest_row(i)`, only grows with
+//!    `i`, so the first and last columns whose row is on the target are
+//!    found by binary search. The walk then starts at the first visible
+//!    column with the decision variable it would have had there,
+//!    `d = du (256 k + 128) - du v(i + 1)`, so no pixel is tested;
+//! 2. **write runs**: in an x-major segment, the pixels between two row
+//!    steps are consecutive in memory and are written as one slice; in a
+//!    y-major one, each step moves one row, and the pixel is written in that
+//!    row's slice.
+//!
+//! What is written is what the shared stage writes for a constant colour
+//! with the depth test off (`always`, no depth write): the colour, and one
+//! more in the coverage count. A test checks both against the `bresenham`
+//! back-end through the stage, pixel for pixel.
+
+use super::{LineSetup, OctantFrame};
+use crate::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
+use crate::target::RenderTarget;
+
+/// Draws `lines` with Bresenham's pixels in `color`, clipped to `target`,
+/// and returns the number of pixels written.
+///
+/// ```
+/// use rasterlab::fixed::FixedPoint;
+/// use rasterlab::line::{fast::draw_lines, LineSetup};
+/// use rasterlab::target::RenderTarget;
+///
+/// let mut target = RenderTarget::new(8, 4).unwrap();
+/// let p = |x: f32, y: f32| FixedPoint::snap(x, y).unwrap();
+/// let line = LineSetup { id: 0, from: p(0.5, 0.5), to: p(7.5, 3.5) };
+/// assert_eq!(draw_lines(&mut target, &[line], [255, 0, 0, 255]), 8);
+/// ```
+pub fn draw_lines(target: &mut RenderTarget, lines: &[LineSetup], color: [u8; 4]) -> u64 {
+    let (width, height) = (i64::from(target.width()), i64::from(target.height()));
+    let mut written = 0;
+    for line in lines {
+        let frame = OctantFrame::new(line.from, line.to);
+        let (major_len, minor_len) = if frame.swap {
+            (height, width)
+        } else {
+            (width, height)
+        };
+        let Some((first, last)) = visible_columns(&frame, major_len, minor_len) else {
+            continue;
+        };
+        written += (last - first + 1) as u64;
+        walk(target, &frame, first, last, color);
+    }
+    written
+}
+
+/// The frame columns `[first, last]` whose pixels lie on a target
+/// `major_len` pixels long on the major axis and `minor_len` on the minor.
+fn visible_columns(frame: &OctantFrame, major_len: i64, minor_len: i64) -> Option<(i64, i64)> {
+    // Screen major coordinate is i, or -i when the major axis is flipped.
+    let (lo, hi) = if frame.flip_major {
+        (-(major_len - 1), 0)
+    } else {
+        (0, major_len - 1)
+    };
+    let (mut first, mut last) = (frame.i0.max(lo), frame.i1.min(hi));
+    if first > last {
+        return None;
+    }
+    // Screen minor coordinate is k, or -k; k grows with i.
+    let (k_lo, k_hi) = if frame.flip_minor {
+        (-(minor_len - 1), 0)
+    } else {
+        (0, minor_len - 1)
+    };
+    first = first_column_where(first, last + 1, |i| frame.nearest_row(i) >= k_lo);
+    last = first_column_where(first, last + 1, |i| frame.nearest_row(i) > k_hi) - 1;
+    (first <= last).then_some((first, last))
+}
+
+/// The first `i` in `[lo, hi)` where the monotone `pred` holds, or `hi`.
+fn first_column_where(mut lo: i64, mut hi: i64, pred: impl Fn(i64) -> bool) -> i64 {
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if pred(mid) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    lo
+}
+
+/// The midpoint walk over columns `first..=last`, all on the target.
+fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, color: [u8; 4]) {
+    let width = target.width() as usize;
+    let s = SUBPIXEL_SCALE as i128;
+    let (du, dv) = (frame.du() as i128, frame.dv() as i128);
+    let mut k = frame.nearest_row(first);
+    let mut d = du * (s * k as i128 + HALF_PIXEL as i128) - frame.scaled_v_at(first + 1);
+    let (up, flat) = (s * (du - dv), s * dv);
+    let screen = |i: i64, k: i64| {
+        let (x, y) = frame.to_screen(i, k);
+        (x as usize, y as usize)
+    };
+    let colors = &mut target.color;
+    let coverage = &mut target.coverage;
+    if !frame.swap {
+        // x-major: runs of one row are consecutive pixels.
+        let mut run_start = first;
+        for i in first..=last {
+            let step_up = d < 0;
+            if step_up {
+                k += 1;
+                d += up;
+            } else {
+                d -= flat;
+            }
+            if step_up || i == last {
+                let (xa, y) = screen(run_start, if step_up { k - 1 } else { k });
+                let (xb, _) = screen(i, 0);
+                let (x0, x1) = (xa.min(xb), xa.max(xb));
+                let row = y * width;
+                colors[row + x0..=row + x1].fill(color);
+                for c in &mut coverage[row + x0..=row + x1] {
+                    *c = c.saturating_add(1);
+                }
+                run_start = i + 1;
+            }
+        }
+    } else {
+        // y-major: one pixel per row.
+        for i in first..=last {
+            let (x, y) = screen(i, k);
+            let at = y * width + x;
+            colors[at] = color;
+            coverage[at] = coverage[at].saturating_add(1);
+            if d < 0 {
+                k += 1;
+                d += up;
+            } else {
+                d -= flat;
+            }
+        }
+    }
+}
