@@ -69,5 +69,6 @@ pub mod stage;
 pub mod target;
 pub mod trace;
 pub mod triangle;
+pub mod workload;
 
 pub use error::{Error, Result};

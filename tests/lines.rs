@@ -594,7 +594,12 @@ fn through_stage(lines: &[LineSetup], w: u32, h: u32) -> rasterlab::target::Rend
             test: DepthTest::Always,
             write: false,
         });
-    Bresenham.rasterize(lines, &LineOptions::DEFAULT, PixelRect::of_target(w, h), &mut stage);
+    Bresenham.rasterize(
+        lines,
+        &LineOptions::DEFAULT,
+        PixelRect::of_target(w, h),
+        &mut stage,
+    );
     target
 }
 

@@ -25,9 +25,9 @@
 
 pub mod bresenham;
 pub mod dda;
-pub mod fast;
 pub mod diamond;
 pub mod direct;
+pub mod fast;
 pub mod wu;
 
 use crate::edge::PixelRect;

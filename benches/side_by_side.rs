@@ -1,0 +1,284 @@
+//! Whole frames, side by side with published crates doing the same work.
+//!
+//! * `dragon`: the Stanford dragon (871,414 triangles; and `dragon_res2`)
+//!   at 1920x1080, back faces culled, depth test, Gouraud shading (lit per
+//!   vertex), against `euc` doing the same; rasterlab on one thread per
+//!   back-end, and `tiled` on two;
+//! * `fill`, `size`, `sliver`: 2D triangles with depth test and colour
+//!   write (see `rasterlab::workload`), against `tiny-skia` filling the same
+//!   triangles without anti-aliasing (colour only, no depth buffer);
+//! * `lines`: a million short and ten thousand long lines, every line
+//!   back-end through the stage and the fast path, against the
+//!   `line_drawing` crate's Bresenham writing into a colour buffer.
+//!
+//! `cargo bench --bench side_by_side` (needs `../shared/data` for the full
+//! dragon; without it, only the bundled `dragon_vrip_res4` is run).
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use glam::{Mat4, Vec3};
+use rasterlab::backend::{line_backends, triangle_backend, triangle_backends};
+use rasterlab::edge::PixelRect;
+use rasterlab::fixed::FixedPoint;
+use rasterlab::line::{LineOptions, LineSetup};
+use rasterlab::mesh::Mesh;
+use rasterlab::pipeline::CullMode;
+use rasterlab::render::{MeshRenderer, RenderSettings, Shading};
+use rasterlab::shader::Constant;
+use rasterlab::stage::{FragmentStage, ShadedLine, ShadedVertex};
+use rasterlab::target::{DepthState, DepthTest, RenderTarget};
+use rasterlab::workload::{self, TriangleWorkload, COLOR};
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Duration;
+
+const W: u32 = 1920;
+const H: u32 = 1080;
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+}
+
+/// `euc`'s pipeline for a mesh: positions by index, a per-vertex diffuse
+/// intensity interpolated across the triangle.
+struct EucMesh<'a> {
+    mvp: Mat4,
+    positions: &'a [Vec3],
+    intensity: &'a [f32],
+}
+
+impl euc::Pipeline for EucMesh<'_> {
+    type Vertex = u32;
+    type VsOut = f32;
+    type Pixel = u32;
+
+    fn vert(&self, i: &u32) -> ([f32; 4], f32) {
+        let p = self.mvp * self.positions[*i as usize].extend(1.0);
+        (p.to_array(), self.intensity[*i as usize])
+    }
+
+    fn frag(&self, light: &f32) -> u32 {
+        let c = (light.clamp(0.0, 1.0) * 255.0) as u32;
+        0xff00_0000 | c << 16 | c << 8 | c
+    }
+}
+
+fn dragon(c: &mut Criterion) {
+    let shared = Path::new("../shared/data");
+    let mut meshes = vec![(
+        "dragon_res4",
+        Path::new("assets/dragon_vrip_res4.ply.gz").to_path_buf(),
+    )];
+    if shared.exists() {
+        meshes.push(("dragon_res2", shared.join("dragon_vrip_res2.ply.gz")));
+        meshes.push(("dragon", shared.join("dragon_vrip.ply.gz")));
+    }
+    for (name, path) in meshes {
+        let mesh = Mesh::load(&path).unwrap();
+        let mut settings = RenderSettings {
+            width: W,
+            height: H,
+            azimuth: 30.0,
+            shading: Shading::Gouraud,
+            ..RenderSettings::default()
+        };
+        settings.pipeline.cull = CullMode::Back;
+        let renderer = MeshRenderer::new(&mesh, settings).unwrap();
+        let mut group = c.benchmark_group(format!("mesh/{name}"));
+        group.throughput(Throughput::Elements(mesh.triangles.len() as u64));
+        let one = pool(1);
+        for b in triangle_backends().iter().filter(|b| b.name() != "naive") {
+            group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
+                bench.iter(|| one.install(|| renderer.render(*b).unwrap().work.fragments))
+            });
+        }
+        let two = pool(2);
+        let tiled = triangle_backend("tiled").unwrap();
+        group.bench_function(BenchmarkId::from_parameter("tiled-2-threads"), |bench| {
+            bench.iter(|| two.install(|| renderer.render(tiled).unwrap().work.fragments))
+        });
+        // The same camera, the same per-vertex light, through euc.
+        let transform = renderer.transform();
+        let light = settings.light;
+        let intensity: Vec<f32> = mesh
+            .normals
+            .iter()
+            .map(|n| light.intensity(transform.normal_matrix * *n))
+            .collect();
+        let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+        let euc_mesh = EucMesh {
+            mvp: transform.mvp,
+            positions: &mesh.positions,
+            intensity: &intensity,
+        };
+        let mut color = euc::buffer::Buffer2d::new([W as usize, H as usize], 0u32);
+        let mut depth = euc::buffer::Buffer2d::new([W as usize, H as usize], 1.0f32);
+        group.bench_function(BenchmarkId::from_parameter("peer-euc"), |bench| {
+            bench.iter(|| {
+                use euc::{Pipeline, Target};
+                color.clear(0);
+                depth.clear(1.0);
+                euc_mesh.draw::<euc::rasterizer::Triangles<_, euc::rasterizer::BackfaceCullingEnabled>, _>(
+                    &indices,
+                    &mut color,
+                    Some(&mut depth),
+                );
+                black_box(color.as_ref()[0])
+            })
+        });
+        group.finish();
+    }
+}
+
+/// The workload's triangles filled by tiny-skia, aliased, in one colour.
+fn tiny_skia_fill(work: &TriangleWorkload, pixmap: &mut tiny_skia::Pixmap) {
+    let mut paint = tiny_skia::Paint::default();
+    paint.set_color_rgba8(51, 128, 230, 255);
+    paint.anti_alias = false;
+    pixmap.fill(tiny_skia::Color::BLACK);
+    for t in &work.geometry.setups {
+        let mut path = tiny_skia::PathBuilder::new();
+        let [a, b, c] = t.vertices.map(|v| {
+            let (x, y) = v.to_f64();
+            (x as f32, y as f32)
+        });
+        path.move_to(a.0, a.1);
+        path.line_to(b.0, b.1);
+        path.line_to(c.0, c.1);
+        path.close();
+        if let Some(path) = path.finish() {
+            pixmap.fill_path(
+                &path,
+                &paint,
+                tiny_skia::FillRule::Winding,
+                tiny_skia::Transform::identity(),
+                None,
+            );
+        }
+    }
+}
+
+fn triangles(c: &mut Criterion) {
+    let mut workloads = vec![workload::fill(W, H, 1), workload::fill(W, H, 4)];
+    for size in [1.0, 4.0, 16.0, 64.0, 250.0, 500.0] {
+        workloads.push(workload::sized(W, H, size));
+    }
+    for angle in [0.0, 45.0, 90.0] {
+        workloads.push(workload::slivers(W, H, angle));
+    }
+    let mut target = RenderTarget::new(W, H).unwrap();
+    let mut pixmap = tiny_skia::Pixmap::new(W, H).unwrap();
+    for work in &workloads {
+        let mut group = c.benchmark_group(format!("triangles/{}", work.name));
+        let pixels = work.run(triangle_backends()[1], &mut target);
+        group.throughput(Throughput::Elements(pixels));
+        for b in triangle_backends() {
+            // The naive loop tests every pixel against every triangle.
+            if b.name() == "naive" && work.triangles() > 2 {
+                continue;
+            }
+            group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
+                bench.iter(|| work.run(*b, &mut target))
+            });
+        }
+        group.bench_function(BenchmarkId::from_parameter("peer-tiny-skia"), |bench| {
+            bench.iter(|| {
+                tiny_skia_fill(work, &mut pixmap);
+                black_box(pixmap.data()[0])
+            })
+        });
+        group.finish();
+    }
+}
+
+/// Draws lines with a back-end through the stage (constant colour, no depth).
+fn lines_through_stage(
+    backend: &dyn rasterlab::line::LineRasterizer,
+    lines: &[LineSetup],
+    shaded: &[ShadedLine],
+    target: &mut RenderTarget,
+) -> u64 {
+    let shader = Constant(COLOR);
+    let viewport = PixelRect::of_target(target.width(), target.height());
+    let mut stage = FragmentStage::new(target, &shader)
+        .with_lines(shaded)
+        .with_depth(DepthState {
+            test: DepthTest::Always,
+            write: false,
+        });
+    backend
+        .rasterize(lines, &LineOptions::DEFAULT, viewport, &mut stage)
+        .fragments
+}
+
+/// line_drawing's Bresenham on the pixels containing the endpoints,
+/// written into an RGBA8 buffer with a bounds test per pixel.
+fn line_drawing_lines(lines: &[(i32, i32, i32, i32)], buffer: &mut [[u8; 4]]) -> u64 {
+    let mut n = 0;
+    for &(x0, y0, x1, y1) in lines {
+        for (x, y) in line_drawing::Bresenham::new((x0, y0), (x1, y1)) {
+            if (0..W as i32).contains(&x) && (0..H as i32).contains(&y) {
+                buffer[y as usize * W as usize + x as usize] = [51, 128, 230, 255];
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+fn lines(c: &mut Criterion) {
+    let sets = [
+        ("lines/short-1M", workload::short_lines(W, H, 1_000_000)),
+        ("lines/long-10k", workload::long_lines(W, H, 10_000)),
+    ];
+    let mut target = RenderTarget::new(W, H).unwrap();
+    for (name, lines) in &sets {
+        let shaded: Vec<ShadedLine> = lines
+            .iter()
+            .map(|l| ShadedLine {
+                from: l.from,
+                to: l.to,
+                vertices: [ShadedVertex::flat(0.5, COLOR); 2],
+            })
+            .collect();
+        let ints: Vec<(i32, i32, i32, i32)> = lines
+            .iter()
+            .map(|l| {
+                let px = |p: FixedPoint| {
+                    (
+                        p.x.raw().div_euclid(256) as i32,
+                        p.y.raw().div_euclid(256) as i32,
+                    )
+                };
+                let (a, b) = (px(l.from), px(l.to));
+                (a.0, a.1, b.0, b.1)
+            })
+            .collect();
+        let mut group = c.benchmark_group(*name);
+        let pixels = rasterlab::line::fast::draw_lines(&mut target, lines, [0; 4]);
+        group.throughput(Throughput::Elements(pixels));
+        for b in line_backends() {
+            group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
+                bench.iter(|| lines_through_stage(*b, lines, &shaded, &mut target))
+            });
+        }
+        group.bench_function(BenchmarkId::from_parameter("fast-bresenham"), |bench| {
+            bench
+                .iter(|| rasterlab::line::fast::draw_lines(&mut target, lines, [51, 128, 230, 255]))
+        });
+        let mut buffer = vec![[0u8; 4]; (W * H) as usize];
+        group.bench_function(BenchmarkId::from_parameter("peer-line_drawing"), |bench| {
+            bench.iter(|| line_drawing_lines(&ints, &mut buffer))
+        });
+        group.finish();
+    }
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(2));
+    targets = dragon, triangles, lines
+}
+criterion_main!(benches);
