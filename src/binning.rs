@@ -37,7 +37,7 @@ const BANDS_PER_THREAD: u32 = 8;
 const MIN_CHUNK: usize = 4096;
 
 /// Rows per band for a target `height` rows high drawn by `threads`
-/// threads: [`BANDS_PER_THREAD`] bands per thread, rounded up to a multiple
+/// threads: eight bands per thread, rounded up to a multiple
 /// of 8 rows (the tiled back-end's block).
 ///
 /// Bands are kept few and tall on purpose. Each band walks the triangle

@@ -52,6 +52,7 @@
 #![forbid(unsafe_code)]
 
 pub mod backend;
+pub mod benchmark;
 pub mod binning;
 pub mod edge;
 pub mod error;

@@ -251,3 +251,41 @@ fn malformed_meshes_name_file_and_line() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown shading `glossy`"));
 }
+
+#[test]
+fn bench_prints_a_table_and_writes_json_and_charts() {
+    let dir = std::env::temp_dir().join(format!("rasterlab-bench-{}", std::process::id()));
+    let out = rasterlab(&[
+        "--threads",
+        "1",
+        "bench",
+        "--size",
+        "64x48",
+        "--samples",
+        "1",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let printed: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rows = printed.as_array().unwrap();
+    assert!(rows.iter().any(|r| r["backend"] == "fast-bresenham"));
+    assert!(rows.iter().any(|r| r["workload"] == "dragon_vrip_res4"));
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("bench.json")).unwrap()).unwrap();
+    assert_eq!(written.as_array().unwrap().len(), rows.len());
+    assert!(image::open(dir.join("bench.png")).is_ok());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn zero_threads_is_an_error() {
+    let out = rasterlab(&["--threads", "0", "backends"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--threads"));
+}

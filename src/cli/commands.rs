@@ -531,3 +531,64 @@ pub fn explain(args: &ExplainArgs) -> Result<()> {
     print!("{text}");
     Ok(())
 }
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Workload set: quick (seconds) or full (the `cargo bench` sizes).
+    #[arg(long, default_value = "quick")]
+    set: rasterlab::benchmark::WorkloadSet,
+    /// Target size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1920x1080")]
+    size: Size,
+    /// Timed runs per back-end and workload (the median is reported).
+    #[arg(long, default_value_t = 5)]
+    samples: usize,
+    /// Meshes to render (default: the bundled dragon).
+    #[arg(long = "mesh")]
+    meshes: Vec<PathBuf>,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// Directory for bench.json, bench.png and bench.svg.
+    #[arg(long, default_value = "bench-output")]
+    out: PathBuf,
+}
+
+pub fn bench(args: &BenchArgs) -> Result<()> {
+    use rasterlab::benchmark::{self, BenchOptions};
+    let meshes = if args.meshes.is_empty() {
+        vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/dragon_vrip_res4.ply.gz")]
+    } else {
+        args.meshes.clone()
+    };
+    let options = BenchOptions {
+        set: args.set,
+        width: args.size.width,
+        height: args.size.height,
+        samples: args.samples,
+        meshes,
+    };
+    let bar = indicatif::ProgressBar::new(benchmark::pair_count(&options) as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}")
+            .expect("a valid progress template"),
+    );
+    let results = benchmark::run(&options, &mut |step| {
+        bar.inc(1);
+        bar.set_message(step.to_string());
+    });
+    bar.finish_and_clear();
+    let results = results?;
+    if args.json {
+        println!("{}", benchmark::to_json(&results));
+    } else {
+        print!("{}", benchmark::table(&results));
+    }
+    benchmark::write_outputs(&results, &args.out)?;
+    eprintln!(
+        "threads: {}; wrote bench.json, bench.png, bench.svg in {}",
+        rayon::current_num_threads(),
+        args.out.display()
+    );
+    Ok(())
+}

@@ -30,6 +30,8 @@ enum Command {
     Explain(commands::ExplainArgs),
     /// Render the bundled scenes with every back-end and check the images are identical.
     Demo(commands::DemoArgs),
+    /// Time every back-end on the same workloads: table, JSON and bar chart.
+    Bench(commands::BenchArgs),
 }
 
 /// Runs the command line; errors are printed to stderr.
@@ -41,6 +43,7 @@ pub fn main() -> ExitCode {
         Command::Render(args) => commands::render(args),
         Command::Demo(args) => commands::demo(args),
         Command::Explain(args) => commands::explain(args),
+        Command::Bench(args) => commands::bench(args),
     };
     let result = match cli.threads {
         None => run(),

@@ -4,7 +4,7 @@
 //! object-safe [`TriangleRasterizer`] trait, so tools and tests loop over
 //! [`crate::backend::triangle_backends`] by name. A back-end only decides
 //! *which* pixels each triangle covers; every one of them applies the same
-//! exact inside test ([`TriangleSetup::inside`]) to the same sample points,
+//! exact inside test ([`TriangleSetup::inside`](crate::edge::TriangleSetup::inside)) to the same sample points,
 //! so they all emit the same fragments, and differ only in how many samples
 //! they test and in what order they visit them.
 //!

@@ -9,7 +9,7 @@
 //! ```
 //!
 //! "Inside" is the edge-function test with the fill rule's tie-breaking
-//! ([`TriangleSetup::inside`]). Every pixel of the target is tested against
+//! ([`TriangleSetup::inside`](crate::edge::TriangleSetup::inside)). Every pixel of the target is tested against
 //! every triangle: `width x height x triangles` tests. This is the
 //! reference every other back-end is checked against, and the red/green
 //! picture of seed 002's "checking every pixel" slide.

@@ -1,0 +1,447 @@
+//! `rasterlab bench`: every back-end on the same workloads, timed in one
+//! run, with a table, JSON and a bar chart.
+//!
+//! Each (workload, back-end) pair is run `samples` times after one warm-up
+//! run, and the **median** time is kept (the machine is shared and noisy;
+//! the median ignores the odd slow run). From it: millions of primitives
+//! per second, billions of pixels per second, and the ratio to the slowest
+//! back-end on that workload. For published crates side by side, and
+//! confidence intervals, `cargo bench --bench side_by_side` runs the same
+//! workloads under criterion.
+
+use crate::backend::{line_backends, triangle_backends};
+use crate::error::{Error, Result};
+use crate::line::fast::draw_lines;
+use crate::line::{LineOptions, LineSetup};
+use crate::mesh::Mesh;
+use crate::pipeline::CullMode;
+use crate::render::{MeshRenderer, RenderSettings};
+use crate::shader::Constant;
+use crate::stage::{to_rgba8, FragmentStage, ShadedLine, ShadedVertex};
+use crate::target::{DepthState, DepthTest, RenderTarget};
+use crate::workload::{self, COLOR};
+use serde::Serialize;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// One measured (workload, back-end) pair.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Measurement {
+    /// Workload name.
+    pub workload: String,
+    /// Back-end name.
+    pub backend: String,
+    /// Primitives (triangles or lines) per run.
+    pub primitives: u64,
+    /// Pixels written per run.
+    pub pixels: u64,
+    /// Median time of one run, in milliseconds.
+    pub median_ms: f64,
+    /// Millions of primitives per second.
+    pub mprims_per_s: f64,
+    /// Billions of pixels per second.
+    pub gpixels_per_s: f64,
+    /// How many times faster than the slowest back-end on this workload.
+    pub vs_slowest: f64,
+}
+
+/// Which workloads to run.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum WorkloadSet {
+    /// A few seconds: fill, three sizes, slivers, 100k short and 1k long
+    /// lines, the bundled dragon.
+    #[default]
+    Quick,
+    /// The `cargo bench` sizes: 1M short and 10k long lines, six triangle
+    /// sizes, two fill depths.
+    Full,
+}
+
+crate::pipeline::named_enum!(WorkloadSet, "workload set", Quick = "quick", Full = "full");
+
+/// What to run.
+#[derive(Clone, Debug)]
+pub struct BenchOptions {
+    /// Which workloads.
+    pub set: WorkloadSet,
+    /// Target width.
+    pub width: u32,
+    /// Target height.
+    pub height: u32,
+    /// Timed runs per pair (after one warm-up run).
+    pub samples: usize,
+    /// Meshes to render (with every back-end but `naive`).
+    pub meshes: Vec<std::path::PathBuf>,
+}
+
+/// The number of (workload, back-end) pairs `options` will time, for a
+/// progress bar.
+pub fn pair_count(options: &BenchOptions) -> usize {
+    let tri = triangle_backends().len();
+    let (triangle_workloads, line_workloads) = triangle_and_line_counts(options.set);
+    // naive only runs the two-triangle fill workloads.
+    let fills = match options.set {
+        WorkloadSet::Quick => 1,
+        WorkloadSet::Full => 2,
+    };
+    triangle_workloads * (tri - 1)
+        + fills
+        + line_workloads * (line_backends().len() + 1)
+        + options.meshes.len() * (tri - 1)
+}
+
+fn triangle_and_line_counts(set: WorkloadSet) -> (usize, usize) {
+    match set {
+        WorkloadSet::Quick => (1 + 3 + 3, 2),
+        WorkloadSet::Full => (2 + 6 + 3, 2),
+    }
+}
+
+/// The median of `samples` timed runs of `run`, after one warm-up run.
+fn median_time(samples: usize, mut run: impl FnMut() -> u64) -> (Duration, u64) {
+    let pixels = run();
+    let mut times: Vec<Duration> = (0..samples.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            std::hint::black_box(run());
+            start.elapsed()
+        })
+        .collect();
+    times.sort_unstable();
+    (times[times.len() / 2], pixels)
+}
+
+/// Runs the benchmark; `progress` is called once per pair with its name.
+pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(&str)) -> Result<Vec<Measurement>> {
+    RenderTarget::check_size(options.width, options.height)?;
+    let (w, h) = (options.width, options.height);
+    let mut results = Vec::new();
+    let mut target = RenderTarget::new(w, h)?;
+    let mut measure = |workload: &str, backend: &str, prims: u64, time: Duration, pixels: u64| {
+        let s = time.as_secs_f64().max(1e-9);
+        results.push(Measurement {
+            workload: workload.to_string(),
+            backend: backend.to_string(),
+            primitives: prims,
+            pixels,
+            median_ms: s * 1e3,
+            mprims_per_s: prims as f64 / s / 1e6,
+            gpixels_per_s: pixels as f64 / s / 1e9,
+            vs_slowest: 1.0,
+        });
+    };
+
+    let mut triangle_workloads = vec![workload::fill(w, h, 1)];
+    let (sizes, lines): (&[f32], (usize, usize)) = match options.set {
+        WorkloadSet::Quick => (&[4.0, 32.0, 250.0], (100_000, 1_000)),
+        WorkloadSet::Full => {
+            triangle_workloads.push(workload::fill(w, h, 4));
+            (&[1.0, 4.0, 16.0, 64.0, 250.0, 500.0], (1_000_000, 10_000))
+        }
+    };
+    for &size in sizes {
+        triangle_workloads.push(workload::sized(w, h, size));
+    }
+    for angle in [0.0, 45.0, 90.0] {
+        triangle_workloads.push(workload::slivers(w, h, angle));
+    }
+    for work in &triangle_workloads {
+        for b in triangle_backends() {
+            if b.name() == "naive" && work.triangles() > 2 {
+                continue;
+            }
+            progress(&format!("{} / {}", work.name, b.name()));
+            let (time, pixels) = median_time(options.samples, || work.run(*b, &mut target));
+            measure(&work.name, b.name(), work.triangles() as u64, time, pixels);
+        }
+    }
+
+    let line_sets = [
+        ("lines-short", workload::short_lines(w, h, lines.0)),
+        ("lines-long", workload::long_lines(w, h, lines.1)),
+    ];
+    for (name, set) in &line_sets {
+        let shaded: Vec<ShadedLine> = set
+            .iter()
+            .map(|l| ShadedLine {
+                from: l.from,
+                to: l.to,
+                vertices: [ShadedVertex::flat(0.5, COLOR); 2],
+            })
+            .collect();
+        for b in line_backends() {
+            progress(&format!("{name} / {}", b.name()));
+            let (time, pixels) = median_time(options.samples, || {
+                lines_through_stage(*b, set, &shaded, &mut target)
+            });
+            measure(name, b.name(), set.len() as u64, time, pixels);
+        }
+        progress(&format!("{name} / fast-bresenham"));
+        let color = to_rgba8(COLOR);
+        let (time, pixels) = median_time(options.samples, || draw_lines(&mut target, set, color));
+        measure(name, "fast-bresenham", set.len() as u64, time, pixels);
+    }
+
+    for path in &options.meshes {
+        let mesh = Mesh::load(path)?;
+        let name = mesh_name(path);
+        let mut settings = RenderSettings {
+            width: w,
+            height: h,
+            azimuth: 30.0,
+            ..RenderSettings::default()
+        };
+        settings.pipeline.cull = CullMode::Back;
+        let renderer = MeshRenderer::new(&mesh, settings)?;
+        for b in triangle_backends().iter().filter(|b| b.name() != "naive") {
+            progress(&format!("{name} / {}", b.name()));
+            let mut error = None;
+            let (time, pixels) = median_time(options.samples, || match renderer.render(*b) {
+                Ok(frame) => frame.work.fragments,
+                Err(e) => {
+                    error = Some(e);
+                    0
+                }
+            });
+            if let Some(e) = error {
+                return Err(e);
+            }
+            measure(&name, b.name(), mesh.triangles.len() as u64, time, pixels);
+        }
+    }
+
+    // Ratios to the slowest back-end of each workload.
+    for i in 0..results.len() {
+        let slowest = results
+            .iter()
+            .filter(|m| m.workload == results[i].workload)
+            .map(|m| m.median_ms)
+            .fold(0.0, f64::max);
+        results[i].vs_slowest = slowest / results[i].median_ms;
+    }
+    Ok(results)
+}
+
+/// A mesh file's name without its extensions.
+fn mesh_name(path: &Path) -> String {
+    let name = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    name.split('.').next().unwrap_or_default().to_string()
+}
+
+fn lines_through_stage(
+    backend: &dyn crate::line::LineRasterizer,
+    lines: &[LineSetup],
+    shaded: &[ShadedLine],
+    target: &mut RenderTarget,
+) -> u64 {
+    target.clear_depth_and_coverage();
+    let shader = Constant(COLOR);
+    let viewport = crate::edge::PixelRect::of_target(target.width(), target.height());
+    let mut stage = FragmentStage::new(target, &shader)
+        .with_lines(shaded)
+        .with_depth(DepthState {
+            test: DepthTest::Always,
+            write: false,
+        });
+    backend
+        .rasterize(lines, &LineOptions::DEFAULT, viewport, &mut stage)
+        .fragments
+}
+
+/// The results as a plain-text table.
+pub fn table(results: &[Measurement]) -> String {
+    let mut out = format!(
+        "{:<14} {:<16} {:>10} {:>11} {:>9} {:>9} {:>8}\n",
+        "workload", "back-end", "median ms", "Mprim/s", "Gpix/s", "pixels", "x slowest"
+    );
+    for m in results {
+        out += &format!(
+            "{:<14} {:<16} {:>10.3} {:>11.2} {:>9.3} {:>9} {:>8.1}x\n",
+            m.workload,
+            m.backend,
+            m.median_ms,
+            m.mprims_per_s,
+            m.gpixels_per_s,
+            m.pixels,
+            m.vs_slowest
+        );
+    }
+    out
+}
+
+/// The results as JSON.
+pub fn to_json(results: &[Measurement]) -> String {
+    serde_json::to_string_pretty(results).expect("measurements serialise")
+}
+
+/// One colour per back-end, in a fixed order.
+const PALETTE: [[u8; 3]; 8] = [
+    [120, 120, 120],
+    [230, 159, 0],
+    [86, 180, 233],
+    [0, 158, 115],
+    [213, 94, 0],
+    [0, 114, 178],
+    [204, 121, 167],
+    [240, 228, 66],
+];
+
+/// The back-end names in first-seen order, for the chart's colours.
+fn backend_names(results: &[Measurement]) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for m in results {
+        if !names.contains(&m.backend.as_str()) {
+            names.push(&m.backend);
+        }
+    }
+    names
+}
+
+/// A bar chart as an image: one group of bars per workload, one bar per
+/// back-end (colours as in [`chart_svg`]'s legend), bar height the speed
+/// relative to the fastest back-end on that workload.
+pub fn chart_png(results: &[Measurement]) -> image::RgbaImage {
+    let names = backend_names(results);
+    let workloads = workload_names(results);
+    let (bar, gap, plot_h) = (10u32, 14u32, 240u32);
+    let group_w = names.len() as u32 * bar + gap;
+    let width = (workloads.len() as u32 * group_w + gap).max(1);
+    let mut img =
+        image::RgbaImage::from_pixel(width, plot_h + 20, image::Rgba([255, 255, 255, 255]));
+    for (g, wl) in workloads.iter().enumerate() {
+        let fastest = results
+            .iter()
+            .filter(|m| m.workload == *wl)
+            .map(|m| m.gpixels_per_s)
+            .fold(0.0, f64::max);
+        for m in results.iter().filter(|m| m.workload == *wl) {
+            let k = names.iter().position(|n| *n == m.backend).unwrap_or(0);
+            let height = if fastest > 0.0 {
+                ((m.gpixels_per_s / fastest) * f64::from(plot_h)).round() as u32
+            } else {
+                0
+            };
+            let [r, gr, b] = PALETTE[k % PALETTE.len()];
+            let x0 = gap + g as u32 * group_w + k as u32 * bar;
+            for y in plot_h + 10 - height..plot_h + 10 {
+                for x in x0..x0 + bar - 1 {
+                    img.put_pixel(x, y, image::Rgba([r, gr, b, 255]));
+                }
+            }
+        }
+    }
+    img
+}
+
+fn workload_names(results: &[Measurement]) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for m in results {
+        if !names.contains(&m.workload.as_str()) {
+            names.push(&m.workload);
+        }
+    }
+    names
+}
+
+/// The same chart as SVG, with workload labels, values and a legend.
+pub fn chart_svg(results: &[Measurement]) -> String {
+    let names = backend_names(results);
+    let workloads = workload_names(results);
+    let (bar, gap, plot_h) = (14.0, 30.0, 240.0);
+    let group_w = names.len() as f64 * bar + gap;
+    let width = workloads.len() as f64 * group_w + gap;
+    let height = plot_h + 60.0 + 18.0 * names.len() as f64;
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
+    for (g, wl) in workloads.iter().enumerate() {
+        let fastest = results
+            .iter()
+            .filter(|m| m.workload == *wl)
+            .map(|m| m.gpixels_per_s)
+            .fold(0.0, f64::max);
+        let x_group = gap + g as f64 * group_w;
+        for m in results.iter().filter(|m| m.workload == *wl) {
+            let k = names.iter().position(|n| *n == m.backend).unwrap_or(0);
+            let [r, gr, b] = PALETTE[k % PALETTE.len()];
+            let hgt = if fastest > 0.0 {
+                m.gpixels_per_s / fastest * plot_h
+            } else {
+                0.0
+            };
+            svg += &format!(
+                "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{hgt:.1}\" fill=\"rgb({r},{gr},{b})\"><title>{} {}: {:.3} Gpix/s, {:.3} ms</title></rect>\n",
+                x_group + k as f64 * bar,
+                10.0 + plot_h - hgt,
+                bar - 2.0,
+                m.workload,
+                m.backend,
+                m.gpixels_per_s,
+                m.median_ms
+            );
+        }
+        svg += &format!(
+            "<text x=\"{:.1}\" y=\"{:.1}\">{wl}</text>\n",
+            x_group,
+            plot_h + 26.0
+        );
+    }
+    for (k, n) in names.iter().enumerate() {
+        let [r, gr, b] = PALETTE[k % PALETTE.len()];
+        let y = plot_h + 44.0 + 18.0 * k as f64;
+        svg += &format!(
+            "<rect x=\"{gap}\" y=\"{y:.1}\" width=\"12\" height=\"12\" fill=\"rgb({r},{gr},{b})\"/><text x=\"{:.1}\" y=\"{:.1}\">{n}</text>\n",
+            gap + 18.0,
+            y + 10.0
+        );
+    }
+    svg += "</svg>\n";
+    svg
+}
+
+/// Writes `bench.json`, `bench.png` and `bench.svg` into `dir`.
+pub fn write_outputs(results: &[Measurement], dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, &e))?;
+    let json = dir.join("bench.json");
+    std::fs::write(&json, to_json(results)).map_err(|e| Error::io(&json, &e))?;
+    let svg = dir.join("bench.svg");
+    std::fs::write(&svg, chart_svg(results)).map_err(|e| Error::io(&svg, &e))?;
+    let png = dir.join("bench.png");
+    chart_png(results).save(&png).map_err(|e| Error::Io {
+        path: png.clone(),
+        message: e.to_string(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tiny_run_measures_every_pair_and_charts_it() {
+        let options = BenchOptions {
+            set: WorkloadSet::Quick,
+            width: 64,
+            height: 48,
+            samples: 1,
+            meshes: vec![],
+        };
+        let mut steps = 0;
+        let results = run(&options, &mut |_| steps += 1).unwrap();
+        assert_eq!(steps, pair_count(&options));
+        assert_eq!(results.len(), steps);
+        let fill: Vec<&Measurement> = results.iter().filter(|m| m.workload == "fill-1").collect();
+        assert_eq!(fill.len(), triangle_backends().len());
+        assert!(fill.iter().all(|m| m.pixels == 64 * 48));
+        assert!(results.iter().any(|m| (m.vs_slowest - 1.0).abs() < 1e-12));
+        assert!(results.iter().all(|m| m.vs_slowest >= 1.0));
+        let json: serde_json::Value = serde_json::from_str(&to_json(&results)).unwrap();
+        assert_eq!(json.as_array().unwrap().len(), results.len());
+        let png = chart_png(&results);
+        let coloured = png.pixels().filter(|p| p.0 != [255, 255, 255, 255]).count();
+        assert!(coloured > 100);
+        assert!(chart_svg(&results).matches("<title>").count() == results.len());
+    }
+}
