@@ -367,6 +367,33 @@ impl<'a> FragmentStage<'a> {
         }
     }
 
+    /// The stage data of triangle `id`.
+    fn triangle(&self, id: u32) -> Option<ShadedTriangle> {
+        let t = self.triangles.get(id as usize).copied();
+        debug_assert!(t.is_some(), "no vertex data for triangle {id}");
+        t
+    }
+
+    /// The shader's input for a sample that passed the depth test.
+    #[inline]
+    fn fragment_input<const N: usize>(&self, s: &Sample<N>) -> FragmentInput {
+        let weights = self.varying_weights(s.screen, &s.vertices);
+        FragmentInput {
+            x: s.x,
+            y: s.y,
+            depth: s.depth,
+            varyings: Varyings::weighted(&s.vertices.map(|v| v.varyings), weights),
+            flat: s.vertices[0].varyings,
+            primitive: s.primitive,
+        }
+    }
+
+    /// The shader's colour for `input`, clamped to `[0, 1]`.
+    #[inline]
+    fn color_of(&self, input: &FragmentInput) -> Vec4 {
+        self.shader.shade(input).clamp(Vec4::ZERO, Vec4::ONE)
+    }
+
     /// Depth test, shading and writes shared by triangles and lines.
     #[inline]
     fn resolve<const N: usize>(&mut self, s: Sample<N>) {
@@ -375,16 +402,7 @@ impl<'a> FragmentStage<'a> {
         if !self.depth.test.passes(s.depth, self.target.depth[idx]) {
             return;
         }
-        let weights = self.varying_weights(s.screen, &s.vertices);
-        let input = FragmentInput {
-            x: s.x,
-            y: s.y,
-            depth: s.depth,
-            varyings: Varyings::weighted(&s.vertices.map(|v| v.varyings), weights),
-            flat: s.vertices[0].varyings,
-            primitive: s.primitive,
-        };
-        let color = self.shader.shade(&input).clamp(Vec4::ZERO, Vec4::ONE);
+        let color = self.color_of(&self.fragment_input(&s));
         self.target.color[idx] = if s.coverage >= 1.0 {
             to_rgba8(color)
         } else {
@@ -445,25 +463,29 @@ struct Sample<const N: usize> {
     coverage: f32,
 }
 
-impl FragmentSink for FragmentStage<'_> {
-    fn triangle_fragment(&mut self, f: &TriangleFragment) {
-        let Some(t) = self.triangles.get(f.triangle as usize).copied() else {
-            debug_assert!(false, "no vertex data for triangle {}", f.triangle);
-            return;
-        };
+impl Sample<3> {
+    /// A triangle fragment's sample: barycentrics from its exact edge
+    /// values, depth from the triangle's plane.
+    #[inline]
+    fn of_triangle(t: &ShadedTriangle, f: &TriangleFragment) -> Sample<3> {
         let area = (f.edges[0] + f.edges[1] + f.edges[2]) as f64;
-        let screen = f.edges.map(|e| (e as f64 / area) as f32);
-        let z = t.depth.at(f.x, f.y);
-        let v = t.vertices;
-        self.resolve(Sample {
+        Sample {
             x: f.x,
             y: f.y,
             primitive: f.triangle,
-            depth: z,
-            screen,
-            vertices: v,
+            depth: t.depth.at(f.x, f.y),
+            screen: f.edges.map(|e| (e as f64 / area) as f32),
+            vertices: t.vertices,
             coverage: 1.0,
-        });
+        }
+    }
+}
+
+impl FragmentSink for FragmentStage<'_> {
+    fn triangle_fragment(&mut self, f: &TriangleFragment) {
+        if let Some(t) = self.triangle(f.triangle) {
+            self.resolve(Sample::of_triangle(&t, f));
+        }
     }
 
     fn triangle_span(&mut self, span: &TriangleSpan) {
@@ -473,24 +495,18 @@ impl FragmentSink for FragmentStage<'_> {
             }
             return;
         }
-        let Some(t) = self.triangles.get(span.triangle as usize).copied() else {
-            debug_assert!(false, "no vertex data for triangle {}", span.triangle);
+        let Some(t) = self.triangle(span.triangle) else {
             return;
         };
         // The colour is the same for every pixel: shade the first one.
-        let first = span.fragments().next().expect("a span has a pixel");
-        let area = (first.edges[0] + first.edges[1] + first.edges[2]) as f64;
-        let screen = first.edges.map(|e| (e as f64 / area) as f32);
-        let weights = self.varying_weights(screen, &t.vertices);
-        let input = FragmentInput {
+        let first = TriangleFragment {
             x: span.x0,
             y: span.y,
-            depth: t.depth.at(span.x0, span.y),
-            varyings: Varyings::weighted(&t.vertices.map(|v| v.varyings), weights),
-            flat: t.vertices[0].varyings,
-            primitive: span.triangle,
+            triangle: span.triangle,
+            edges: span.edges,
         };
-        let color = to_rgba8(self.shader.shade(&input).clamp(Vec4::ZERO, Vec4::ONE));
+        let input = self.fragment_input(&Sample::of_triangle(&t, &first));
+        let color = to_rgba8(self.color_of(&input));
         let start = self.target.index(span.x0, span.y);
         let end = start + (span.x1 - span.x0) as usize + 1;
         let rows = SpanRows {
