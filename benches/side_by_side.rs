@@ -17,16 +17,13 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::{Mat4, Vec3};
 use rasterlab::backend::{line_backends, triangle_backend, triangle_backends};
-use rasterlab::edge::PixelRect;
 use rasterlab::fixed::FixedPoint;
-use rasterlab::line::{LineOptions, LineSetup};
+use rasterlab::line::pixel_containing;
 use rasterlab::mesh::Mesh;
 use rasterlab::pipeline::CullMode;
 use rasterlab::render::{MeshRenderer, RenderSettings, Shading};
-use rasterlab::shader::Constant;
-use rasterlab::stage::{FragmentStage, ShadedLine, ShadedVertex};
-use rasterlab::target::{DepthState, DepthTest, RenderTarget};
-use rasterlab::workload::{self, TriangleWorkload, COLOR};
+use rasterlab::target::RenderTarget;
+use rasterlab::workload::{self, LineWorkload, TriangleWorkload};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
@@ -174,11 +171,7 @@ fn triangles(c: &mut Criterion) {
         let mut group = c.benchmark_group(format!("triangles/{}", work.name));
         let pixels = work.run(triangle_backends()[1], &mut target);
         group.throughput(Throughput::Elements(pixels));
-        for b in triangle_backends() {
-            // The naive loop tests every pixel against every triangle.
-            if b.name() == "naive" && work.triangles() > 2 {
-                continue;
-            }
+        for b in triangle_backends().iter().filter(|b| work.suits(**b)) {
             group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
                 bench.iter(|| work.run(*b, &mut target))
             });
@@ -191,26 +184,6 @@ fn triangles(c: &mut Criterion) {
         });
         group.finish();
     }
-}
-
-/// Draws lines with a back-end through the stage (constant colour, no depth).
-fn lines_through_stage(
-    backend: &dyn rasterlab::line::LineRasterizer,
-    lines: &[LineSetup],
-    shaded: &[ShadedLine],
-    target: &mut RenderTarget,
-) -> u64 {
-    let shader = Constant(COLOR);
-    let viewport = PixelRect::of_target(target.width(), target.height());
-    let mut stage = FragmentStage::new(target, &shader)
-        .with_lines(shaded)
-        .with_depth(DepthState {
-            test: DepthTest::Always,
-            write: false,
-        });
-    backend
-        .rasterize(lines, &LineOptions::DEFAULT, viewport, &mut stage)
-        .fragments
 }
 
 /// line_drawing's Bresenham on the pixels containing the endpoints,
@@ -230,43 +203,34 @@ fn line_drawing_lines(lines: &[(i32, i32, i32, i32)], buffer: &mut [[u8; 4]]) ->
 
 fn lines(c: &mut Criterion) {
     let sets = [
-        ("lines/short-1M", workload::short_lines(W, H, 1_000_000)),
-        ("lines/long-10k", workload::long_lines(W, H, 10_000)),
+        LineWorkload::new("lines/short-1M", workload::short_lines(W, H, 1_000_000)),
+        LineWorkload::new("lines/long-10k", workload::long_lines(W, H, 10_000)),
     ];
     let mut target = RenderTarget::new(W, H).unwrap();
-    for (name, lines) in &sets {
-        let shaded: Vec<ShadedLine> = lines
-            .iter()
-            .map(|l| ShadedLine {
-                from: l.from,
-                to: l.to,
-                vertices: [ShadedVertex::flat(0.5, COLOR); 2],
-            })
-            .collect();
-        let ints: Vec<(i32, i32, i32, i32)> = lines
+    for work in &sets {
+        let ints: Vec<(i32, i32, i32, i32)> = work
+            .lines
             .iter()
             .map(|l| {
                 let px = |p: FixedPoint| {
                     (
-                        p.x.raw().div_euclid(256) as i32,
-                        p.y.raw().div_euclid(256) as i32,
+                        pixel_containing(p.x.raw()) as i32,
+                        pixel_containing(p.y.raw()) as i32,
                     )
                 };
                 let (a, b) = (px(l.from), px(l.to));
                 (a.0, a.1, b.0, b.1)
             })
             .collect();
-        let mut group = c.benchmark_group(*name);
-        let pixels = rasterlab::line::fast::draw_lines(&mut target, lines, [0; 4]);
-        group.throughput(Throughput::Elements(pixels));
+        let mut group = c.benchmark_group(&work.name);
+        group.throughput(Throughput::Elements(work.run_fast(&mut target)));
         for b in line_backends() {
             group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
-                bench.iter(|| lines_through_stage(*b, lines, &shaded, &mut target))
+                bench.iter(|| work.run(*b, &mut target))
             });
         }
         group.bench_function(BenchmarkId::from_parameter("fast-bresenham"), |bench| {
-            bench
-                .iter(|| rasterlab::line::fast::draw_lines(&mut target, lines, [51, 128, 230, 255]))
+            bench.iter(|| work.run_fast(&mut target))
         });
         let mut buffer = vec![[0u8; 4]; (W * H) as usize];
         group.bench_function(BenchmarkId::from_parameter("peer-line_drawing"), |bench| {

@@ -11,15 +11,11 @@
 
 use crate::backend::{line_backends, triangle_backends};
 use crate::error::{Error, Result};
-use crate::line::fast::draw_lines;
-use crate::line::{LineOptions, LineSetup};
 use crate::mesh::Mesh;
 use crate::pipeline::CullMode;
 use crate::render::{MeshRenderer, RenderSettings};
-use crate::shader::Constant;
-use crate::stage::{to_rgba8, FragmentStage, ShadedLine, ShadedVertex};
-use crate::target::{DepthState, DepthTest, RenderTarget};
-use crate::workload::{self, COLOR};
+use crate::target::RenderTarget;
+use crate::workload::{self, LineWorkload};
 use serde::Serialize;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -74,29 +70,6 @@ pub struct BenchOptions {
     pub meshes: Vec<std::path::PathBuf>,
 }
 
-/// The number of (workload, back-end) pairs `options` will time, for a
-/// progress bar.
-pub fn pair_count(options: &BenchOptions) -> usize {
-    let tri = triangle_backends().len();
-    let (triangle_workloads, line_workloads) = triangle_and_line_counts(options.set);
-    // naive only runs the two-triangle fill workloads.
-    let fills = match options.set {
-        WorkloadSet::Quick => 1,
-        WorkloadSet::Full => 2,
-    };
-    triangle_workloads * (tri - 1)
-        + fills
-        + line_workloads * (line_backends().len() + 1)
-        + options.meshes.len() * (tri - 1)
-}
-
-fn triangle_and_line_counts(set: WorkloadSet) -> (usize, usize) {
-    match set {
-        WorkloadSet::Quick => (1 + 3 + 3, 2),
-        WorkloadSet::Full => (2 + 6 + 3, 2),
-    }
-}
-
 /// The median of `samples` timed runs of `run`, after one warm-up run.
 fn median_time(samples: usize, mut run: impl FnMut() -> u64) -> (Duration, u64) {
     let pixels = run();
@@ -111,8 +84,19 @@ fn median_time(samples: usize, mut run: impl FnMut() -> u64) -> (Duration, u64) 
     (times[times.len() / 2], pixels)
 }
 
-/// Runs the benchmark; `progress` is called once per pair with its name.
-pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(&str)) -> Result<Vec<Measurement>> {
+/// What [`run`] reports before timing each (workload, back-end) pair.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Progress<'a> {
+    /// Pairs timed so far.
+    pub done: usize,
+    /// Pairs in all.
+    pub total: usize,
+    /// The pair about to be timed, `workload / back-end`.
+    pub pair: &'a str,
+}
+
+/// Runs the benchmark; `progress` is called before each pair is timed.
+pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result<Vec<Measurement>> {
     RenderTarget::check_size(options.width, options.height)?;
     let (w, h) = (options.width, options.height);
     let mut results = Vec::new();
@@ -145,46 +129,61 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(&str)) -> Result<Vec
     for angle in [0.0, 45.0, 90.0] {
         triangle_workloads.push(workload::slivers(w, h, angle));
     }
+    let line_workloads = [
+        LineWorkload::new("lines-short", workload::short_lines(w, h, lines.0)),
+        LineWorkload::new("lines-long", workload::long_lines(w, h, lines.1)),
+    ];
+    let meshes = options
+        .meshes
+        .iter()
+        .map(|path| Mesh::load(path).map(|mesh| (mesh_name(path), mesh)))
+        .collect::<Result<Vec<_>>>()?;
+    let mesh_backends: Vec<_> = triangle_backends()
+        .iter()
+        .filter(|b| b.name() != "naive")
+        .collect();
+    let total = triangle_workloads
+        .iter()
+        .map(|work| {
+            triangle_backends()
+                .iter()
+                .filter(|b| work.suits(**b))
+                .count()
+        })
+        .sum::<usize>()
+        + line_workloads.len() * (line_backends().len() + 1)
+        + meshes.len() * mesh_backends.len();
+    let mut done = 0;
+    let mut step = |workload: &str, backend: &str| {
+        progress(Progress {
+            done,
+            total,
+            pair: &format!("{workload} / {backend}"),
+        });
+        done += 1;
+    };
+
     for work in &triangle_workloads {
-        for b in triangle_backends() {
-            if b.name() == "naive" && work.triangles() > 2 {
-                continue;
-            }
-            progress(&format!("{} / {}", work.name, b.name()));
+        for b in triangle_backends().iter().filter(|b| work.suits(**b)) {
+            step(&work.name, b.name());
             let (time, pixels) = median_time(options.samples, || work.run(*b, &mut target));
             measure(&work.name, b.name(), work.triangles() as u64, time, pixels);
         }
     }
 
-    let line_sets = [
-        ("lines-short", workload::short_lines(w, h, lines.0)),
-        ("lines-long", workload::long_lines(w, h, lines.1)),
-    ];
-    for (name, set) in &line_sets {
-        let shaded: Vec<ShadedLine> = set
-            .iter()
-            .map(|l| ShadedLine {
-                from: l.from,
-                to: l.to,
-                vertices: [ShadedVertex::flat(0.5, COLOR); 2],
-            })
-            .collect();
+    for work in &line_workloads {
+        let count = work.lines.len() as u64;
         for b in line_backends() {
-            progress(&format!("{name} / {}", b.name()));
-            let (time, pixels) = median_time(options.samples, || {
-                lines_through_stage(*b, set, &shaded, &mut target)
-            });
-            measure(name, b.name(), set.len() as u64, time, pixels);
+            step(&work.name, b.name());
+            let (time, pixels) = median_time(options.samples, || work.run(*b, &mut target));
+            measure(&work.name, b.name(), count, time, pixels);
         }
-        progress(&format!("{name} / fast-bresenham"));
-        let color = to_rgba8(COLOR);
-        let (time, pixels) = median_time(options.samples, || draw_lines(&mut target, set, color));
-        measure(name, "fast-bresenham", set.len() as u64, time, pixels);
+        step(&work.name, "fast-bresenham");
+        let (time, pixels) = median_time(options.samples, || work.run_fast(&mut target));
+        measure(&work.name, "fast-bresenham", count, time, pixels);
     }
 
-    for path in &options.meshes {
-        let mesh = Mesh::load(path)?;
-        let name = mesh_name(path);
+    for (name, mesh) in &meshes {
         let mut settings = RenderSettings {
             width: w,
             height: h,
@@ -192,11 +191,11 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(&str)) -> Result<Vec
             ..RenderSettings::default()
         };
         settings.pipeline.cull = CullMode::Back;
-        let renderer = MeshRenderer::new(&mesh, settings)?;
-        for b in triangle_backends().iter().filter(|b| b.name() != "naive") {
-            progress(&format!("{name} / {}", b.name()));
+        let renderer = MeshRenderer::new(mesh, settings)?;
+        for b in &mesh_backends {
+            step(name, b.name());
             let mut error = None;
-            let (time, pixels) = median_time(options.samples, || match renderer.render(*b) {
+            let (time, pixels) = median_time(options.samples, || match renderer.render(**b) {
                 Ok(frame) => frame.work.fragments,
                 Err(e) => {
                     error = Some(e);
@@ -206,7 +205,7 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(&str)) -> Result<Vec
             if let Some(e) = error {
                 return Err(e);
             }
-            measure(&name, b.name(), mesh.triangles.len() as u64, time, pixels);
+            measure(name, b.name(), mesh.triangles.len() as u64, time, pixels);
         }
     }
 
@@ -228,26 +227,6 @@ fn mesh_name(path: &Path) -> String {
         .file_name()
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
     name.split('.').next().unwrap_or_default().to_string()
-}
-
-fn lines_through_stage(
-    backend: &dyn crate::line::LineRasterizer,
-    lines: &[LineSetup],
-    shaded: &[ShadedLine],
-    target: &mut RenderTarget,
-) -> u64 {
-    target.clear_depth_and_coverage();
-    let shader = Constant(COLOR);
-    let viewport = crate::edge::PixelRect::of_target(target.width(), target.height());
-    let mut stage = FragmentStage::new(target, &shader)
-        .with_lines(shaded)
-        .with_depth(DepthState {
-            test: DepthTest::Always,
-            write: false,
-        });
-    backend
-        .rasterize(lines, &LineOptions::DEFAULT, viewport, &mut stage)
-        .fragments
 }
 
 /// The results as a plain-text table.
@@ -288,15 +267,34 @@ const PALETTE: [[u8; 3]; 8] = [
     [240, 228, 66],
 ];
 
-/// The back-end names in first-seen order, for the chart's colours.
-fn backend_names(results: &[Measurement]) -> Vec<&str> {
+/// The distinct values of `field` over the results, in first-seen order.
+fn distinct(results: &[Measurement], field: fn(&Measurement) -> &str) -> Vec<&str> {
     let mut names: Vec<&str> = Vec::new();
     for m in results {
-        if !names.contains(&m.backend.as_str()) {
-            names.push(&m.backend);
+        let name = field(m);
+        if !names.contains(&name) {
+            names.push(name);
         }
     }
     names
+}
+
+/// The back-end names in first-seen order, for the chart's colours.
+fn backend_names(results: &[Measurement]) -> Vec<&str> {
+    distinct(results, |m| &m.backend)
+}
+
+/// The workload names in first-seen order, one group of bars each.
+fn workload_names(results: &[Measurement]) -> Vec<&str> {
+    distinct(results, |m| &m.workload)
+}
+
+/// The measurements of `workload`, and the best Gpix/s among them (the
+/// chart's full bar height).
+fn group<'a>(results: &'a [Measurement], workload: &str) -> (Vec<&'a Measurement>, f64) {
+    let group: Vec<&Measurement> = results.iter().filter(|m| m.workload == workload).collect();
+    let fastest = group.iter().map(|m| m.gpixels_per_s).fold(0.0, f64::max);
+    (group, fastest)
 }
 
 /// A bar chart as an image: one group of bars per workload, one bar per
@@ -311,12 +309,8 @@ pub fn chart_png(results: &[Measurement]) -> image::RgbaImage {
     let mut img =
         image::RgbaImage::from_pixel(width, plot_h + 20, image::Rgba([255, 255, 255, 255]));
     for (g, wl) in workloads.iter().enumerate() {
-        let fastest = results
-            .iter()
-            .filter(|m| m.workload == *wl)
-            .map(|m| m.gpixels_per_s)
-            .fold(0.0, f64::max);
-        for m in results.iter().filter(|m| m.workload == *wl) {
+        let (members, fastest) = group(results, wl);
+        for m in members {
             let k = names.iter().position(|n| *n == m.backend).unwrap_or(0);
             let height = if fastest > 0.0 {
                 ((m.gpixels_per_s / fastest) * f64::from(plot_h)).round() as u32
@@ -335,16 +329,6 @@ pub fn chart_png(results: &[Measurement]) -> image::RgbaImage {
     img
 }
 
-fn workload_names(results: &[Measurement]) -> Vec<&str> {
-    let mut names: Vec<&str> = Vec::new();
-    for m in results {
-        if !names.contains(&m.workload.as_str()) {
-            names.push(&m.workload);
-        }
-    }
-    names
-}
-
 /// The same chart as SVG, with workload labels, values and a legend.
 pub fn chart_svg(results: &[Measurement]) -> String {
     let names = backend_names(results);
@@ -357,13 +341,9 @@ pub fn chart_svg(results: &[Measurement]) -> String {
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     );
     for (g, wl) in workloads.iter().enumerate() {
-        let fastest = results
-            .iter()
-            .filter(|m| m.workload == *wl)
-            .map(|m| m.gpixels_per_s)
-            .fold(0.0, f64::max);
+        let (members, fastest) = group(results, wl);
         let x_group = gap + g as f64 * group_w;
-        for m in results.iter().filter(|m| m.workload == *wl) {
+        for m in members {
             let k = names.iter().position(|n| *n == m.backend).unwrap_or(0);
             let [r, gr, b] = PALETTE[k % PALETTE.len()];
             let hgt = if fastest > 0.0 {
@@ -428,9 +408,13 @@ mod tests {
             samples: 1,
             meshes: vec![],
         };
-        let mut steps = 0;
-        let results = run(&options, &mut |_| steps += 1).unwrap();
-        assert_eq!(steps, pair_count(&options));
+        let (mut steps, mut total) = (0, 0);
+        let results = run(&options, &mut |p| {
+            assert_eq!(p.done, steps);
+            (steps, total) = (steps + 1, p.total);
+        })
+        .unwrap();
+        assert_eq!(steps, total);
         assert_eq!(results.len(), steps);
         let fill: Vec<&Measurement> = results.iter().filter(|m| m.workload == "fill-1").collect();
         assert_eq!(fill.len(), triangle_backends().len());

@@ -15,13 +15,16 @@
 //! | `lines-long` | 1000 px segments |
 
 use crate::edge::FillRule;
+use crate::edge::PixelRect;
 use crate::fixed::FixedPoint;
+use crate::line::fast::draw_lines;
 use crate::line::LineSetup;
+use crate::line::{LineOptions, LineRasterizer};
 use crate::pipeline::{draw, Geometry};
 use crate::scene::setup_triangles;
 use crate::shader::Constant;
-use crate::stage::{shade_triangles, Interpolation, ShadedVertex};
-use crate::target::{DepthState, RenderTarget};
+use crate::stage::{to_rgba8, FragmentStage, Interpolation, ShadedLine, ShadedVertex};
+use crate::target::{DepthState, DepthTest, RenderTarget};
 use crate::triangle::TriangleRasterizer;
 use glam::Vec4;
 
@@ -50,18 +53,20 @@ impl TriangleWorkload {
             .collect();
         TriangleWorkload {
             name,
-            geometry: Geometry {
-                triangles: shade_triangles(&setups, &vertices),
-                source: (0..setups.len() as u32).collect(),
-                setups,
-                stats: Default::default(),
-            },
+            geometry: Geometry::of_screen_triangles(setups, &vertices),
         }
     }
 
     /// The number of triangles.
     pub fn triangles(&self) -> usize {
         self.geometry.setups.len()
+    }
+
+    /// Whether timing `backend` on this workload is sensible: the naive
+    /// loop tests every pixel against every triangle, so it only runs the
+    /// two-triangle fills.
+    pub fn suits(&self, backend: &dyn TriangleRasterizer) -> bool {
+        backend.name() != "naive" || self.triangles() <= 2
     }
 
     /// Clears `target` and draws the workload with `backend`; returns the
@@ -77,6 +82,62 @@ impl TriangleWorkload {
             target,
         )
         .fragments
+    }
+}
+
+/// Line segments ready to draw: set-up and stage data.
+#[derive(Clone, Debug)]
+pub struct LineWorkload {
+    /// Short name, e.g. `lines-short`.
+    pub name: String,
+    /// The segments, in drawing order.
+    pub lines: Vec<LineSetup>,
+    /// Their stage data (depth 0.5, the workload colour).
+    pub shaded: Vec<ShadedLine>,
+}
+
+impl LineWorkload {
+    /// The segments `lines`.
+    pub fn new(name: &str, lines: Vec<LineSetup>) -> LineWorkload {
+        let shaded = lines
+            .iter()
+            .map(|l| ShadedLine {
+                from: l.from,
+                to: l.to,
+                vertices: [ShadedVertex::flat(0.5, COLOR); 2],
+            })
+            .collect();
+        LineWorkload {
+            name: name.to_string(),
+            lines,
+            shaded,
+        }
+    }
+
+    /// Clears depth and coverage of `target` and draws the segments with
+    /// `backend` (default options) through the stage, depth test off;
+    /// returns the fragments drawn.
+    pub fn run(&self, backend: &dyn LineRasterizer, target: &mut RenderTarget) -> u64 {
+        target.clear_depth_and_coverage();
+        let shader = Constant(COLOR);
+        let viewport = PixelRect::of_target(target.width(), target.height());
+        let mut stage = FragmentStage::new(target, &shader)
+            .with_lines(&self.shaded)
+            .with_depth(DepthState {
+                test: DepthTest::Always,
+                write: false,
+            });
+        backend
+            .rasterize(&self.lines, &LineOptions::DEFAULT, viewport, &mut stage)
+            .fragments
+    }
+
+    /// Clears depth and coverage of `target` and draws the segments with
+    /// the fast line path; returns the pixels written. The same buffers as
+    /// [`run`](Self::run) with `bresenham`.
+    pub fn run_fast(&self, target: &mut RenderTarget) -> u64 {
+        target.clear_depth_and_coverage();
+        draw_lines(target, &self.lines, to_rgba8(COLOR))
     }
 }
 

@@ -15,6 +15,8 @@ use rasterlab::line::wu::Wu;
 use rasterlab::line::{
     Connectivity, Endpoints, LineOptions, LineRasterizer, LineSetup, OctantFrame,
 };
+use rasterlab::target::RenderTarget;
+use rasterlab::workload::LineWorkload;
 use std::collections::BTreeSet;
 
 type Pixels = Vec<(i64, i64)>;
@@ -573,36 +575,6 @@ fn the_cli_prints_line_fragments_and_wu_weights() {
         .contains("draws triangles, but the file holds line segments"));
 }
 
-/// Draws `lines` with a line back-end through the shared stage: constant
-/// colour, depth test off.
-fn through_stage(lines: &[LineSetup], w: u32, h: u32) -> rasterlab::target::RenderTarget {
-    use rasterlab::stage::{FragmentStage, ShadedLine, ShadedVertex};
-    use rasterlab::target::{DepthState, DepthTest, RenderTarget};
-    let mut target = RenderTarget::new(w, h).unwrap();
-    let shaded: Vec<ShadedLine> = lines
-        .iter()
-        .map(|l| ShadedLine {
-            from: l.from,
-            to: l.to,
-            vertices: [ShadedVertex::flat(0.5, glam::Vec4::ONE); 2],
-        })
-        .collect();
-    let shader = rasterlab::shader::Constant(glam::Vec4::ONE);
-    let mut stage = FragmentStage::new(&mut target, &shader)
-        .with_lines(&shaded)
-        .with_depth(DepthState {
-            test: DepthTest::Always,
-            write: false,
-        });
-    Bresenham.rasterize(
-        lines,
-        &LineOptions::DEFAULT,
-        PixelRect::of_target(w, h),
-        &mut stage,
-    );
-    target
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(3000))]
 
@@ -619,9 +591,11 @@ proptest! {
             .enumerate()
             .map(|(i, (a, b))| LineSetup { id: i as u32, ..seg(a, b) })
             .collect();
-        let expected = through_stage(&lines, w, h);
-        let mut fast = rasterlab::target::RenderTarget::new(w, h).unwrap();
-        let written = rasterlab::line::fast::draw_lines(&mut fast, &lines, [255; 4]);
+        let work = LineWorkload::new("random", lines);
+        let mut expected = RenderTarget::new(w, h).unwrap();
+        work.run(&Bresenham, &mut expected);
+        let mut fast = RenderTarget::new(w, h).unwrap();
+        let written = work.run_fast(&mut fast);
         prop_assert!(fast == expected);
         let counted: u64 = expected.coverage.iter().map(|&c| u64::from(c)).sum();
         prop_assert_eq!(written, counted);
@@ -633,9 +607,11 @@ proptest! {
 fn fast_path_clips_lines_crossing_the_guard_band() {
     let a = snap(-16000.25, -9000.5);
     let b = snap(16000.75, 9010.5);
-    let expected = through_stage(&[seg(a, b)], 64, 48);
-    let mut fast = rasterlab::target::RenderTarget::new(64, 48).unwrap();
-    let written = rasterlab::line::fast::draw_lines(&mut fast, &[seg(a, b)], [255; 4]);
+    let work = LineWorkload::new("guard band", vec![seg(a, b)]);
+    let mut expected = RenderTarget::new(64, 48).unwrap();
+    work.run(&Bresenham, &mut expected);
+    let mut fast = RenderTarget::new(64, 48).unwrap();
+    let written = work.run_fast(&mut fast);
     assert_eq!(written, 64);
     assert!(fast == expected);
 }

@@ -15,9 +15,7 @@ use rasterlab::pipeline::{draw, CullMode, Geometry};
 use rasterlab::render::{MeshRenderer, RenderSettings, Shading};
 use rasterlab::scene::setup_triangles;
 use rasterlab::shader::{Constant, Flat, Gouraud};
-use rasterlab::stage::{
-    shade_triangles, FragmentShader, FragmentStage, Interpolation, ShadedVertex,
-};
+use rasterlab::stage::{FragmentShader, FragmentStage, Interpolation, ShadedVertex};
 use rasterlab::target::{DepthState, DepthTest, RenderTarget};
 use std::path::Path;
 
@@ -38,12 +36,7 @@ fn soup_geometry(soup: &[[FixedPoint; 3]], depths: &[f32]) -> Geometry {
             [0.0, 0.1, 0.2].map(|dz| ShadedVertex::flat((z + dz).min(1.0), c + Vec4::splat(dz)))
         })
         .collect();
-    Geometry {
-        triangles: shade_triangles(&setups, &vertices),
-        source: (0..setups.len() as u32).collect(),
-        setups,
-        stats: Default::default(),
-    }
+    Geometry::of_screen_triangles(setups, &vertices)
 }
 
 /// The bunny (69k triangles: several geometry chunks and bins) is

@@ -568,14 +568,15 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         samples: args.samples,
         meshes,
     };
-    let bar = indicatif::ProgressBar::new(benchmark::pair_count(&options) as u64);
+    let bar = indicatif::ProgressBar::new(0);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}")
             .expect("a valid progress template"),
     );
-    let results = benchmark::run(&options, &mut |step| {
-        bar.inc(1);
-        bar.set_message(step.to_string());
+    let results = benchmark::run(&options, &mut |p| {
+        bar.set_length(p.total as u64);
+        bar.set_position(p.done as u64);
+        bar.set_message(p.pair.to_string());
     });
     bar.finish_and_clear();
     let results = results?;

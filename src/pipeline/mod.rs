@@ -216,6 +216,26 @@ fn to_screen_vertex(viewport: &Viewport, v: &ClipVertex) -> Result<ScreenVertex>
 }
 
 impl Geometry {
+    /// A draw of screen-space triangles (2D input): `setups` (those of the
+    /// `vertices.len()` triangles that are not degenerate) with their vertex
+    /// data, `vertices[i]` for triangle id `i`, each its own source.
+    pub fn of_screen_triangles(
+        setups: Vec<TriangleSetup>,
+        vertices: &[[ShadedVertex; 3]],
+    ) -> Geometry {
+        Geometry {
+            triangles: crate::stage::shade_triangles(&setups, vertices),
+            source: (0..setups.len() as u32).collect(),
+            stats: GeometryStats {
+                primitives: vertices.len() as u64,
+                degenerate: (vertices.len() - setups.len()) as u64,
+                triangles: setups.len() as u64,
+                ..GeometryStats::default()
+            },
+            setups,
+        }
+    }
+
     /// The parts one after the other, triangle ids renumbered from 0; the
     /// copying is spread over rayon's threads.
     fn join(parts: &[Geometry]) -> Geometry {
