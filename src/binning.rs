@@ -51,6 +51,19 @@ pub fn band_rows(height: u32, threads: usize) -> u32 {
     height.div_ceil(bands).div_ceil(8).max(1) * 8
 }
 
+/// The length of the chunks a list of `len` items is cut into to share it
+/// between rayon's threads: four chunks per thread to balance the load, of
+/// at least `min` items; with one thread, one chunk (nothing to balance, and
+/// no partial results to join).
+pub(crate) fn chunk_len(len: usize, min: usize) -> usize {
+    let threads = rayon::current_num_threads();
+    if threads == 1 {
+        len.max(1)
+    } else {
+        len.div_ceil(4 * threads).max(min)
+    }
+}
+
 /// Triangles binned by band: `chunks[c][b]` holds, in id order, the
 /// indices of the triangles of chunk `c` whose bounds meet band `b`.
 #[derive(Clone, Debug, Default)]
@@ -68,10 +81,7 @@ impl Bins {
         let band_rows = band_rows.max(1);
         let bands = height.div_ceil(band_rows) as usize;
         let viewport = PixelRect::of_target(width, height);
-        let chunk = setups
-            .len()
-            .div_ceil(4 * rayon::current_num_threads())
-            .max(MIN_CHUNK);
+        let chunk = chunk_len(setups.len(), MIN_CHUNK);
         let chunks = setups
             .par_chunks(chunk)
             .enumerate()

@@ -85,39 +85,32 @@ fn seed_000_vertex_array_renders_exactly() {
     }
     // v0 top-left, v1 bottom-right, v2 bottom-left: clockwise as seen, so
     // a back face under the default counter-clockwise front face.
-    let culled = PipelineOptions {
-        cull: CullMode::Back,
-        ..PipelineOptions::default()
-    };
-    let g = process_triangles(
-        &positions,
-        &triangles,
-        &Transform::identity(),
-        Viewport {
+    let stats = |options: PipelineOptions| {
+        let viewport = Viewport {
             width: 8,
             height: 8,
-        },
-        &culled,
-    )
-    .unwrap();
-    assert_eq!((g.stats.culled, g.stats.triangles), (1, 0));
-    let cw = PipelineOptions {
+        };
+        process_triangles(
+            &positions,
+            &triangles,
+            &Transform::identity(),
+            viewport,
+            &options,
+        )
+        .unwrap()
+        .stats
+    };
+    let g = stats(PipelineOptions {
+        cull: CullMode::Back,
+        ..PipelineOptions::default()
+    });
+    assert_eq!((g.culled, g.triangles), (1, 0));
+    let g = stats(PipelineOptions {
         cull: CullMode::Back,
         front_face: FrontFace::Clockwise,
         ..PipelineOptions::default()
-    };
-    let g = process_triangles(
-        &positions,
-        &triangles,
-        &Transform::identity(),
-        Viewport {
-            width: 8,
-            height: 8,
-        },
-        &cw,
-    )
-    .unwrap();
-    assert_eq!((g.stats.culled, g.stats.triangles), (0, 1));
+    });
+    assert_eq!((g.culled, g.triangles), (0, 1));
 }
 
 #[test]

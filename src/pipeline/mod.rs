@@ -438,17 +438,7 @@ pub fn process_triangles<V: Sync, S: VertexShader<V>>(
         viewport: &viewport,
         options,
     };
-    // Several chunks per thread balance the load; one thread takes one
-    // chunk and skips the join.
-    let threads = rayon::current_num_threads();
-    let chunk = if threads == 1 {
-        triangles.len().max(1)
-    } else {
-        triangles
-            .len()
-            .div_ceil(4 * threads)
-            .max(MIN_TRIANGLE_CHUNK)
-    };
+    let chunk = crate::binning::chunk_len(triangles.len(), MIN_TRIANGLE_CHUNK);
     let mut parts: Vec<Geometry> = triangles
         .par_chunks(chunk)
         .enumerate()
