@@ -34,7 +34,9 @@
 //! * [`pipeline`]: vertex shaders, assembly, clipping, divide, culling,
 //!   viewport (the course's five steps for 3D input);
 //! * [`render`]: a mesh rendered end to end (camera, shading, wireframe);
-//! * [`trace`]: step-by-step traces of the algorithms for teaching.
+//! * [`trace`]: step-by-step traces of the algorithms for teaching;
+//! * [`grid_picture`]: zoomed pictures of the pixel grid (tested, emitted)
+//!   and fill-rule heat maps.
 //!
 //! ```
 //! use rasterlab::{backend, edge::FillRule, scene::Scene2D, shader::Flat};
@@ -58,6 +60,7 @@ pub mod edge;
 pub mod error;
 pub mod fixed;
 pub mod fragment;
+pub mod grid_picture;
 pub mod input;
 pub mod line;
 pub mod mesh;

@@ -67,6 +67,48 @@ impl Scene2D {
         }
     }
 
+    /// Triangles with one depth each, from numbers in groups of seven
+    /// (`x0 y0 x1 y1 x2 y2 z`, screen pixels and a depth in `[0, 1]`),
+    /// coloured by index with the [`palette`].
+    ///
+    /// ```
+    /// use rasterlab::scene::Scene2D;
+    /// let scene = Scene2D::with_depths(8, 8, &[0., 0., 4., 0., 0., 4., 0.5]).unwrap();
+    /// assert_eq!(scene.vertices[0][0].depth, 0.5);
+    /// assert!(Scene2D::with_depths(8, 8, &[0., 0., 4., 0., 0., 4., 1.5]).is_err());
+    /// ```
+    pub fn with_depths(width: u32, height: u32, numbers: &[f32]) -> Result<Scene2D> {
+        if !numbers.len().is_multiple_of(7) {
+            return Err(Error::InvalidArgument(format!(
+                "triangles with a depth take 7 numbers each (x0 y0 x1 y1 x2 y2 z), not {}",
+                numbers.len()
+            )));
+        }
+        let mut triangles = Vec::new();
+        let mut vertices = Vec::new();
+        for (i, t) in numbers.chunks(7).enumerate() {
+            let z = t[6];
+            if !(0.0..=1.0).contains(&z) {
+                return Err(Error::InvalidArgument(format!(
+                    "triangle {}: depth {z} is outside [0, 1]",
+                    i + 1
+                )));
+            }
+            triangles.push([
+                FixedPoint::snap(t[0], t[1])?,
+                FixedPoint::snap(t[2], t[3])?,
+                FixedPoint::snap(t[4], t[5])?,
+            ]);
+            vertices.push([ShadedVertex::flat(z, palette(i)); 3]);
+        }
+        Ok(Scene2D {
+            width,
+            height,
+            triangles,
+            vertices,
+        })
+    }
+
     /// Seed 002's depth-buffer example on its 14 x 9 grid: a blue triangle
     /// at depth 0.5 and a red one at depth 0.8, drawn in that order
     /// (`blue_first`) or the other.

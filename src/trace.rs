@@ -7,7 +7,11 @@
 //!   the row it rounds to;
 //! * [`triangle_trace`] for `bbox` and `naive`: every pixel tested, its
 //!   three edge values, its barycentric coordinates, inside or not, and
-//!   why (which edge rejected it, or which tie rule decided).
+//!   why (which edge rejected it, or which tie rule decided);
+//! * [`scanline_trace`]: the vertices sorted by y, then each row's sample
+//!   line, where each active edge crosses it and the span filled;
+//! * [`depth_buffer_trace`]: seed 002's depth buffer, printed as the
+//!   slides' matrix after each triangle.
 //!
 //! Line endpoints are pixels: `0 0 7 3` means from the centre of pixel
 //! (0, 0) to the centre of pixel (7, 3), as in the course. Edge values are
@@ -20,10 +24,15 @@
 
 use crate::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::error::{Error, Result};
-use crate::fixed::{FixedPoint, SUBPIXEL_SCALE};
+use crate::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::line::bresenham::Bresenham;
 use crate::line::dda::Dda;
 use crate::line::OctantFrame;
+use crate::scene::Scene2D;
+use crate::shader::Flat;
+use crate::target::{DepthState, DepthTest, RenderTarget};
+use crate::triangle::scanline::{active_edges, row_range, row_span, sorted_by_y, Span};
+use crate::triangle::TriangleRasterizer;
 use std::fmt::Write;
 
 /// Square pixels per fixed-point edge unit.
@@ -160,12 +169,8 @@ pub fn triangle_trace(
     height: u32,
 ) -> Result<String> {
     let grid = PixelRect::of_target(width, height);
-    let points = vertices
-        .iter()
-        .map(|&(x, y)| FixedPoint::snap(x, y))
-        .collect::<Result<Vec<_>>>()?;
     let mut out = String::new();
-    let Some(t) = TriangleSetup::new(0, [points[0], points[1], points[2]], rule) else {
+    let Some(t) = snapped_triangle(vertices, rule)? else {
         let _ = writeln!(
             out,
             "the snapped triangle has zero area: no pixel is tested, nothing is drawn"
@@ -257,4 +262,179 @@ pub fn triangle_trace(
         region.area()
     );
     Ok(out)
+}
+
+/// The classic scanline loop on one triangle given in screen pixels: the
+/// vertices sorted by y, then for each row its sample line, where each
+/// active edge crosses it (exact x), the pixel bound that crossing gives
+/// under the fill rule, and the span filled.
+pub fn scanline_trace(
+    vertices: [(f32, f32); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    let viewport = PixelRect::of_target(width, height);
+    let mut out = String::new();
+    let Some(t) = snapped_triangle(vertices, rule)? else {
+        let _ = writeln!(
+            out,
+            "the snapped triangle has zero area: no row is filled, nothing is drawn"
+        );
+        return Ok(out);
+    };
+    let order = sorted_by_y(&t);
+    let [top, mid, bottom] = order;
+    let pixel = |k: usize| {
+        let v = t.vertices[k];
+        format!(
+            "v{k} ({}, {})",
+            v.x.raw() as f64 / SUBPIXEL_SCALE as f64,
+            v.y.raw() as f64 / SUBPIXEL_SCALE as f64
+        )
+    };
+    let _ = writeln!(
+        out,
+        "scanline, {} rule: sorted by y, top {}, mid {}, bottom {}",
+        rule.name(),
+        pixel(top),
+        pixel(mid),
+        pixel(bottom)
+    );
+    let _ = writeln!(
+        out,
+        "long edge v{top}-v{bottom} (E{mid}) bounds every row; short edges v{top}-v{mid} (E{bottom}) above mid, v{mid}-v{bottom} (E{top}) below"
+    );
+    let (first_row, last_row) = row_range(&t, order, viewport);
+    let _ = writeln!(
+        out,
+        "rows {first_row}..={last_row}: their sample lines y = row + 0.5 lie between top and bottom"
+    );
+    let _ = writeln!(
+        out,
+        "{:>4} {:>8}  {:<72} span",
+        "row", "sample y", "edge crossings: exact x -> pixel bound"
+    );
+    let mut filled = 0;
+    for j in first_row..=last_row {
+        let y = j * SUBPIXEL_SCALE + HALF_PIXEL;
+        let crossings: Vec<String> = active_edges(&t, order, y)
+            .map(|k| {
+                let e = &t.edges[k];
+                let mut alone = Span {
+                    first: viewport.x0,
+                    last: viewport.x1,
+                };
+                alone.clip_to_edge(e, t.bias[k], y);
+                let bound = if e.a > 0 {
+                    format!("first {}", alone.first)
+                } else if e.a < 0 {
+                    format!("last {}", alone.last)
+                } else if alone.is_empty() {
+                    "none".to_string()
+                } else {
+                    "all".to_string()
+                };
+                if e.a == 0 {
+                    format!("E{k} horizontal -> {bound}")
+                } else {
+                    // E = a X + b Y + c = 0 at X = -(b Y + c) / a (fixed units).
+                    let x = -((e.b * y + e.c) as f64) / e.a as f64 / SUBPIXEL_SCALE as f64;
+                    format!("E{k} x = {x:.4} -> {bound}")
+                }
+            })
+            .collect();
+        let span = row_span(&t, order, j, viewport);
+        let filled_text = if span.is_empty() {
+            "empty".to_string()
+        } else {
+            filled += span.last - span.first + 1;
+            format!(
+                "{}..={} ({} px)",
+                span.first,
+                span.last,
+                span.last - span.first + 1
+            )
+        };
+        let _ = writeln!(
+            out,
+            "{:>4} {:>8.3}  {:<72} {filled_text}",
+            j,
+            y as f64 / SUBPIXEL_SCALE as f64,
+            crossings.join("; ")
+        );
+    }
+    let _ = writeln!(
+        out,
+        "{} rows, {filled} fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last",
+        (last_row - first_row + 1).max(0)
+    );
+    Ok(out)
+}
+
+/// Seed 002's depth-buffer loop on a scene: each triangle in turn drawn by
+/// `backend` through the shared stage (`if f.z < depthBuffer[f.xy]: draw
+/// f, depthBuffer[f.xy] = f.z`), and the depth buffer printed after each,
+/// as the slides' matrix.
+pub fn depth_buffer_trace(
+    scene: &Scene2D,
+    backend: &dyn TriangleRasterizer,
+    rule: FillRule,
+) -> Result<String> {
+    let mut target = RenderTarget::new(scene.width, scene.height)?;
+    let depth = DepthState {
+        test: DepthTest::Less,
+        write: true,
+    };
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "depth buffer, {} x {}, initialised with 1.0; each fragment f is kept if f.z < depthBuffer[f.xy]",
+        scene.width, scene.height
+    );
+    print_matrix(&mut out, &target.depth, scene.width);
+    for (i, (triangle, vertices)) in scene.triangles.iter().zip(&scene.vertices).enumerate() {
+        let one = Scene2D {
+            triangles: vec![*triangle],
+            vertices: vec![*vertices],
+            ..scene.clone()
+        };
+        let before = target.depth.clone();
+        let work = one.draw(backend, rule, depth, &Flat, &mut target);
+        let kept = before
+            .iter()
+            .zip(&target.depth)
+            .filter(|(b, a)| a != b)
+            .count();
+        let z: Vec<String> = vertices.iter().map(|v| format!("{}", v.depth)).collect();
+        let _ = writeln!(
+            out,
+            "\ntriangle {} (z = {}): {} fragments, {kept} kept (nearer than the buffer), {} hidden",
+            i + 1,
+            z.join(", "),
+            work.fragments,
+            work.fragments - kept as u64
+        );
+        print_matrix(&mut out, &target.depth, scene.width);
+    }
+    Ok(out)
+}
+
+fn print_matrix(out: &mut String, depth: &[f32], width: u32) {
+    for row in depth.chunks(width as usize) {
+        let cells: Vec<String> = row.iter().map(|z| format!("{z:.1}")).collect();
+        let _ = writeln!(out, "{}", cells.join(" "));
+    }
+}
+
+fn snapped_triangle(vertices: [(f32, f32); 3], rule: FillRule) -> Result<Option<TriangleSetup>> {
+    let points = vertices
+        .iter()
+        .map(|&(x, y)| FixedPoint::snap(x, y))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(TriangleSetup::new(
+        0,
+        [points[0], points[1], points[2]],
+        rule,
+    ))
 }

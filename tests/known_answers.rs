@@ -221,3 +221,36 @@ fn seed_002_depth_buffer_example_matches_the_slides_in_both_drawing_orders() {
             .all(|&z| z == 0.5 || z == 0.8 || z == 1.0));
     }
 }
+
+/// `rasterlab explain --backend depth-buffer`: the trace prints the
+/// slides' matrices after each triangle, with the fragments kept and
+/// hidden (blue: 19 cells at 0.5; red: 12 fragments, of which the 4 behind
+/// blue are hidden and 8 reach the buffer at 0.8).
+#[test]
+fn seed_002_depth_buffer_trace_prints_the_slides_matrices() {
+    let bbox = rasterlab::backend::triangle_backend("bbox").unwrap();
+    let text = rasterlab::trace::depth_buffer_trace(
+        &Scene2D::depth_example(true),
+        bbox,
+        FillRule::TopLeft,
+    )
+    .unwrap();
+    let mut expected = vec![
+        "depth buffer, 14 x 9, initialised with 1.0; each fragment f is kept if f.z < depthBuffer[f.xy]"
+            .to_string(),
+    ];
+    expected.extend(std::iter::repeat_n("1.0 ".repeat(13) + "1.0", 9));
+    expected.push(String::new());
+    expected.push(
+        "triangle 1 (z = 0.5, 0.5, 0.5): 19 fragments, 19 kept (nearer than the buffer), 0 hidden"
+            .into(),
+    );
+    expected.extend(DEPTH_AFTER_BLUE.iter().map(|s| s.to_string()));
+    expected.push(String::new());
+    expected.push(
+        "triangle 2 (z = 0.8, 0.8, 0.8): 12 fragments, 8 kept (nearer than the buffer), 4 hidden"
+            .into(),
+    );
+    expected.extend(DEPTH_AFTER_BOTH.iter().map(|s| s.to_string()));
+    assert_eq!(text.lines().collect::<Vec<_>>(), expected);
+}

@@ -1,7 +1,8 @@
 //! Traces checked against answers worked by hand from the course notes.
 
+use proptest::prelude::*;
 use rasterlab::edge::FillRule;
-use rasterlab::trace::{bresenham_trace, line_trace, triangle_trace};
+use rasterlab::trace::{bresenham_trace, line_trace, scanline_trace, triangle_trace};
 
 /// Seed 004's midpoint loop on (0, 0) -> (7, 3): f(x, y) = -3 x + 7 y, so
 /// d starts at f(1, 1/2) = 0.5 and then adds -3 (keep y) or -3 + 7 (step).
@@ -92,4 +93,68 @@ fn bbox_trace_counts_and_explains() {
         4
     )
     .is_err());
+}
+
+/// Classic scanline on the right triangle (0.5, 0.5), (4.5, 0.5), (0.5, 3.5)
+/// under the top-left rule, worked by hand: the long edge x = 0.5 runs
+/// through the centres of column 0 (a left edge: it owns the tie, first =
+/// 0); the hypotenuse x = 4.5 - 4/3 (y - 0.5) crosses row 0 at a centre (a
+/// right edge: no tie, last = 3) and row 3 at x = 0.5 (last = -1: empty).
+#[test]
+fn scanline_trace_matches_the_hand_worked_rows() {
+    let expected = "\
+scanline, top-left rule: sorted by y, top v0 (0.5, 0.5), mid v1 (4.5, 0.5), bottom v2 (0.5, 3.5)
+long edge v0-v2 (E1) bounds every row; short edges v0-v1 (E2) above mid, v1-v2 (E0) below
+rows 0..=3: their sample lines y = row + 0.5 lie between top and bottom
+ row sample y  edge crossings: exact x -> pixel bound                                   span
+   0    0.500  E1 x = 0.5000 -> first 0; E2 horizontal -> all; E0 x = 4.5000 -> last 3  0..=3 (4 px)
+   1    1.500  E1 x = 0.5000 -> first 0; E0 x = 3.1667 -> last 2                        0..=2 (3 px)
+   2    2.500  E1 x = 0.5000 -> first 0; E0 x = 1.8333 -> last 1                        0..=1 (2 px)
+   3    3.500  E1 x = 0.5000 -> first 0; E0 x = 0.5000 -> last -1                       empty
+4 rows, 9 fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last
+";
+    assert_eq!(
+        scanline_trace(
+            [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)],
+            FillRule::TopLeft,
+            6,
+            4
+        )
+        .unwrap(),
+        expected
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+    /// The scanline trace fills exactly the pixels the bbox trace finds
+    /// inside, on any triangle and fill rule.
+    #[test]
+    fn scanline_trace_fills_what_the_bbox_trace_finds_inside(
+        v in proptest::array::uniform6(-2.0f32..18.0),
+        rule in prop_oneof![
+            Just(FillRule::TopLeft),
+            Just(FillRule::BottomRight),
+            Just(FillRule::OffscreenPoint),
+            Just(FillRule::Inclusive),
+            Just(FillRule::Exclusive),
+        ],
+    ) {
+        let triangle = [(v[0], v[1]), (v[2], v[3]), (v[4], v[5])];
+        let scan = scanline_trace(triangle, rule, 16, 16).unwrap();
+        let bbox = triangle_trace("bbox", triangle, rule, 16, 16).unwrap();
+        let count = |text: &str, marker: &str| -> Option<String> {
+            let last = text.lines().last()?;
+            let at = last.find(marker)?;
+            Some(last[..at].split_whitespace().last()?.to_string())
+        };
+        let from_bbox = count(&bbox, " fragments");
+        let from_scan = count(&scan, " fragments");
+        if bbox.starts_with("the snapped triangle has zero area") {
+            prop_assert!(scan.starts_with("the snapped triangle has zero area"));
+        } else {
+            prop_assert!(from_bbox.is_some());
+            prop_assert_eq!(from_bbox, from_scan, "{}\n{}", bbox, scan);
+        }
+    }
 }

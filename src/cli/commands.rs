@@ -8,6 +8,7 @@ use rasterlab::edge::FillRule;
 use rasterlab::edge::PixelRect;
 use rasterlab::fragment::FragmentList;
 use rasterlab::fragment::WorkCounters;
+use rasterlab::grid_picture::GridPicture;
 use rasterlab::input::{read_shapes, Shapes};
 use rasterlab::line::{Connectivity, Endpoints, LineOptions, LineSetup};
 use rasterlab::mesh::Mesh;
@@ -473,61 +474,126 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
 
 #[derive(Args, Debug)]
 pub struct ExplainArgs {
-    /// Back-end to trace: bresenham, direct, dda (a line: x0 y0 x1 y1, in
-    /// pixels), or bbox, naive (a triangle: x0 y0 x1 y1 x2 y2, in screen
-    /// coordinates).
+    /// What to trace: bresenham, direct, dda (a line: x0 y0 x1 y1, in
+    /// pixels); bbox, naive, scanline (a triangle: x0 y0 x1 y1 x2 y2, in
+    /// screen coordinates); depth-buffer (triangles of 7 numbers each,
+    /// x0 y0 x1 y1 x2 y2 z, or none for seed 002's example).
     #[arg(long)]
     backend: String,
     /// Fill rule for triangles.
     #[arg(long, default_value = "top-left")]
     rule: String,
-    /// Grid size for triangles, `WxH`.
-    #[arg(long, default_value = "16x16")]
-    size: Size,
+    /// Grid size, `WxH` (16x16 for one triangle, 14x9 for seed 002's
+    /// depth-buffer example).
+    #[arg(long)]
+    size: Option<Size>,
+    /// Also write a zoomed grid picture of the same input (`.svg` or
+    /// `.png`): the pixels tested and the fragments emitted.
+    #[arg(long)]
+    picture: Option<PathBuf>,
     /// The coordinates.
-    #[arg(allow_negative_numbers = true, required = true)]
+    #[arg(allow_negative_numbers = true)]
     coordinates: Vec<f32>,
 }
 
-pub fn explain(args: &ExplainArgs) -> Result<()> {
-    let c = &args.coordinates;
-    let want = |n: usize, what: &str| {
-        if c.len() == n {
+impl ExplainArgs {
+    fn size(&self, default: (u32, u32)) -> (u32, u32) {
+        self.size.map_or(default, |s| (s.width, s.height))
+    }
+
+    fn want(&self, n: usize, what: &str) -> Result<()> {
+        let got = self.coordinates.len();
+        if got == n {
             Ok(())
         } else {
             Err(Error::InvalidArgument(format!(
-                "{} traces {what}: give {n} numbers, not {}",
-                args.backend,
-                c.len()
+                "{} traces {what}: give {n} numbers, not {got}",
+                self.backend
             )))
         }
-    };
+    }
+
+    fn triangle(&self) -> Result<[(f32, f32); 3]> {
+        self.want(6, "a triangle")?;
+        let c = &self.coordinates;
+        Ok([(c[0], c[1]), (c[2], c[3]), (c[4], c[5])])
+    }
+
+    fn line(&self) -> Result<[f32; 4]> {
+        self.want(4, "a line")?;
+        let c = &self.coordinates;
+        Ok([c[0], c[1], c[2], c[3]])
+    }
+
+    /// The depth-buffer input: seed 002's example, or triangles of seven
+    /// numbers each.
+    fn depth_scene(&self) -> Result<Scene2D> {
+        if self.coordinates.is_empty() {
+            let mut scene = Scene2D::depth_example(true);
+            (scene.width, scene.height) = self.size((scene.width, scene.height));
+            return Ok(scene);
+        }
+        let (width, height) = self.size((16, 16));
+        Scene2D::with_depths(width, height, &self.coordinates)
+    }
+}
+
+const TRACES: &str = "bresenham, direct, dda, bbox, naive, scanline, depth-buffer";
+
+pub fn explain(args: &ExplainArgs) -> Result<()> {
+    let rule: FillRule = args.rule.parse()?;
+    let (width, height) = args.size((16, 16));
     let text = match args.backend.as_str() {
         "bresenham" => {
-            want(4, "a line")?;
-            rasterlab::trace::bresenham_trace(c[0], c[1], c[2], c[3])?
+            let [x0, y0, x1, y1] = args.line()?;
+            rasterlab::trace::bresenham_trace(x0, y0, x1, y1)?
         }
         "direct" | "dda" => {
-            want(4, "a line")?;
-            rasterlab::trace::line_trace(&args.backend, c[0], c[1], c[2], c[3])?
+            let [x0, y0, x1, y1] = args.line()?;
+            rasterlab::trace::line_trace(&args.backend, x0, y0, x1, y1)?
         }
         "bbox" | "naive" => {
-            want(6, "a triangle")?;
-            rasterlab::trace::triangle_trace(
-                &args.backend,
-                [(c[0], c[1]), (c[2], c[3]), (c[4], c[5])],
-                args.rule.parse()?,
-                args.size.width,
-                args.size.height,
-            )?
+            rasterlab::trace::triangle_trace(&args.backend, args.triangle()?, rule, width, height)?
         }
-        other => {
+        "scanline" => rasterlab::trace::scanline_trace(args.triangle()?, rule, width, height)?,
+        "depth-buffer" => {
+            let scene = args.depth_scene()?;
+            if let Some(path) = &args.picture {
+                GridPicture::depth_buffer(&scene, rule)?.save(path)?;
+            }
+            print!(
+                "{}",
+                rasterlab::trace::depth_buffer_trace(&scene, triangle_backend("bbox")?, rule)?
+            );
+            return Ok(());
+        }
+        other if args.picture.is_none() => {
             backend(other)?;
             return Err(Error::InvalidArgument(format!(
-                "no trace for `{other}` yet (traces: bresenham, direct, dda, bbox, naive)"
+                "no trace for `{other}` (traces: {TRACES}); give --picture FILE for its grid picture"
             )));
         }
+        _ => String::new(),
     };
+    if let Some(path) = &args.picture {
+        let picture = match backend(&args.backend)? {
+            Backend::Triangle(b) => {
+                GridPicture::of_triangles(b, &[args.triangle()?], rule, width, height)?
+            }
+            Backend::Line(b) => {
+                let [x0, y0, x1, y1] = args.line()?;
+                GridPicture::of_lines(
+                    b,
+                    &[[(x0, y0), (x1, y1)]],
+                    &LineOptions::DEFAULT,
+                    width,
+                    height,
+                )?
+            }
+        };
+        picture.save(path)?;
+        eprintln!("picture: {}", path.display());
+    }
     print!("{text}");
     Ok(())
 }

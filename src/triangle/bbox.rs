@@ -42,6 +42,7 @@ impl TriangleRasterizer for BoundingBox {
             work.primitives += 1;
             let r = t.bounds_within(viewport);
             for y in r.y0..=r.y1 {
+                sink.samples_tested(t.id, y as u32, r.x0 as u32, r.x1 as u32);
                 for x in r.x0..=r.x1 {
                     work.samples_tested += 1;
                     let e = t.edge_values_at_pixel(x, y);

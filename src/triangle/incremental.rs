@@ -74,7 +74,7 @@ pub(crate) fn step_over(
     for y in r.y0..=r.y1 {
         if test {
             let (run, tested) = run_in_row(t, row, step_x, r.x0, r.x1);
-            work.samples_tested += tested;
+            report_tested(sink, t, y, r.x0, tested, work);
             if let Some(run) = run {
                 work.fragments += (run.last - run.first + 1) as u64;
                 emit_span(sink, t, y, run.first, run.last, run.edges);
@@ -86,6 +86,23 @@ pub(crate) fn step_over(
         for k in 0..3 {
             row[k] += step_y[k];
         }
+    }
+}
+
+/// Counts `tested` samples from column `x0` of row `y` and reports them
+/// to the sink as one tested run.
+pub(crate) fn report_tested(
+    sink: &mut dyn FragmentSink,
+    t: &TriangleSetup,
+    y: i64,
+    x0: i64,
+    tested: u64,
+    work: &mut WorkCounters,
+) {
+    if tested > 0 {
+        work.samples_tested += tested;
+        let x1 = x0 + tested as i64 - 1;
+        sink.samples_tested(t.id, y as u32, x0 as u32, x1 as u32);
     }
 }
 

@@ -45,6 +45,7 @@ impl TriangleRasterizer for Naive {
             for x in viewport.x0..=viewport.x1 {
                 for t in triangles.iter() {
                     work.samples_tested += 1;
+                    sink.samples_tested(t.id, y as u32, x as u32, x as u32);
                     let e = t.edge_values_at_pixel(x, y);
                     if t.inside(e) {
                         work.fragments += 1;

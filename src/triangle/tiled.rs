@@ -34,7 +34,7 @@
 //! for each pixel row: emit the run of inside pixels across the blocks
 //! ```
 
-use super::incremental::{run_in_row, step_over, Run};
+use super::incremental::{report_tested, run_in_row, step_over, Run};
 use super::{emit_span, TriangleRasterizer, TriangleSelection};
 use crate::edge::{PixelRect, TriangleSetup};
 use crate::fixed::SUBPIXEL_SCALE;
@@ -135,7 +135,7 @@ impl TriangleRasterizer for Tiled {
                         let n = x - r.x0;
                         [0, 1, 2].map(|k| row[k] + step_x[k] * n)
                     };
-                    if let Some(run) = row_run(t, &blocks, step_x, at, &mut work) {
+                    if let Some(run) = row_run(t, y, &blocks, step_x, at, sink, &mut work) {
                         work.fragments += (run.last - run.first + 1) as u64;
                         emit_span(sink, t, y, run.first, run.last, run.edges);
                     }
@@ -155,9 +155,11 @@ impl TriangleRasterizer for Tiled {
 /// edge values at column `x` of the row.
 fn row_run(
     t: &TriangleSetup,
+    y: i64,
     blocks: &[(PixelRect, BlockClass)],
     step_x: [i64; 3],
     at: impl Fn(i64) -> [i64; 3],
+    sink: &mut dyn FragmentSink,
     work: &mut WorkCounters,
 ) -> Option<Run> {
     let mut run: Option<Run> = None;
@@ -169,7 +171,7 @@ fn row_run(
             BlockClass::Inside => (x0, x1, None),
             BlockClass::Partial => {
                 let (part, tested) = run_in_row(t, at(x0), step_x, x0, x1);
-                work.samples_tested += tested;
+                report_tested(sink, t, y, x0, tested, work);
                 match part {
                     Some(p) => (p.first, p.last, Some(p.edges)),
                     None if run.is_some() => break,

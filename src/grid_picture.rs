@@ -1,0 +1,526 @@
+//! Zoomed pictures of the pixel grid, as in seed 002's slides.
+//!
+//! Each pixel is drawn as a large cell with its centre marked (the sample
+//! point every test is made at), and over the grid the **true** geometry:
+//! the snapped triangle edges, or the ideal line between a line's
+//! endpoints. The cells say what a back-end did:
+//!
+//! * **green**: a fragment was emitted (for `wu`, the green is as strong as
+//!   the fragment's coverage);
+//! * **red**: the back-end evaluated the inside test there and it failed;
+//! * **white**: never looked at.
+//!
+//! So the bounding box shows as a red rectangle around the green
+//! triangle, the naive loop as a red grid, scanline with no red at all
+//! (it solves each row's span instead of testing pixels), and `tiled` red
+//! only in the blocks that straddle an edge.
+//!
+//! [`GridPicture::coverage_heat_map`] draws the fill-rule pictures instead:
+//! each pixel's fragment count against a watertight reference, so that
+//! the inclusive rule's double draws (orange) and the exclusive rule's gaps
+//! (red) on shared edges stand out.
+//!
+//! Pictures are written as SVG (sharp at any zoom, with labels such as the
+//! depth values of [`GridPicture::depth_buffer`]) or PNG.
+//!
+//! ```
+//! use rasterlab::backend::triangle_backend;
+//! use rasterlab::edge::FillRule;
+//! use rasterlab::grid_picture::GridPicture;
+//!
+//! let bbox = triangle_backend("bbox").unwrap();
+//! let triangle = [(1.0, 1.0), (9.0, 2.0), (3.0, 7.0)];
+//! let picture = GridPicture::of_triangles(bbox, &[triangle], FillRule::TopLeft, 10, 8).unwrap();
+//! // The bounding box is 9 x 7 pixels; the fragments are green, the rest of it red.
+//! assert_eq!(picture.inside_cells() + picture.outside_cells(), 9 * 7);
+//! assert!(picture.to_svg().starts_with("<svg"));
+//! ```
+
+use crate::edge::{FillRule, PixelRect};
+use crate::error::{Error, Result};
+use crate::fixed::{FixedPoint, SUBPIXEL_SCALE};
+use crate::fragment::{FragmentSink, LineFragment, TriangleFragment};
+use crate::line::{LineOptions, LineRasterizer, LineSetup};
+use crate::scene::{setup_triangles, Scene2D};
+use crate::shader::Flat;
+use crate::target::RenderTarget;
+use crate::triangle::TriangleRasterizer;
+use std::fmt::Write;
+use std::path::Path;
+
+/// A cell no back-end looked at.
+pub const UNTESTED: [u8; 3] = [255, 255, 255];
+/// A cell whose inside test failed (seed 002's red).
+pub const TESTED_OUTSIDE: [u8; 3] = [235, 110, 100];
+/// A cell that became a fragment (seed 002's green).
+pub const INSIDE: [u8; 3] = [70, 180, 90];
+/// Heat map: covered as often as a watertight rule covers it.
+pub const AS_REFERENCE: [u8; 3] = [200, 225, 205];
+/// Heat map: covered less often than every watertight rule (a gap).
+pub const GAP: [u8; 3] = [220, 40, 40];
+/// Heat map: covered once more than any watertight rule (drawn twice).
+pub const OVERDRAWN: [u8; 3] = [250, 160, 30];
+/// Heat map: covered two or more times more than any watertight rule.
+pub const OVERDRAWN_MORE: [u8; 3] = [140, 40, 160];
+
+/// Pixels per cell in the SVG.
+const SVG_CELL: f64 = 32.0;
+/// Largest grid drawn cell by cell (bigger grids are refused: a picture
+/// of them would not show single pixels).
+pub const MAX_CELLS: u32 = 512 * 512;
+
+/// A zoomed picture of the pixel grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GridPicture {
+    /// Cells across.
+    pub width: u32,
+    /// Cells down.
+    pub height: u32,
+    /// Each cell's colour, row by row.
+    pub cells: Vec<[u8; 3]>,
+    /// Each cell's label (empty for none), shown in the SVG.
+    pub labels: Vec<String>,
+    /// Closed outlines (triangle edges), in pixel coordinates.
+    pub outlines: Vec<Vec<(f64, f64)>>,
+    /// Open segments (ideal lines), in pixel coordinates.
+    pub segments: Vec<[(f64, f64); 2]>,
+    /// One line saying what the picture shows.
+    pub caption: String,
+}
+
+/// Records what a back-end did to each pixel of a small grid.
+struct Recorder {
+    width: u32,
+    tested: Vec<bool>,
+    weight: Vec<f32>,
+}
+
+impl Recorder {
+    fn new(width: u32, height: u32) -> Recorder {
+        let n = (width * height) as usize;
+        Recorder {
+            width,
+            tested: vec![false; n],
+            weight: vec![0.0; n],
+        }
+    }
+
+    fn index(&self, x: u32, y: u32) -> usize {
+        (y * self.width + x) as usize
+    }
+
+    /// Green for fragments (strength = weight), red for tested-outside.
+    fn cells(&self) -> Vec<[u8; 3]> {
+        self.weight
+            .iter()
+            .zip(&self.tested)
+            .map(|(&w, &tested)| {
+                if w > 0.0 {
+                    // Faint fragments stay visibly green.
+                    mix(UNTESTED, INSIDE, w.clamp(0.1, 1.0))
+                } else if tested {
+                    TESTED_OUTSIDE
+                } else {
+                    UNTESTED
+                }
+            })
+            .collect()
+    }
+}
+
+impl FragmentSink for Recorder {
+    fn triangle_fragment(&mut self, f: &TriangleFragment) {
+        let i = self.index(f.x, f.y);
+        self.weight[i] += 1.0;
+    }
+
+    fn line_fragment(&mut self, f: &LineFragment) {
+        let i = self.index(f.x, f.y);
+        self.weight[i] += f.coverage;
+    }
+
+    fn samples_tested(&mut self, _triangle: u32, y: u32, x0: u32, x1: u32) {
+        for x in x0..=x1 {
+            let i = self.index(x, y);
+            self.tested[i] = true;
+        }
+    }
+}
+
+fn mix(a: [u8; 3], b: [u8; 3], t: f32) -> [u8; 3] {
+    [0, 1, 2].map(|k| (a[k] as f32 + (b[k] as f32 - a[k] as f32) * t).round() as u8)
+}
+
+fn to_pixels(p: FixedPoint) -> (f64, f64) {
+    let s = SUBPIXEL_SCALE as f64;
+    (p.x.raw() as f64 / s, p.y.raw() as f64 / s)
+}
+
+fn check_grid(width: u32, height: u32) -> Result<()> {
+    RenderTarget::check_size(width, height)?;
+    if u64::from(width) * u64::from(height) > u64::from(MAX_CELLS) {
+        return Err(Error::InvalidArgument(format!(
+            "a {width} x {height} grid is too large to draw cell by cell (at most {MAX_CELLS} cells)"
+        )));
+    }
+    Ok(())
+}
+
+impl GridPicture {
+    fn blank(width: u32, height: u32, caption: String) -> GridPicture {
+        let n = (width * height) as usize;
+        GridPicture {
+            width,
+            height,
+            cells: vec![UNTESTED; n],
+            labels: vec![String::new(); n],
+            outlines: Vec::new(),
+            segments: Vec::new(),
+            caption,
+        }
+    }
+
+    /// Triangles (screen pixels) drawn by a triangle back-end under `rule`
+    /// on a `width` x `height` grid: tested, emitted and untouched pixels.
+    pub fn of_triangles(
+        backend: &dyn TriangleRasterizer,
+        triangles: &[[(f32, f32); 3]],
+        rule: FillRule,
+        width: u32,
+        height: u32,
+    ) -> Result<GridPicture> {
+        let snapped = triangles
+            .iter()
+            .map(|t| {
+                Ok([
+                    FixedPoint::snap(t[0].0, t[0].1)?,
+                    FixedPoint::snap(t[1].0, t[1].1)?,
+                    FixedPoint::snap(t[2].0, t[2].1)?,
+                ])
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Self::of_snapped_triangles(backend, &snapped, rule, width, height)
+    }
+
+    /// [`GridPicture::of_triangles`] for triangles already snapped.
+    pub fn of_snapped_triangles(
+        backend: &dyn TriangleRasterizer,
+        triangles: &[[FixedPoint; 3]],
+        rule: FillRule,
+        width: u32,
+        height: u32,
+    ) -> Result<GridPicture> {
+        check_grid(width, height)?;
+        let mut recorder = Recorder::new(width, height);
+        let work = backend.rasterize(
+            &setup_triangles(triangles, rule),
+            PixelRect::of_target(width, height),
+            &mut recorder,
+        );
+        let mut picture = Self::blank(
+            width,
+            height,
+            format!(
+                "{}, {} rule: {} pixels tested (red: outside), {} fragments (green)",
+                backend.name(),
+                rule.name(),
+                work.samples_tested,
+                work.fragments
+            ),
+        );
+        picture.cells = recorder.cells();
+        picture.outlines = triangles
+            .iter()
+            .map(|t| t.iter().map(|&p| to_pixels(p)).collect())
+            .collect();
+        Ok(picture)
+    }
+
+    /// Lines between pixel centres (`[(x0, y0), (x1, y1)]` means from the
+    /// centre of pixel (x0, y0) to the centre of pixel (x1, y1), as in
+    /// `rasterlab explain`), drawn by a line back-end: the chosen pixels in
+    /// green (shaded by coverage for `wu`) under the ideal line.
+    pub fn of_lines(
+        backend: &dyn LineRasterizer,
+        lines: &[[(f32, f32); 2]],
+        options: &LineOptions,
+        width: u32,
+        height: u32,
+    ) -> Result<GridPicture> {
+        check_grid(width, height)?;
+        backend.check_options(options)?;
+        let setups = lines
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                Ok(LineSetup {
+                    id: i as u32,
+                    from: FixedPoint::snap(l[0].0 + 0.5, l[0].1 + 0.5)?,
+                    to: FixedPoint::snap(l[1].0 + 0.5, l[1].1 + 0.5)?,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let mut recorder = Recorder::new(width, height);
+        let work = backend.rasterize(
+            &setups,
+            options,
+            PixelRect::of_target(width, height),
+            &mut recorder,
+        );
+        let mut picture = Self::blank(
+            width,
+            height,
+            format!(
+                "{}: {} fragments (green) under the ideal line",
+                backend.name(),
+                work.fragments
+            ),
+        );
+        picture.cells = recorder.cells();
+        picture.segments = setups
+            .iter()
+            .map(|s| [to_pixels(s.from), to_pixels(s.to)])
+            .collect();
+        Ok(picture)
+    }
+
+    /// Seed 002's depth buffer after the whole scene: each cell in the
+    /// colour it was drawn, labelled with its depth (1.0 where nothing
+    /// was drawn).
+    pub fn depth_buffer(scene: &Scene2D, rule: FillRule) -> Result<GridPicture> {
+        check_grid(scene.width, scene.height)?;
+        let bbox = crate::backend::triangle_backend("bbox")?;
+        let (target, _) = scene.render(bbox, rule, &Flat)?;
+        let mut picture = Self::blank(
+            scene.width,
+            scene.height,
+            format!(
+                "depth buffer after {} triangles (1.0 = nothing drawn)",
+                scene.triangles.len()
+            ),
+        );
+        for (i, z) in target.depth.iter().enumerate() {
+            picture.labels[i] = format!("{z:.1}");
+            if target.coverage[i] > 0 {
+                let [r, g, b, _] = target.color[i];
+                picture.cells[i] = mix(UNTESTED, [r, g, b], 0.55);
+            }
+        }
+        picture.outlines = scene
+            .triangles
+            .iter()
+            .map(|t| t.iter().map(|&p| to_pixels(p)).collect())
+            .collect();
+        Ok(picture)
+    }
+
+    /// A fill-rule heat map: each pixel's fragment count (`coverage`)
+    /// against the counts of watertight rules (`watertight`, for example
+    /// top-left and bottom-right). Where those agree the count is what it
+    /// must be; where they differ (pixel centres on the outline, which each
+    /// watertight rule gives to one side or the other) any count between
+    /// them is right. A count within that range is pale green (white where
+    /// nothing covers the pixel); below it, a gap (red); above it by one,
+    /// drawn twice (orange); by two or more, purple.
+    pub fn coverage_heat_map(
+        width: u32,
+        height: u32,
+        coverage: &[u16],
+        watertight: &[&[u16]],
+        caption: String,
+    ) -> Result<GridPicture> {
+        check_grid(width, height)?;
+        let n = (width * height) as usize;
+        if coverage.len() != n || watertight.is_empty() || watertight.iter().any(|w| w.len() != n) {
+            return Err(Error::InvalidArgument(format!(
+                "a heat map needs coverage buffers of {n} pixels for a {width} x {height} grid, and at least one watertight reference"
+            )));
+        }
+        let mut picture = Self::blank(width, height, caption);
+        for (i, &c) in coverage.iter().enumerate() {
+            let lo = watertight.iter().map(|w| w[i]).min().unwrap_or(0);
+            let hi = watertight.iter().map(|w| w[i]).max().unwrap_or(0);
+            picture.cells[i] = if c < lo {
+                GAP
+            } else if c > hi + 1 {
+                OVERDRAWN_MORE
+            } else if c > hi {
+                OVERDRAWN
+            } else if c == 0 {
+                UNTESTED
+            } else {
+                AS_REFERENCE
+            };
+        }
+        Ok(picture)
+    }
+
+    /// Cells with a fragment (any shade of green).
+    pub fn inside_cells(&self) -> usize {
+        self.cells.iter().filter(|&&c| is_fragment_green(c)).count()
+    }
+
+    /// Cells tested and found outside (red).
+    pub fn outside_cells(&self) -> usize {
+        self.count(TESTED_OUTSIDE)
+    }
+
+    /// Cells of exactly colour `c`.
+    pub fn count(&self, c: [u8; 3]) -> usize {
+        self.cells.iter().filter(|&&x| x == c).count()
+    }
+
+    /// The picture as a standalone SVG document.
+    pub fn to_svg(&self) -> String {
+        let s = SVG_CELL;
+        let (w, h) = (self.width as f64 * s, self.height as f64 * s);
+        let caption_height = 28.0;
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{}" viewBox="0 {} {w} {}" font-family="sans-serif">"#,
+            h + caption_height,
+            -caption_height,
+            h + caption_height
+        );
+        let _ = writeln!(out, "<title>{}</title>", escape(&self.caption));
+        let _ = writeln!(
+            out,
+            r#"<text x="4" y="-9" font-size="15">{}</text>"#,
+            escape(&self.caption)
+        );
+        for y in 0..self.height {
+            for x in 0..self.width {
+                let i = (y * self.width + x) as usize;
+                let [r, g, b] = self.cells[i];
+                let _ = writeln!(
+                    out,
+                    r##"<rect x="{}" y="{}" width="{s}" height="{s}" fill="#{r:02x}{g:02x}{b:02x}" stroke="#9a9a9a" stroke-width="1"/>"##,
+                    x as f64 * s,
+                    y as f64 * s
+                );
+                let (cx, cy) = ((x as f64 + 0.5) * s, (y as f64 + 0.5) * s);
+                if self.labels[i].is_empty() {
+                    let _ = writeln!(
+                        out,
+                        r##"<circle cx="{cx}" cy="{cy}" r="2.2" fill="#333"/>"##
+                    );
+                } else {
+                    let _ = writeln!(
+                        out,
+                        r#"<text x="{cx}" y="{}" font-size="11" text-anchor="middle">{}</text>"#,
+                        cy + 4.0,
+                        escape(&self.labels[i])
+                    );
+                }
+            }
+        }
+        for outline in &self.outlines {
+            let points: Vec<String> = outline
+                .iter()
+                .map(|(x, y)| format!("{},{}", x * s, y * s))
+                .collect();
+            let _ = writeln!(
+                out,
+                r##"<polygon points="{}" fill="none" stroke="#1b1b1b" stroke-width="2"/>"##,
+                points.join(" ")
+            );
+        }
+        for [(x0, y0), (x1, y1)] in &self.segments {
+            let _ = writeln!(
+                out,
+                r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#1d4ed8" stroke-width="2.5"/>"##,
+                x0 * s,
+                y0 * s,
+                x1 * s,
+                y1 * s
+            );
+        }
+        out.push_str("</svg>\n");
+        out
+    }
+
+    /// The picture as an image, `zoom` image pixels per grid cell. At a
+    /// zoom of 6 or more the cell borders and centres are drawn too, and
+    /// the outlines and segments at any zoom; labels are in the SVG only.
+    pub fn to_png(&self, zoom: u32) -> Result<image::RgbImage> {
+        let zoom = zoom.max(1);
+        let (w, h) = (self.width * zoom, self.height * zoom);
+        RenderTarget::check_size(w, h)?;
+        let mut img = image::RgbImage::from_fn(w, h, |px, py| {
+            let c = self.cells[((py / zoom) * self.width + px / zoom) as usize];
+            if zoom >= 6 {
+                let (ix, iy) = (px % zoom, py % zoom);
+                let (mid, r) = (zoom / 2, zoom / 12 + 1);
+                if ix == 0 || iy == 0 {
+                    return image::Rgb([154, 154, 154]);
+                }
+                if ix.abs_diff(mid) < r
+                    && iy.abs_diff(mid) < r
+                    && self.labels.iter().all(String::is_empty)
+                {
+                    return image::Rgb([51, 51, 51]);
+                }
+            }
+            image::Rgb(c)
+        });
+        let z = zoom as f64;
+        let mut stroke = |(x0, y0): (f64, f64), (x1, y1): (f64, f64), color: [u8; 3]| {
+            let steps = ((x1 - x0).abs().max((y1 - y0).abs()) * z * 2.0)
+                .ceil()
+                .max(1.0) as u32;
+            for i in 0..=steps {
+                let t = i as f64 / steps as f64;
+                let (x, y) = ((x0 + (x1 - x0) * t) * z, (y0 + (y1 - y0) * t) * z);
+                for (dx, dy) in [(0.0, 0.0), (-1.0, 0.0), (0.0, -1.0), (-1.0, -1.0)] {
+                    let (px, py) = ((x + dx).round(), (y + dy).round());
+                    if px >= 0.0 && py >= 0.0 && px < w as f64 && py < h as f64 {
+                        img.put_pixel(px as u32, py as u32, image::Rgb(color));
+                    }
+                }
+            }
+        };
+        for outline in &self.outlines {
+            for k in 0..outline.len() {
+                stroke(outline[k], outline[(k + 1) % outline.len()], [27, 27, 27]);
+            }
+        }
+        for &[a, b] in &self.segments {
+            stroke(a, b, [29, 78, 216]);
+        }
+        Ok(img)
+    }
+
+    /// Writes the picture as SVG or PNG (24 pixels per cell), by the
+    /// path's extension.
+    pub fn save(&self, path: &Path) -> Result<()> {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some("svg") => std::fs::write(path, self.to_svg()).map_err(|e| Error::io(path, &e)),
+            Some("png") => self
+                .to_png(24)?
+                .save(path)
+                .map_err(|e| Error::InvalidArgument(format!("{}: {e}", path.display()))),
+            _ => Err(Error::InvalidArgument(format!(
+                "{}: a picture is written as .svg or .png",
+                path.display()
+            ))),
+        }
+    }
+}
+
+/// A shade between white (excluded) and [`INSIDE`]: a fragment's cell.
+pub fn is_fragment_green(c: [u8; 3]) -> bool {
+    if c == UNTESTED {
+        return false;
+    }
+    let t = (255.0 - c[0] as f32) / (255.0 - INSIDE[0] as f32);
+    let shade = mix(UNTESTED, INSIDE, t);
+    (0.0..=1.0).contains(&t) && (0..3).all(|k| shade[k].abs_diff(c[k]) <= 1)
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}

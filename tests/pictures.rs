@@ -1,0 +1,221 @@
+//! Grid pictures and fill-rule heat maps, checked by counting cells: the
+//! green cells are the fragments, the red ones the failed tests.
+
+mod common;
+
+use common::{point, quantum, SIZE};
+use proptest::prelude::*;
+use rasterlab::backend::{line_backends, triangle_backend, triangle_backends};
+use rasterlab::edge::{FillRule, PixelRect};
+use rasterlab::fixed::FixedPoint;
+use rasterlab::fragment::{FragmentList, FragmentSink, LineFragment, TriangleFragment};
+use rasterlab::grid_picture::{
+    is_fragment_green, GridPicture, AS_REFERENCE, GAP, OVERDRAWN, OVERDRAWN_MORE, TESTED_OUTSIDE,
+};
+use rasterlab::line::LineOptions;
+use rasterlab::scene::{setup_triangles, Scene2D};
+use rasterlab::shader::Flat;
+
+/// Counts the samples a back-end reports as tested, per pixel.
+struct TestedCells(Vec<bool>);
+
+impl FragmentSink for TestedCells {
+    fn triangle_fragment(&mut self, _: &TriangleFragment) {}
+    fn line_fragment(&mut self, _: &LineFragment) {}
+    fn samples_tested(&mut self, _: u32, y: u32, x0: u32, x1: u32) {
+        for x in x0..=x1 {
+            self.0[(y * SIZE + x) as usize] = true;
+        }
+    }
+}
+
+/// The cell colour at an offset inside each cell of a PNG drawn at `zoom`
+/// (clear of the borders and the centre dot; the outlines, which may cross
+/// that point, are left out).
+fn png_cells(picture: &GridPicture, zoom: u32) -> Vec<[u8; 3]> {
+    let cells_only = GridPicture {
+        outlines: Vec::new(),
+        segments: Vec::new(),
+        ..picture.clone()
+    };
+    let png = cells_only.to_png(zoom).unwrap();
+    let mut cells = Vec::new();
+    for y in 0..picture.height {
+        for x in 0..picture.width {
+            cells.push(png.get_pixel(x * zoom + 3, y * zoom + 3).0);
+        }
+    }
+    cells
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// One triangle, every back-end: as many green cells as fragments, red
+    /// cells exactly where a test failed, and the PNG shows the same cells.
+    #[test]
+    fn green_cells_are_the_fragments_and_red_cells_the_failed_tests(
+        t in quantum().prop_flat_map(|q| {
+            let p = point(-4.0, SIZE as f32 + 4.0, q);
+            [p.clone(), p.clone(), p]
+        }),
+        rule_index in 0usize..5,
+    ) {
+        let rule = [
+            FillRule::TopLeft,
+            FillRule::BottomRight,
+            FillRule::OffscreenPoint,
+            FillRule::Inclusive,
+            FillRule::Exclusive,
+        ][rule_index];
+        let setups = setup_triangles(&[t], rule);
+        for backend in triangle_backends() {
+            let picture = GridPicture::of_snapped_triangles(*backend, &[t], rule, SIZE, SIZE).unwrap();
+            let mut list = FragmentList::default();
+            let work = backend.rasterize(&setups, PixelRect::of_target(SIZE, SIZE), &mut list);
+            let mut tested = TestedCells(vec![false; (SIZE * SIZE) as usize]);
+            backend.rasterize(&setups, PixelRect::of_target(SIZE, SIZE), &mut tested);
+            let mut inside = vec![false; (SIZE * SIZE) as usize];
+            for f in &list.triangles {
+                inside[(f.y * SIZE + f.x) as usize] = true;
+            }
+            let failed = (0..inside.len()).filter(|&i| tested.0[i] && !inside[i]).count();
+            prop_assert_eq!(picture.inside_cells() as u64, work.fragments, "{}", backend.name());
+            prop_assert_eq!(picture.outside_cells(), failed, "{}", backend.name());
+            // Each back-end reports each tested sample once.
+            prop_assert!(tested.0.iter().filter(|&&b| b).count() as u64 <= work.samples_tested);
+            match backend.name() {
+                "naive" if !setups.is_empty() => prop_assert_eq!(
+                    picture.inside_cells() + picture.outside_cells(),
+                    (SIZE * SIZE) as usize
+                ),
+                "bbox" | "incremental" => prop_assert_eq!(
+                    (picture.inside_cells() + picture.outside_cells()) as u64,
+                    work.samples_tested
+                ),
+                "scanline" => prop_assert_eq!(picture.outside_cells(), 0),
+                _ => {}
+            }
+            let png = png_cells(&picture, 12);
+            prop_assert_eq!(png.iter().filter(|&&c| is_fragment_green(c)).count() as u64, work.fragments);
+            prop_assert_eq!(png.iter().filter(|&&c| c == TESTED_OUTSIDE).count(), failed);
+        }
+    }
+
+    /// Lines between pixel centres, every line back-end: a cell per pixel
+    /// chosen, and the ideal line drawn over them.
+    #[test]
+    fn line_pictures_show_one_green_cell_per_pixel_chosen(
+        x0 in 0u32..SIZE, y0 in 0u32..SIZE, x1 in 0u32..SIZE, y1 in 0u32..SIZE,
+    ) {
+        let line = [(x0 as f32, y0 as f32), (x1 as f32, y1 as f32)];
+        for backend in line_backends() {
+            let picture = GridPicture::of_lines(*backend, &[line], &LineOptions::DEFAULT, SIZE, SIZE).unwrap();
+            let mut list = FragmentList::default();
+            let setup = rasterlab::line::LineSetup {
+                id: 0,
+                from: FixedPoint::snap(x0 as f32 + 0.5, y0 as f32 + 0.5).unwrap(),
+                to: FixedPoint::snap(x1 as f32 + 0.5, y1 as f32 + 0.5).unwrap(),
+            };
+            backend.rasterize(&[setup], &LineOptions::DEFAULT, PixelRect::of_target(SIZE, SIZE), &mut list);
+            let mut pixels: Vec<(u32, u32)> = list
+                .lines
+                .iter()
+                .filter(|f| f.coverage > 0.0)
+                .map(|f| (f.x, f.y))
+                .collect();
+            pixels.sort_unstable();
+            pixels.dedup();
+            prop_assert_eq!(picture.inside_cells(), pixels.len(), "{}", backend.name());
+            prop_assert_eq!(picture.segments.len(), 1);
+        }
+    }
+}
+
+#[test]
+fn the_bounding_box_picture_is_a_red_frame_around_the_fragments() {
+    let bbox = triangle_backend("bbox").unwrap();
+    let p = GridPicture::of_triangles(
+        bbox,
+        &[[(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)]],
+        FillRule::TopLeft,
+        6,
+        4,
+    )
+    .unwrap();
+    // The same 20 pixels and 9 fragments as `explain --backend bbox`.
+    assert_eq!(p.inside_cells(), 9);
+    assert_eq!(p.outside_cells(), 11);
+    let svg = p.to_svg();
+    assert_eq!(svg.matches("<rect").count(), 24);
+    assert_eq!(svg.matches("<polygon").count(), 1);
+    assert!(svg.contains("bbox, top-left rule: 20 pixels tested"));
+}
+
+/// Seed 002's depth buffer as a picture: every cell labelled with its
+/// depth, as on the slides.
+#[test]
+fn the_depth_buffer_picture_labels_every_cell() {
+    let p = GridPicture::depth_buffer(&Scene2D::depth_example(true), FillRule::TopLeft).unwrap();
+    let labels = |z: &str| p.labels.iter().filter(|l| *l == z).count();
+    assert_eq!(
+        (labels("0.5"), labels("0.8"), labels("1.0")),
+        (19, 8, 14 * 9 - 27)
+    );
+    assert_eq!(p.to_svg().matches(">0.5</text>").count(), 19);
+}
+
+/// Seed 004's edge-drawing problem on the pinwheel (a 9 x 9 square of
+/// pixel centres, eight triangles around the hub (4, 4), every edge through
+/// pixel centres). Top-left covers the 8 x 8 block away from the square's
+/// right and bottom sides, bottom-right the block away from its left and
+/// top sides. Worked by hand:
+///
+/// * inclusive, one draw too many (orange): the 3 inner centres of each of
+///   the 8 spokes (24), and the six outline pixels where two triangles
+///   meet and a watertight rule draws one of them, (0, 0), (4, 0), (0, 4),
+///   (8, 8), (8, 4), (4, 8): 30. Two or more too many (purple): the hub (8
+///   draws) and the corners (8, 0) and (0, 8), drawn twice where no
+///   watertight rule draws them: 3;
+/// * exclusive, gaps (red): the spokes' inner centres (24) and the hub: 25;
+/// * the off-screen point rule, watertight too, matches everywhere.
+#[test]
+fn fill_rule_heat_maps_show_seed_004s_double_draws_and_gaps() {
+    let scene = Scene2D::pinwheel();
+    let bbox = triangle_backend("bbox").unwrap();
+    let coverage = |rule| scene.render(bbox, rule, &Flat).unwrap().0.coverage;
+    let top_left = coverage(FillRule::TopLeft);
+    let bottom_right = coverage(FillRule::BottomRight);
+    let map = |rule: FillRule| {
+        GridPicture::coverage_heat_map(
+            scene.width,
+            scene.height,
+            &coverage(rule),
+            &[&top_left, &bottom_right],
+            rule.name().into(),
+        )
+        .unwrap()
+    };
+    let inclusive = map(FillRule::Inclusive);
+    assert_eq!(inclusive.count(GAP), 0);
+    assert_eq!(inclusive.count(OVERDRAWN), 30);
+    assert_eq!(inclusive.count(OVERDRAWN_MORE), 3);
+    let exclusive = map(FillRule::Exclusive);
+    assert_eq!(exclusive.count(GAP), 25);
+    assert_eq!(
+        exclusive.count(OVERDRAWN) + exclusive.count(OVERDRAWN_MORE),
+        0
+    );
+    for rule in [
+        FillRule::TopLeft,
+        FillRule::BottomRight,
+        FillRule::OffscreenPoint,
+    ] {
+        let m = map(rule);
+        assert_eq!(m.count(AS_REFERENCE), 64, "{}", rule.name());
+        assert_eq!(
+            m.count(GAP) + m.count(OVERDRAWN) + m.count(OVERDRAWN_MORE),
+            0
+        );
+    }
+}
