@@ -71,8 +71,8 @@ pub struct BenchOptions {
 }
 
 /// The median of `samples` timed runs of `run`, after one warm-up run.
-fn median_time(samples: usize, mut run: impl FnMut() -> u64) -> (Duration, u64) {
-    let pixels = run();
+pub(crate) fn median_time<T>(samples: usize, mut run: impl FnMut() -> T) -> (Duration, T) {
+    let first = run();
     let mut times: Vec<Duration> = (0..samples.max(1))
         .map(|_| {
             let start = Instant::now();
@@ -81,7 +81,7 @@ fn median_time(samples: usize, mut run: impl FnMut() -> u64) -> (Duration, u64) 
         })
         .collect();
     times.sort_unstable();
-    (times[times.len() / 2], pixels)
+    (times[times.len() / 2], first)
 }
 
 /// What [`run`] reports before timing each (workload, back-end) pair.
@@ -175,7 +175,8 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
         let count = work.lines.len() as u64;
         for b in line_backends() {
             step(&work.name, b.name());
-            let (time, pixels) = median_time(options.samples, || work.run(*b, &mut target));
+            let (time, pixels) =
+                median_time(options.samples, || work.run(*b, &mut target).fragments);
             measure(&work.name, b.name(), count, time, pixels);
         }
         step(&work.name, "fast-bresenham");

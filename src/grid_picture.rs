@@ -65,9 +65,8 @@ pub const OVERDRAWN_MORE: [u8; 3] = [140, 40, 160];
 
 /// Pixels per cell in the SVG.
 const SVG_CELL: f64 = 32.0;
-/// Largest grid drawn cell by cell (bigger grids are refused: a picture
-/// of them would not show single pixels).
-pub const MAX_CELLS: u32 = 512 * 512;
+/// Largest grid drawn (4096 x 4096 cells).
+pub const MAX_CELLS: u32 = 4096 * 4096;
 
 /// A zoomed picture of the pixel grid.
 #[derive(Clone, Debug, PartialEq)]
@@ -78,7 +77,7 @@ pub struct GridPicture {
     pub height: u32,
     /// Each cell's colour, row by row.
     pub cells: Vec<[u8; 3]>,
-    /// Each cell's label (empty for none), shown in the SVG.
+    /// Each cell's label, shown in the SVG (empty: no labels).
     pub labels: Vec<String>,
     /// Closed outlines (triangle edges), in pixel coordinates.
     pub outlines: Vec<Vec<(f64, f64)>>,
@@ -173,7 +172,7 @@ impl GridPicture {
             width,
             height,
             cells: vec![UNTESTED; n],
-            labels: vec![String::new(); n],
+            labels: Vec::new(),
             outlines: Vec::new(),
             segments: Vec::new(),
             caption,
@@ -299,8 +298,8 @@ impl GridPicture {
                 scene.triangles.len()
             ),
         );
-        for (i, z) in target.depth.iter().enumerate() {
-            picture.labels[i] = format!("{z:.1}");
+        picture.labels = target.depth.iter().map(|z| format!("{z:.1}")).collect();
+        for i in 0..target.depth.len() {
             if target.coverage[i] > 0 {
                 let [r, g, b, _] = target.color[i];
                 picture.cells[i] = mix(UNTESTED, [r, g, b], 0.55);
@@ -400,17 +399,18 @@ impl GridPicture {
                     y as f64 * s
                 );
                 let (cx, cy) = ((x as f64 + 0.5) * s, (y as f64 + 0.5) * s);
-                if self.labels[i].is_empty() {
-                    let _ = writeln!(
-                        out,
-                        r##"<circle cx="{cx}" cy="{cy}" r="2.2" fill="#333"/>"##
-                    );
-                } else {
+                let label = self.labels.get(i).filter(|l| !l.is_empty());
+                if let Some(label) = label {
                     let _ = writeln!(
                         out,
                         r#"<text x="{cx}" y="{}" font-size="11" text-anchor="middle">{}</text>"#,
                         cy + 4.0,
-                        escape(&self.labels[i])
+                        escape(label)
+                    );
+                } else {
+                    let _ = writeln!(
+                        out,
+                        r##"<circle cx="{cx}" cy="{cy}" r="2.2" fill="#333"/>"##
                     );
                 }
             }
@@ -455,10 +455,7 @@ impl GridPicture {
                 if ix == 0 || iy == 0 {
                     return image::Rgb([154, 154, 154]);
                 }
-                if ix.abs_diff(mid) < r
-                    && iy.abs_diff(mid) < r
-                    && self.labels.iter().all(String::is_empty)
-                {
+                if ix.abs_diff(mid) < r && iy.abs_diff(mid) < r && self.labels.is_empty() {
                     return image::Rgb([51, 51, 51]);
                 }
             }
@@ -518,7 +515,8 @@ pub fn is_fragment_green(c: [u8; 3]) -> bool {
     (0.0..=1.0).contains(&t) && (0..3).all(|k| shade[k].abs_diff(c[k]) <= 1)
 }
 
-fn escape(text: &str) -> String {
+/// Text made safe for XML and HTML.
+pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")

@@ -13,12 +13,20 @@
 //! 0 0 7 3
 //! ```
 //!
+//! ```text
+//! # a polygon (any number of x y pairs), then its holes; spade triangulates it
+//! polygon 0 0  20 0  20 14  0 14
+//! hole 6 4  14 4  10 10
+//! ```
+//!
 //! Blank lines and `#` comments are ignored. A file holds either triangles
-//! or lines. Every coordinate is snapped when read, so NaN, infinities and
+//! (triangles and polygons may be mixed) or lines. A polygon's triangles
+//! all carry the polygon line's number. Every coordinate is snapped when read, so NaN, infinities and
 //! coordinates beyond the guard band are reported with the file and line.
 
 use crate::error::{Error, Result};
 use crate::fixed::FixedPoint;
+use crate::polygon::Polygon;
 use std::path::Path;
 
 /// Snapped primitives read from a text file, with their source lines.
@@ -61,6 +69,7 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
     let mut triangles = Vec::new();
     let mut segments = Vec::new();
     let mut lines = Vec::new();
+    let mut polygon: Option<PolygonRings> = None;
     for (index, raw_line) in text.lines().enumerate() {
         let line_no = index + 1;
         let content = raw_line.split('#').next().unwrap_or("").trim();
@@ -72,7 +81,11 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
             line: Some(line_no),
             message,
         };
-        let numbers = content
+        let (keyword, numbers_text) = match content.split_once(char::is_whitespace) {
+            Some((k @ ("polygon" | "hole"), rest)) => (Some(k), rest),
+            _ => (None, content),
+        };
+        let numbers = numbers_text
             .split_whitespace()
             .map(|tok| {
                 tok.parse::<f64>()
@@ -90,6 +103,29 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
             })
             .collect::<Result<Vec<FixedPoint>>>()
             .map_err(|e| e.at_line(path, line_no))?;
+        if let Some(keyword) = keyword {
+            if !segments.is_empty() {
+                return Err(at(
+                    "a file holds either triangles and polygons, or lines, not both".into(),
+                ));
+            }
+            if numbers.len() % 2 != 0 || numbers.len() < 6 {
+                return Err(at(format!(
+                    "a {keyword} ring takes at least 3 points as x y pairs, found {} numbers",
+                    numbers.len()
+                )));
+            }
+            match (keyword, polygon.as_mut()) {
+                ("hole", None) => return Err(at("`hole` before any `polygon`".into())),
+                ("hole", Some((_, _, holes))) => holes.push(points),
+                _ => {
+                    finish_polygon(polygon.take(), path, &mut triangles, &mut lines)?;
+                    polygon = Some((line_no, points, Vec::new()));
+                }
+            }
+            continue;
+        }
+        finish_polygon(polygon.take(), path, &mut triangles, &mut lines)?;
         match numbers.len() {
             6 if segments.is_empty() => triangles.push([points[0], points[1], points[2]]),
             4 if triangles.is_empty() => segments.push([points[0], points[1]]),
@@ -107,11 +143,33 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
         }
         lines.push(line_no);
     }
+    finish_polygon(polygon, path, &mut triangles, &mut lines)?;
     Ok(if segments.is_empty() {
         Shapes::Triangles { triangles, lines }
     } else {
         Shapes::Lines { segments, lines }
     })
+}
+
+/// A polygon being read: its line, outer ring and holes.
+type PolygonRings = (usize, Vec<FixedPoint>, Vec<Vec<FixedPoint>>);
+
+/// Triangulates a polygon read from the file and appends its triangles.
+fn finish_polygon(
+    polygon: Option<PolygonRings>,
+    path: &Path,
+    triangles: &mut Vec<[FixedPoint; 3]>,
+    lines: &mut Vec<usize>,
+) -> Result<()> {
+    let Some((line_no, outer, holes)) = polygon else {
+        return Ok(());
+    };
+    let pieces = Polygon::new(outer, holes)
+        .and_then(|p| p.triangulate())
+        .map_err(|e| e.at_line(path, line_no))?;
+    lines.extend(std::iter::repeat_n(line_no, pieces.len()));
+    triangles.extend(pieces);
+    Ok(())
 }
 
 /// Reads and parses a triangle soup or line set file.
@@ -163,6 +221,41 @@ mod tests {
             ("0 0 5 0 5 5\n0 0 1 1\n", "soup.txt:2: a file holds either"),
         ];
         for (text, expected) in cases {
+            let msg = parse(text).unwrap_err().to_string();
+            assert!(
+                msg.starts_with(expected),
+                "{msg:?} should start with {expected:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn polygons_are_triangulated_with_their_holes() {
+        let s =
+            parse("polygon 0 0 20 0 20 14 0 14\nhole 6 4 14 4 10 10\n0 20 4 20 0 24\n").unwrap();
+        match s {
+            Shapes::Triangles { triangles, lines } => {
+                // A square with a triangular hole: 7 vertices, 7 triangles
+                // (n + 2h - 2 = 7 + 2 - 2), then the loose triangle.
+                assert_eq!(triangles.len(), 8);
+                assert_eq!(lines, vec![1, 1, 1, 1, 1, 1, 1, 3]);
+            }
+            other => panic!("expected triangles, got {other:?}"),
+        }
+        for (text, expected) in [
+            (
+                "hole 0 0 1 0 0 1\n",
+                "soup.txt:1: `hole` before any `polygon`",
+            ),
+            (
+                "polygon 0 0 1 0\n",
+                "soup.txt:1: a polygon ring takes at least 3 points",
+            ),
+            (
+                "0 0 1 1\npolygon 0 0 1 0 0 1\n",
+                "soup.txt:2: a file holds either",
+            ),
+        ] {
             let msg = parse(text).unwrap_err().to_string();
             assert!(
                 msg.starts_with(expected),

@@ -36,7 +36,8 @@
 //! * [`render`]: a mesh rendered end to end (camera, shading, wireframe);
 //! * [`trace`]: step-by-step traces of the algorithms for teaching;
 //! * [`grid_picture`]: zoomed pictures of the pixel grid (tested, emitted)
-//!   and fill-rule heat maps.
+//!   and fill-rule heat maps;
+//! * [`report`]: the side-by-side HTML comparison of every back-end.
 //!
 //! ```
 //! use rasterlab::{backend, edge::FillRule, scene::Scene2D, shader::Flat};
@@ -67,6 +68,7 @@ pub mod mesh;
 pub mod pipeline;
 pub mod polygon;
 pub mod render;
+pub mod report;
 pub mod scene;
 pub mod shader;
 pub mod stage;

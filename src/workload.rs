@@ -17,6 +17,7 @@
 use crate::edge::FillRule;
 use crate::edge::PixelRect;
 use crate::fixed::FixedPoint;
+use crate::fragment::WorkCounters;
 use crate::line::fast::draw_lines;
 use crate::line::LineSetup;
 use crate::line::{LineOptions, LineRasterizer};
@@ -116,8 +117,8 @@ impl LineWorkload {
 
     /// Clears depth and coverage of `target` and draws the segments with
     /// `backend` (default options) through the stage, depth test off;
-    /// returns the fragments drawn.
-    pub fn run(&self, backend: &dyn LineRasterizer, target: &mut RenderTarget) -> u64 {
+    /// returns the back-end's work.
+    pub fn run(&self, backend: &dyn LineRasterizer, target: &mut RenderTarget) -> WorkCounters {
         target.clear_depth_and_coverage();
         let shader = Constant(COLOR);
         let viewport = PixelRect::of_target(target.width(), target.height());
@@ -127,9 +128,7 @@ impl LineWorkload {
                 test: DepthTest::Always,
                 write: false,
             });
-        backend
-            .rasterize(&self.lines, &LineOptions::DEFAULT, viewport, &mut stage)
-            .fragments
+        backend.rasterize(&self.lines, &LineOptions::DEFAULT, viewport, &mut stage)
     }
 
     /// Clears depth and coverage of `target` and draws the segments with

@@ -289,3 +289,189 @@ fn zero_threads_is_an_error() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--threads"));
 }
+
+#[test]
+fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
+    let out = rasterlab(&[
+        "explain",
+        "--backend",
+        "scanline",
+        "1",
+        "1",
+        "9",
+        "2",
+        "3",
+        "7",
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.ends_with("6 rows, 24 fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last\n"), "{text}");
+
+    let svg = temp_file("depth.svg", "");
+    let out = rasterlab(&[
+        "explain",
+        "--backend",
+        "depth-buffer",
+        "--picture",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("triangle 2 (z = 0.8, 0.8, 0.8): 12 fragments, 8 kept"),
+        "{text}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&svg)
+            .unwrap()
+            .matches(">0.8</text>")
+            .count(),
+        8
+    );
+
+    // Back-ends without a text trace still draw their picture.
+    let png = temp_file("tiled.png", "");
+    let out = rasterlab(&[
+        "explain",
+        "--backend",
+        "tiled",
+        "--size",
+        "20x20",
+        "--picture",
+        png.to_str().unwrap(),
+        "1",
+        "1",
+        "18",
+        "3",
+        "4",
+        "17",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(image::open(&png).unwrap().width(), 20 * 24);
+
+    for (args, message) in [
+        (
+            vec![
+                "explain",
+                "--backend",
+                "tiled",
+                "1",
+                "1",
+                "5",
+                "1",
+                "1",
+                "5",
+            ],
+            "no trace for `tiled`",
+        ),
+        (
+            vec![
+                "explain",
+                "--backend",
+                "depth-buffer",
+                "0",
+                "0",
+                "4",
+                "0",
+                "0",
+                "4",
+            ],
+            "7 numbers each",
+        ),
+        (
+            vec![
+                "explain",
+                "--backend",
+                "depth-buffer",
+                "0",
+                "0",
+                "4",
+                "0",
+                "0",
+                "4",
+                "2",
+            ],
+            "depth 2 is outside [0, 1]",
+        ),
+        (
+            vec![
+                "explain",
+                "--backend",
+                "bbox",
+                "--picture",
+                "/tmp/x.gif",
+                "0",
+                "0",
+                "4",
+                "0",
+                "0",
+                "4",
+            ],
+            "written as .svg or .png",
+        ),
+    ] {
+        let out = rasterlab(&args);
+        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(err.contains(message), "{err}");
+    }
+}
+
+#[test]
+fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
+    let polygon = temp_file(
+        "polygon.txt",
+        "# a pentagon with a hole\npolygon 2 2 30 3 28 20 16 28 3 22\nhole 10 8 20 9 14 16\n",
+    );
+    let lines = temp_file("lines.txt", "0 0 30 11\n5 30 25 2\n");
+    let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bunny.ply");
+    for (i, (input, size, rows)) in [
+        (polygon.to_str().unwrap(), "32x32", 5),
+        (lines.to_str().unwrap(), "32x32", 5),
+        (mesh, "96x72", 5),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let out_dir = temp_file("unused", "").with_file_name(format!("report-{i}"));
+        let out = rasterlab(&[
+            "compare",
+            input,
+            "--size",
+            size,
+            "--samples",
+            "1",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let table = String::from_utf8(out.stdout).unwrap();
+        assert_eq!(table.lines().count(), rows + 2, "{table}");
+        let html = std::fs::read_to_string(out_dir.join("index.html")).unwrap();
+        assert!(html.contains("<table id=\"work\">"));
+        assert!(
+            !html.contains("src=\"http"),
+            "the report loads nothing from outside"
+        );
+        if input != lines.to_str().unwrap() {
+            // Every triangle back-end is identical to the reference.
+            assert_eq!(html.matches("0 (identical)").count(), rows, "{input}");
+        }
+    }
+    let bad = temp_file("bad.txt", "polygon 0 0 1 0\n");
+    let out = rasterlab(&["compare", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8(out.stderr)
+        .unwrap()
+        .contains("bad.txt:1: a polygon ring takes at least 3 points"));
+    let out = rasterlab(&["compare", polygon.to_str().unwrap(), "--size", "0x4"]);
+    assert_eq!(out.status.code(), Some(1));
+}

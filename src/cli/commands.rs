@@ -14,6 +14,7 @@ use rasterlab::line::{Connectivity, Endpoints, LineOptions, LineSetup};
 use rasterlab::mesh::Mesh;
 use rasterlab::pipeline::{CullMode, PipelineOptions};
 use rasterlab::render::{Frame, MeshRenderer, RenderSettings};
+use rasterlab::report::{CompareInput, Report};
 use rasterlab::scene::{setup_triangles, Scene2D};
 use rasterlab::shader::Flat;
 use rasterlab::target::{DepthState, DepthTest, RenderTarget};
@@ -118,7 +119,7 @@ pub fn fragments(args: &FragmentsArgs) -> Result<()> {
             b.rasterize(&setup_triangles(&triangles, rule), viewport, &mut list);
         }
         (Backend::Line(b), Shapes::Lines { segments, .. }) => {
-            let setups = line_setups(&segments);
+            let setups = LineSetup::numbered(&segments);
             b.rasterize(&setups, &options, viewport, &mut list);
         }
         (Backend::Triangle(b), Shapes::Lines { .. }) => {
@@ -151,18 +152,6 @@ pub fn fragments(args: &FragmentsArgs) -> Result<()> {
         }
     }
     out.flush().map_err(stdout_error)
-}
-
-fn line_setups(segments: &[[rasterlab::fixed::FixedPoint; 2]]) -> Vec<LineSetup> {
-    segments
-        .iter()
-        .enumerate()
-        .map(|(i, s)| LineSetup {
-            id: i as u32,
-            from: s[0],
-            to: s[1],
-        })
-        .collect()
 }
 
 fn kind_mismatch(file: &std::path::Path, name: &str, draws: &str, holds: &str) -> Error {
@@ -657,5 +646,54 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         rayon::current_num_threads(),
         args.out.display()
     );
+    Ok(())
+}
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// A triangle soup or polygon file, a line set file, or a mesh (.ply,
+    /// .ply.gz, .obj).
+    input: PathBuf,
+    /// Target size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "64x64")]
+    size: Size,
+    /// Directory the report (index.html) is written to.
+    #[arg(long, default_value = "compare-output")]
+    out: PathBuf,
+    /// Timed runs per back-end (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    samples: usize,
+}
+
+pub fn compare(args: &CompareArgs) -> Result<()> {
+    let (width, height) = (args.size.width, args.size.height);
+    let input = if Mesh::is_mesh_path(&args.input) {
+        CompareInput::Mesh(Box::new(Mesh::load(&args.input)?))
+    } else {
+        match read_shapes(&args.input)? {
+            Shapes::Triangles { triangles, .. } => {
+                CompareInput::Triangles(Scene2D::from_triangles(width, height, triangles))
+            }
+            Shapes::Lines { segments, .. } => CompareInput::Lines(LineSetup::numbered(&segments)),
+        }
+    };
+    let report = Report::compare(&input, width, height, args.samples)?;
+    let path = report.write(&args.out)?;
+    println!(
+        "{:<12} {:>10} {:>10} {:>9} {:>10}  differing pixels vs {}",
+        "back-end", "fragments", "tested", "tests/frag", "time", report.reference
+    );
+    for run in &report.runs {
+        println!(
+            "{:<12} {:>10} {:>10} {:>9.2} {:>8.3}ms  {}",
+            run.name,
+            run.work.fragments,
+            run.work.samples_tested,
+            run.work.tests_per_fragment(),
+            run.time.as_secs_f64() * 1e3,
+            run.differing_pixels.unwrap_or(0)
+        );
+    }
+    println!("report: {}", path.display());
     Ok(())
 }

@@ -26,8 +26,10 @@ enum Command {
     Fragments(commands::FragmentsArgs),
     /// Render a triangle soup or a built-in scene to a PNG file.
     Render(commands::RenderArgs),
-    /// Trace one algorithm step by step on a small input, in the course's terms.
+    /// Trace one algorithm step by step on a small input, in the course's terms; --picture draws its grid.
     Explain(commands::ExplainArgs),
+    /// Run every back-end on one input and write a side-by-side HTML report.
+    Compare(commands::CompareArgs),
     /// Render the bundled scenes with every back-end and check the images are identical.
     Demo(commands::DemoArgs),
     /// Time every back-end on the same workloads: table, JSON and bar chart.
@@ -43,6 +45,7 @@ pub fn main() -> ExitCode {
         Command::Render(args) => commands::render(args),
         Command::Demo(args) => commands::demo(args),
         Command::Explain(args) => commands::explain(args),
+        Command::Compare(args) => commands::compare(args),
         Command::Bench(args) => commands::bench(args),
     };
     let result = match cli.threads {

@@ -48,6 +48,21 @@ pub struct LineSetup {
     pub to: FixedPoint,
 }
 
+impl LineSetup {
+    /// Segments numbered in order, as read from a line set file.
+    pub fn numbered(segments: &[[FixedPoint; 2]]) -> Vec<LineSetup> {
+        segments
+            .iter()
+            .enumerate()
+            .map(|(i, s)| LineSetup {
+                id: i as u32,
+                from: s[0],
+                to: s[1],
+            })
+            .collect()
+    }
+}
+
 /// Which neighbours count as connected.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Connectivity {

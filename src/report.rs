@@ -1,0 +1,538 @@
+//! The side-by-side comparison report (`rasterlab compare`).
+//!
+//! Every back-end of the input's kind draws the same input through the
+//! shared fragment stage. The report puts side by side:
+//!
+//! * each back-end's image, and its **difference image** against the
+//!   reference (`naive` for triangles when it runs in reasonable time,
+//!   else `bbox`; `bresenham` for lines): pixels whose colour, depth or
+//!   coverage differ are red, the others a faded copy of the reference.
+//!   Triangle back-ends must all be identical; line back-ends are
+//!   different algorithms and may differ;
+//! * the **work table**: fragments emitted, samples tested, tests per
+//!   fragment, rows or blocks visited, time (median of a few runs, for a
+//!   rough idea; `rasterlab bench` and `cargo bench` measure properly);
+//! * the **fill-rule pictures**: the input drawn under every fill rule, as
+//!   heat maps of each pixel's fragment count against the watertight
+//!   rules ([`GridPicture::coverage_heat_map`]), then the same for seed
+//!   004's edge-drawing problem (the pinwheel);
+//! * for small targets, the **zoomed grid pictures** of each back-end
+//!   ([`GridPicture`]): which pixels it tested, which it emitted.
+//!
+//! The HTML file is self-contained: pictures are embedded as PNG or SVG.
+//!
+//! ```
+//! use rasterlab::report::{CompareInput, Report};
+//! use rasterlab::scene::Scene2D;
+//!
+//! let report = Report::compare(&CompareInput::Triangles(Scene2D::split_square()), 8, 8, 1).unwrap();
+//! assert!(report.runs.iter().all(|r| r.differing_pixels == Some(0)));
+//! assert!(report.to_html().contains("<table"));
+//! ```
+
+use crate::backend::{line_backends, triangle_backend, triangle_backends};
+use crate::benchmark::median_time;
+use crate::edge::FillRule;
+use crate::error::{Error, Result};
+use crate::fragment::WorkCounters;
+use crate::grid_picture::{escape, GridPicture, GAP, OVERDRAWN, OVERDRAWN_MORE};
+use crate::line::LineSetup;
+use crate::mesh::Mesh;
+use crate::render::{MeshRenderer, RenderSettings};
+use crate::scene::Scene2D;
+use crate::shader::Flat;
+use crate::target::RenderTarget;
+use crate::triangle::TriangleRasterizer;
+use crate::workload::LineWorkload;
+use base64::Engine;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+/// The fill rules, in the order the report shows them.
+const RULES: [FillRule; 5] = [
+    FillRule::TopLeft,
+    FillRule::BottomRight,
+    FillRule::OffscreenPoint,
+    FillRule::Inclusive,
+    FillRule::Exclusive,
+];
+
+/// Largest number of pixel tests the naive loop may do in a report
+/// (pixels x triangles); above it `bbox` is the reference and `naive` is
+/// left out.
+pub const NAIVE_TEST_BUDGET: u64 = 50_000_000;
+
+/// Largest target (in pixels) that gets zoomed grid pictures.
+pub const GRID_PICTURE_PIXELS: u32 = 48 * 48;
+
+/// What to compare.
+#[derive(Clone, Debug)]
+pub enum CompareInput {
+    /// 2D triangles (a soup, or a triangulated polygon).
+    Triangles(Scene2D),
+    /// 2D line segments.
+    Lines(Vec<LineSetup>),
+    /// A mesh, rendered by the 3D pipeline with the default camera.
+    Mesh(Box<Mesh>),
+}
+
+/// One back-end's result.
+#[derive(Clone, Debug)]
+pub struct BackendRun {
+    /// Back-end name.
+    pub name: &'static str,
+    /// What it does.
+    pub description: &'static str,
+    /// Its work counters.
+    pub work: WorkCounters,
+    /// Median drawing time.
+    pub time: Duration,
+    /// The buffers it produced.
+    pub target: RenderTarget,
+    /// Pixels whose colour, depth or coverage differ from the reference
+    /// (`None` for the reference itself).
+    pub differing_pixels: Option<usize>,
+}
+
+/// One fill-rule heat map with its counts.
+#[derive(Clone, Debug)]
+pub struct RulePicture {
+    /// The fill rule.
+    pub rule: FillRule,
+    /// The heat map.
+    pub picture: GridPicture,
+    /// Pixels drawn less often than by every watertight rule.
+    pub gaps: usize,
+    /// Pixels drawn more often than by any watertight rule.
+    pub overdrawn: usize,
+}
+
+/// A comparison of every back-end on one input.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// A short description of the input.
+    pub input: String,
+    /// Target width.
+    pub width: u32,
+    /// Target height.
+    pub height: u32,
+    /// The reference back-end's name.
+    pub reference: &'static str,
+    /// One entry per back-end, the reference first.
+    pub runs: Vec<BackendRun>,
+    /// The input's fill-rule heat maps (triangles and meshes).
+    pub rules: Vec<RulePicture>,
+    /// Seed 004's edge-drawing problem: the pinwheel's heat maps.
+    pub pinwheel_rules: Vec<RulePicture>,
+    /// Zoomed grid pictures per back-end (small targets only).
+    pub grids: Vec<(&'static str, GridPicture)>,
+}
+
+/// Pixels where two targets differ in colour, depth or coverage.
+fn differing(a: &RenderTarget, b: &RenderTarget) -> usize {
+    (0..a.color.len())
+        .filter(|&i| {
+            a.color[i] != b.color[i]
+                || a.depth[i].to_bits() != b.depth[i].to_bits()
+                || a.coverage[i] != b.coverage[i]
+        })
+        .count()
+}
+
+/// The heat maps of `coverage_of(rule)` for every rule.
+fn rule_pictures(
+    width: u32,
+    height: u32,
+    mut coverage_of: impl FnMut(FillRule) -> Result<Vec<u16>>,
+) -> Result<Vec<RulePicture>> {
+    let coverages = RULES
+        .iter()
+        .map(|&r| coverage_of(r))
+        .collect::<Result<Vec<_>>>()?;
+    let watertight = [coverages[0].as_slice(), coverages[1].as_slice()];
+    RULES
+        .iter()
+        .zip(&coverages)
+        .map(|(&rule, coverage)| {
+            let mut picture = GridPicture::coverage_heat_map(
+                width,
+                height,
+                coverage,
+                &watertight,
+                String::new(),
+            )?;
+            let gaps = picture.count(GAP);
+            let overdrawn = picture.count(OVERDRAWN) + picture.count(OVERDRAWN_MORE);
+            picture.caption = format!("{}: {gaps} gap pixels, {overdrawn} overdrawn", rule.name());
+            Ok(RulePicture {
+                rule,
+                picture,
+                gaps,
+                overdrawn,
+            })
+        })
+        .collect()
+}
+
+impl Report {
+    /// Runs every back-end of the input's kind on a `width` x `height`
+    /// target, timing each as the median of `samples` runs.
+    pub fn compare(
+        input: &CompareInput,
+        width: u32,
+        height: u32,
+        samples: usize,
+    ) -> Result<Report> {
+        RenderTarget::check_size(width, height)?;
+        let pixels = u64::from(width) * u64::from(height);
+        let small = width * height <= GRID_PICTURE_PIXELS;
+        let mut runs = Vec::new();
+        let mut rules = Vec::new();
+        let mut grids = Vec::new();
+        let description;
+        match input {
+            CompareInput::Triangles(scene) => {
+                let scene = Scene2D {
+                    width,
+                    height,
+                    ..scene.clone()
+                };
+                description = format!("{} triangles", scene.triangles.len());
+                let naive_fits = pixels * scene.triangles.len() as u64 <= NAIVE_TEST_BUDGET;
+                for b in triangle_backends()
+                    .iter()
+                    .filter(|b| naive_fits || b.name() != "naive")
+                {
+                    let (time, drawn) =
+                        median_time(samples, || scene.render(*b, FillRule::TopLeft, &Flat));
+                    let (target, work) = drawn?;
+                    runs.push(Self::run(*b, target, work, time));
+                    if small {
+                        let picture = GridPicture::of_snapped_triangles(
+                            *b,
+                            &scene.triangles,
+                            FillRule::TopLeft,
+                            width,
+                            height,
+                        )?;
+                        grids.push((b.name(), picture));
+                    }
+                }
+                let scanline = triangle_backend("scanline")?;
+                rules = rule_pictures(width, height, |rule| {
+                    Ok(scene.render(scanline, rule, &Flat)?.0.coverage)
+                })?;
+            }
+            CompareInput::Lines(lines) => {
+                description = format!("{} line segments", lines.len());
+                let work = LineWorkload::new("input", lines.clone());
+                for b in line_backends() {
+                    let mut target = RenderTarget::new(width, height)?;
+                    let (time, counters) = median_time(samples, || work.run(*b, &mut target));
+                    runs.push(BackendRun {
+                        name: b.name(),
+                        description: b.description(),
+                        work: counters,
+                        time,
+                        target,
+                        differing_pixels: None,
+                    });
+                }
+            }
+            CompareInput::Mesh(mesh) => {
+                description = format!(
+                    "mesh of {} triangles, default camera, back faces culled",
+                    mesh.triangles.len()
+                );
+                let settings = |rule| {
+                    let mut s = RenderSettings {
+                        width,
+                        height,
+                        ..RenderSettings::default()
+                    };
+                    s.pipeline.rule = rule;
+                    s.pipeline.cull = crate::pipeline::CullMode::Back;
+                    s
+                };
+                let renderer = MeshRenderer::new(mesh, settings(FillRule::TopLeft))?;
+                let naive_fits = pixels * mesh.triangles.len() as u64 <= NAIVE_TEST_BUDGET;
+                for b in triangle_backends()
+                    .iter()
+                    .filter(|b| naive_fits || b.name() != "naive")
+                {
+                    let (time, frame) = median_time(samples, || renderer.render(*b));
+                    let frame = frame?;
+                    runs.push(Self::run(*b, frame.target, frame.work, time));
+                }
+                let scanline = triangle_backend("scanline")?;
+                rules = rule_pictures(width, height, |rule| {
+                    let frame = MeshRenderer::new(mesh, settings(rule))?.render(scanline)?;
+                    Ok(frame.target.coverage)
+                })?;
+            }
+        }
+        let reference = runs
+            .first()
+            .ok_or_else(|| Error::InvalidArgument("no back-end ran".into()))?
+            .target
+            .clone();
+        for run in runs.iter_mut().skip(1) {
+            run.differing_pixels = Some(differing(&reference, &run.target));
+        }
+        let pinwheel = Scene2D::pinwheel();
+        let bbox = triangle_backend("bbox")?;
+        let pinwheel_rules = rule_pictures(pinwheel.width, pinwheel.height, |rule| {
+            Ok(pinwheel.render(bbox, rule, &Flat)?.0.coverage)
+        })?;
+        if let Some(first) = runs.first_mut() {
+            first.differing_pixels = Some(0);
+        }
+        Ok(Report {
+            input: description,
+            width,
+            height,
+            reference: runs[0].name,
+            runs,
+            rules,
+            pinwheel_rules,
+            grids,
+        })
+    }
+
+    fn run(
+        b: &dyn TriangleRasterizer,
+        target: RenderTarget,
+        work: WorkCounters,
+        time: Duration,
+    ) -> BackendRun {
+        BackendRun {
+            name: b.name(),
+            description: b.description(),
+            work,
+            time,
+            target,
+            differing_pixels: None,
+        }
+    }
+
+    /// The difference image of `run` against the reference: differing
+    /// pixels red, the others a faded copy of the reference.
+    pub fn difference_image(&self, run: &BackendRun) -> image::RgbaImage {
+        let reference = &self.runs[0].target;
+        let mut img = reference.to_image();
+        for (i, p) in img.pixels_mut().enumerate() {
+            let same = reference.color[i] == run.target.color[i]
+                && reference.depth[i].to_bits() == run.target.depth[i].to_bits()
+                && reference.coverage[i] == run.target.coverage[i];
+            p.0 = if same {
+                let [r, g, b, _] = p.0;
+                let fade = |c: u8| (c as u16 / 3 + 150) as u8;
+                [fade(r), fade(g), fade(b), 255]
+            } else {
+                [230, 20, 20, 255]
+            };
+        }
+        img
+    }
+
+    /// The report as one self-contained HTML page.
+    pub fn to_html(&self) -> String {
+        let zoom = (288 / self.width.max(self.height)).clamp(1, 16);
+        let shown = |w: u32| w * zoom;
+        let mut h = String::new();
+        let _ = write!(
+            h,
+            r#"<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>rasterlab compare: {input}</title>
+<style>
+body {{ font-family: sans-serif; margin: 1.5em; color: #222; }}
+.row {{ display: flex; flex-wrap: wrap; gap: 1.2em; }}
+figure {{ margin: 0; }}
+figcaption {{ font-size: 0.9em; max-width: {cap}px; }}
+img.px {{ image-rendering: pixelated; border: 1px solid #999; }}
+table {{ border-collapse: collapse; margin: 0.5em 0 1.5em; }}
+td, th {{ border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: right; }}
+td:first-child, th:first-child {{ text-align: left; }}
+.ok {{ color: #1a7f37; }} .bad {{ color: #c62828; font-weight: bold; }}
+.swatch {{ display: inline-block; width: 1em; height: 1em; vertical-align: middle; border: 1px solid #999; }}
+</style></head><body>
+<h1>rasterlab compare</h1>
+<p>Input: {input}, drawn on a {w} x {h} target with the top-left fill rule through the shared fragment stage. Reference: <b>{reference}</b>.</p>
+"#,
+            input = escape(&self.input),
+            cap = shown(self.width).max(240),
+            w = self.width,
+            h = self.height,
+            reference = self.reference,
+        );
+
+        h.push_str("<h2>Work</h2>\n<table id=\"work\"><tr><th>back-end</th><th>fragments</th><th>samples tested</th><th>tests per fragment</th><th>rows / blocks</th><th>time (median)</th><th>pixels differing from the reference</th></tr>\n");
+        for run in &self.runs {
+            let differ = match run.differing_pixels {
+                Some(0) => r#"<span class="ok">0 (identical)</span>"#.to_string(),
+                Some(n) => format!(r#"<span class="bad">{n}</span>"#),
+                None => "-".into(),
+            };
+            let _ = writeln!(
+                h,
+                "<tr><td title=\"{}\">{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{}</td><td>{:.3} ms</td><td>{differ}</td></tr>",
+                escape(run.description),
+                run.name,
+                run.work.fragments,
+                run.work.samples_tested,
+                run.work.tests_per_fragment(),
+                run.work.spans,
+                run.time.as_secs_f64() * 1e3
+            );
+        }
+        h.push_str("</table>\n<p>Times are for a rough idea; <code>rasterlab bench</code> and <code>cargo bench</code> measure properly.</p>\n");
+
+        h.push_str("<h2>Images</h2>\n<div class=\"row\">\n");
+        for run in &self.runs {
+            figure(
+                &mut h,
+                &png_data(&run.target.to_image()),
+                shown(self.width),
+                &format!("{}: {}", run.name, run.description),
+            );
+        }
+        h.push_str("</div>\n<h2>Differences from the reference</h2>\n<p>Red: colour, depth or coverage differs from ");
+        h.push_str(self.reference);
+        h.push_str("'s.</p>\n<div class=\"row\">\n");
+        for run in self.runs.iter().skip(1) {
+            figure(
+                &mut h,
+                &png_data(&self.difference_image(run)),
+                shown(self.width),
+                &format!(
+                    "{}: {} pixels differ",
+                    run.name,
+                    run.differing_pixels.unwrap_or(0)
+                ),
+            );
+        }
+        h.push_str("</div>\n");
+
+        let legend = format!(
+            "<p>{} as a watertight rule (white: not covered) {} gap: drawn by no triangle {} drawn once too often {} drawn two or more times too often</p>\n",
+            swatch(crate::grid_picture::AS_REFERENCE),
+            swatch(GAP),
+            swatch(OVERDRAWN),
+            swatch(OVERDRAWN_MORE)
+        );
+        if !self.rules.is_empty() {
+            h.push_str("<h2>Fill rules</h2>\n");
+            h.push_str(&legend);
+            rule_table(&mut h, "rules", &self.rules);
+            h.push_str("<div class=\"row\">\n");
+            for r in &self.rules {
+                heat_figure(&mut h, r, zoom);
+            }
+            h.push_str("</div>\n");
+        }
+        h.push_str("<h2>Seed 004's edge-drawing problem</h2>\n<p>Eight triangles around one pixel centre, every shared edge through pixel centres. Drawing every edge (inclusive) draws them twice; drawing none (exclusive) leaves holes; the top-left, bottom-right and off-screen point rules give each edge pixel to exactly one triangle.</p>\n");
+        h.push_str(&legend);
+        rule_table(&mut h, "pinwheel", &self.pinwheel_rules);
+        h.push_str("<div class=\"row\">\n");
+        for r in &self.pinwheel_rules {
+            heat_figure(&mut h, r, 24);
+        }
+        h.push_str("</div>\n");
+
+        if !self.grids.is_empty() {
+            h.push_str("<h2>Pixels tested and emitted</h2>\n<p>Red: the back-end tested the pixel's centre and found it outside; green: a fragment; white: never looked at. Black: the true edges.</p>\n<div class=\"row\">\n");
+            for (name, grid) in &self.grids {
+                let _ = writeln!(
+                    h,
+                    "<figure class=\"grid\">{}<figcaption>{name}</figcaption></figure>",
+                    grid.to_svg()
+                        .replace("<svg ", "<svg style=\"max-width: 520px; height: auto\" ")
+                );
+            }
+            h.push_str("</div>\n");
+        }
+        h.push_str(
+            r#"<script>
+window.addEventListener('load', () => {
+  const images = [...document.images];
+  document.body.dataset.images = images.length;
+  document.body.dataset.imagesLoaded = images.filter(i => i.complete && i.naturalWidth > 0).length;
+  document.body.dataset.tables = document.querySelectorAll('table').length;
+  document.body.dataset.svgs = document.querySelectorAll('svg').length;
+});
+</script>
+</body></html>
+"#,
+        );
+        h
+    }
+
+    /// Writes `index.html` into `dir` (created if missing) and returns
+    /// its path.
+    pub fn write(&self, dir: &Path) -> Result<PathBuf> {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, &e))?;
+        let path = dir.join("index.html");
+        std::fs::write(&path, self.to_html()).map_err(|e| Error::io(&path, &e))?;
+        Ok(path)
+    }
+}
+
+fn png_data<P: image::PixelWithColorType, C: std::ops::Deref<Target = [P::Subpixel]>>(
+    img: &image::ImageBuffer<P, C>,
+) -> String
+where
+    [P::Subpixel]: image::EncodableLayout,
+{
+    let mut bytes = Vec::new();
+    img.write_to(
+        &mut std::io::Cursor::new(&mut bytes),
+        image::ImageFormat::Png,
+    )
+    .expect("encoding a PNG in memory does not fail");
+    format!(
+        "data:image/png;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(bytes)
+    )
+}
+
+fn figure(h: &mut String, src: &str, width: u32, caption: &str) {
+    let _ = writeln!(
+        h,
+        "<figure><img class=\"px\" src=\"{src}\" width=\"{width}\" alt=\"{0}\"><figcaption>{0}</figcaption></figure>",
+        escape(caption)
+    );
+}
+
+fn heat_figure(h: &mut String, r: &RulePicture, zoom: u32) {
+    let png = r
+        .picture
+        .to_png(zoom.min(24))
+        .expect("a heat map of a checked target size can be drawn");
+    let src = png_data(&png);
+    figure(h, &src, png.width(), &r.picture.caption);
+}
+
+fn rule_table(h: &mut String, id: &str, rules: &[RulePicture]) {
+    let _ = writeln!(
+        h,
+        "<table id=\"{id}\"><tr><th>fill rule</th><th>gap pixels</th><th>overdrawn pixels</th><th>watertight here</th></tr>"
+    );
+    for r in rules {
+        let ok = r.gaps == 0 && r.overdrawn == 0;
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"{}\">{}</td></tr>",
+            r.rule.name(),
+            r.gaps,
+            r.overdrawn,
+            if ok { "ok" } else { "bad" },
+            if ok { "yes" } else { "no" }
+        );
+    }
+    h.push_str("</table>\n");
+}
+
+fn swatch([r, g, b]: [u8; 3]) -> String {
+    format!("<span class=\"swatch\" style=\"background:#{r:02x}{g:02x}{b:02x}\"></span>")
+}

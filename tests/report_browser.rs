@@ -1,0 +1,123 @@
+//! The comparison report, loaded in a real browser (headless Chromium):
+//! every embedded image decodes, the tables and grid pictures are in the
+//! page, and a screenshot shows them.
+//!
+//! Chromium is found as `$RASTERLAB_CHROMIUM`, `chromium` or
+//! `chromium-browser`. Without one the test says so and passes, unless
+//! `RASTERLAB_REQUIRE_BROWSER` is set (as `.ci/run` does, after installing
+//! Debian's `chromium`), in which case a missing browser is a failure.
+
+use rasterlab::report::{CompareInput, Report};
+use rasterlab::scene::Scene2D;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn chromium() -> Option<PathBuf> {
+    if let Some(path) = std::env::var_os("RASTERLAB_CHROMIUM") {
+        return Some(PathBuf::from(path));
+    }
+    ["chromium", "chromium-browser"].iter().find_map(|name| {
+        std::env::var_os("PATH").and_then(|paths| {
+            std::env::split_paths(&paths)
+                .map(|dir| dir.join(name))
+                .find(|p| p.is_file())
+        })
+    })
+}
+
+/// Runs headless Chromium on `page` with extra arguments; returns stdout.
+fn run_chromium(browser: &Path, profile: &Path, page: &Path, extra: &[&str]) -> String {
+    let output = Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--hide-scrollbars",
+            "--virtual-time-budget=10000",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .args(extra)
+        .arg(format!("file://{}", page.display()))
+        .output()
+        .expect("chromium starts");
+    assert!(
+        output.status.success(),
+        "chromium failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+/// The value of `data-NAME="..."` on the page's body.
+fn body_data(dom: &str, name: &str) -> usize {
+    let key = format!("data-{name}=\"");
+    let start = dom
+        .find(&key)
+        .unwrap_or_else(|| panic!("the page did not set {key}: its script did not run"))
+        + key.len();
+    let end = start + dom[start..].find('"').expect("closing quote");
+    dom[start..end].parse().expect("a count")
+}
+
+#[test]
+fn the_report_renders_its_images_and_tables_in_chromium() {
+    let Some(browser) = chromium() else {
+        assert!(
+            std::env::var_os("RASTERLAB_REQUIRE_BROWSER").is_none(),
+            "RASTERLAB_REQUIRE_BROWSER is set but no chromium was found"
+        );
+        eprintln!("no chromium found: the browser check was not run");
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("rasterlab-report-{}", std::process::id()));
+    let report = Report::compare(&CompareInput::Triangles(Scene2D::pinwheel()), 12, 12, 1).unwrap();
+    let page = report.write(&dir.join("report")).unwrap();
+    let profile = dir.join("profile");
+
+    let dom = run_chromium(&browser, &profile, &page, &["--dump-dom"]);
+    let images = body_data(&dom, "images");
+    // 5 images, 4 difference images, 5 + 5 heat maps.
+    assert_eq!(images, 19);
+    assert_eq!(
+        body_data(&dom, "images-loaded"),
+        images,
+        "an image failed to decode"
+    );
+    // Work table, the input's fill rules, the pinwheel's.
+    assert_eq!(body_data(&dom, "tables"), 3);
+    // One grid picture per back-end.
+    assert_eq!(body_data(&dom, "svgs"), 5);
+
+    let shot = dir.join("shot.png");
+    run_chromium(
+        &browser,
+        &profile,
+        &page,
+        &[
+            &format!("--screenshot={}", shot.display()),
+            "--window-size=1200,1400",
+        ],
+    );
+    let img = image::open(&shot)
+        .expect("a screenshot was written")
+        .to_rgb8();
+    assert_eq!(img.dimensions(), (1200, 1400));
+    let mut colours: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(
+        colours.len() > 50,
+        "the screenshot has only {} colours: the page did not render",
+        colours.len()
+    );
+    // The pinwheel's palette colour (first triangle) is on screen: the
+    // images were painted, not just decoded.
+    let blue = rasterlab::stage::to_rgba8(rasterlab::scene::palette(0));
+    assert!(img.pixels().any(|p| p.0 == [blue[0], blue[1], blue[2]]));
+    let _ = std::fs::remove_dir_all(&dir);
+}
