@@ -31,8 +31,9 @@
 //! let bbox = triangle_backend("bbox").unwrap();
 //! let triangle = [(1.0, 1.0), (9.0, 2.0), (3.0, 7.0)];
 //! let picture = GridPicture::of_triangles(bbox, &[triangle], FillRule::TopLeft, 10, 8).unwrap();
-//! // The bounding box is 9 x 7 pixels; the fragments are green, the rest of it red.
-//! assert_eq!(picture.inside_cells() + picture.outside_cells(), 9 * 7);
+//! // The pixel centres within the bounding box: 8 x 6; fragments green, the rest red.
+//! assert_eq!(picture.inside_cells() + picture.outside_cells(), 8 * 6);
+//! assert_eq!(picture.inside_cells(), 24);
 //! assert!(picture.to_svg().starts_with("<svg"));
 //! ```
 
