@@ -180,6 +180,14 @@ impl GridPicture {
         }
     }
 
+    /// The cells a recorder saw: fragments green, failed tests red.
+    fn recorded(recorder: &Recorder, width: u32, height: u32, caption: String) -> GridPicture {
+        GridPicture {
+            cells: recorder.cells(),
+            ..Self::blank(width, height, caption)
+        }
+    }
+
     /// Triangles (screen pixels) drawn by a triangle back-end under `rule`
     /// on a `width` x `height` grid: tested, emitted and untouched pixels.
     pub fn of_triangles(
@@ -217,18 +225,14 @@ impl GridPicture {
             PixelRect::of_target(width, height),
             &mut recorder,
         );
-        let mut picture = Self::blank(
-            width,
-            height,
-            format!(
-                "{}, {} rule: {} pixels tested (red: outside), {} fragments (green)",
-                backend.name(),
-                rule.name(),
-                work.samples_tested,
-                work.fragments
-            ),
+        let caption = format!(
+            "{}, {} rule: {} pixels tested (red: outside), {} fragments (green)",
+            backend.name(),
+            rule.name(),
+            work.samples_tested,
+            work.fragments
         );
-        picture.cells = recorder.cells();
+        let mut picture = Self::recorded(&recorder, width, height, caption);
         picture.outlines = triangles
             .iter()
             .map(|t| t.iter().map(|&p| to_pixels(p)).collect())
@@ -267,16 +271,12 @@ impl GridPicture {
             PixelRect::of_target(width, height),
             &mut recorder,
         );
-        let mut picture = Self::blank(
-            width,
-            height,
-            format!(
-                "{}: {} fragments (green) under the ideal line",
-                backend.name(),
-                work.fragments
-            ),
+        let caption = format!(
+            "{}: {} fragments (green) under the ideal line",
+            backend.name(),
+            work.fragments
         );
-        picture.cells = recorder.cells();
+        let mut picture = Self::recorded(&recorder, width, height, caption);
         picture.segments = setups
             .iter()
             .map(|s| [to_pixels(s.from), to_pixels(s.to)])
