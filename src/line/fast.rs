@@ -79,6 +79,12 @@ fn visible_columns(frame: &OctantFrame, major_len: i64, minor_len: i64) -> Optio
     } else {
         (0, minor_len - 1)
     };
+    // k grows with i: when both end columns are on the target, so is every
+    // column between them (the common case, found without a search).
+    let on_target = |i: i64| (k_lo..=k_hi).contains(&frame.nearest_row(i));
+    if on_target(first) && on_target(last) {
+        return Some((first, last));
+    }
     first = first_column_where(first, last + 1, |i| frame.nearest_row(i) >= k_lo);
     last = first_column_where(first, last + 1, |i| frame.nearest_row(i) > k_hi) - 1;
     (first <= last).then_some((first, last))
