@@ -133,6 +133,12 @@ impl FixedPoint {
         }
     }
 
+    /// Snaps the centre of pixel `(x, y)`, that is the point
+    /// `(x + 0.5, y + 0.5)`: how the course gives line endpoints.
+    pub fn snap_centre_of(x: f32, y: f32) -> Result<FixedPoint> {
+        FixedPoint::snap(x + 0.5, y + 0.5)
+    }
+
     /// The point in pixels.
     pub fn to_f64(self) -> (f64, f64) {
         (self.x.to_f64(), self.y.to_f64())

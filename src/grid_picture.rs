@@ -39,7 +39,7 @@
 
 use crate::edge::{FillRule, PixelRect};
 use crate::error::{Error, Result};
-use crate::fixed::{FixedPoint, SUBPIXEL_SCALE};
+use crate::fixed::FixedPoint;
 use crate::fragment::{FragmentSink, LineFragment, TriangleFragment};
 use crate::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::scene::{setup_triangles, Scene2D};
@@ -151,9 +151,12 @@ fn mix(a: [u8; 3], b: [u8; 3], t: f32) -> [u8; 3] {
     [0, 1, 2].map(|k| (a[k] as f32 + (b[k] as f32 - a[k] as f32) * t).round() as u8)
 }
 
-fn to_pixels(p: FixedPoint) -> (f64, f64) {
-    let s = SUBPIXEL_SCALE as f64;
-    (p.x.raw() as f64 / s, p.y.raw() as f64 / s)
+/// The triangles' edges, in pixels, as closed outlines.
+fn outlines(triangles: &[[FixedPoint; 3]]) -> Vec<Vec<(f64, f64)>> {
+    triangles
+        .iter()
+        .map(|t| t.iter().map(|p| p.to_f64()).collect())
+        .collect()
 }
 
 fn check_grid(width: u32, height: u32) -> Result<()> {
@@ -233,10 +236,7 @@ impl GridPicture {
             work.fragments
         );
         let mut picture = Self::recorded(&recorder, width, height, caption);
-        picture.outlines = triangles
-            .iter()
-            .map(|t| t.iter().map(|&p| to_pixels(p)).collect())
-            .collect();
+        picture.outlines = outlines(triangles);
         Ok(picture)
     }
 
@@ -259,8 +259,8 @@ impl GridPicture {
             .map(|(i, l)| {
                 Ok(LineSetup {
                     id: i as u32,
-                    from: FixedPoint::snap(l[0].0 + 0.5, l[0].1 + 0.5)?,
-                    to: FixedPoint::snap(l[1].0 + 0.5, l[1].1 + 0.5)?,
+                    from: FixedPoint::snap_centre_of(l[0].0, l[0].1)?,
+                    to: FixedPoint::snap_centre_of(l[1].0, l[1].1)?,
                 })
             })
             .collect::<Result<Vec<_>>>()?;
@@ -279,7 +279,7 @@ impl GridPicture {
         let mut picture = Self::recorded(&recorder, width, height, caption);
         picture.segments = setups
             .iter()
-            .map(|s| [to_pixels(s.from), to_pixels(s.to)])
+            .map(|s| [s.from.to_f64(), s.to.to_f64()])
             .collect();
         Ok(picture)
     }
@@ -306,11 +306,7 @@ impl GridPicture {
                 picture.cells[i] = mix(UNTESTED, [r, g, b], 0.55);
             }
         }
-        picture.outlines = scene
-            .triangles
-            .iter()
-            .map(|t| t.iter().map(|&p| to_pixels(p)).collect())
-            .collect();
+        picture.outlines = outlines(&scene.triangles);
         Ok(picture)
     }
 

@@ -38,10 +38,6 @@ use std::fmt::Write;
 /// Square pixels per fixed-point edge unit.
 const AREA_UNIT: f64 = (SUBPIXEL_SCALE * SUBPIXEL_SCALE) as f64;
 
-fn centre(x: f32, y: f32) -> Result<FixedPoint> {
-    FixedPoint::snap(x + 0.5, y + 0.5)
-}
-
 fn frame_note(frame: &OctantFrame) -> String {
     let mut notes = Vec::new();
     if frame.swap {
@@ -65,7 +61,10 @@ fn frame_note(frame: &OctantFrame) -> String {
 
 /// Seed 004's midpoint / Bresenham loop on the line between two pixels.
 pub fn bresenham_trace(x0: f32, y0: f32, x1: f32, y1: f32) -> Result<String> {
-    let frame = OctantFrame::new(centre(x0, y0)?, centre(x1, y1)?);
+    let frame = OctantFrame::new(
+        FixedPoint::snap_centre_of(x0, y0)?,
+        FixedPoint::snap_centre_of(x1, y1)?,
+    );
     let mut out = String::new();
     let _ = writeln!(
         out,
@@ -104,7 +103,10 @@ pub fn bresenham_trace(x0: f32, y0: f32, x1: f32, y1: f32) -> Result<String> {
 /// Direct evaluation (`y = m x + b`, rounded) or DDA (`y += m`, rounded)
 /// on the line between two pixels: each column's exact and rounded `y`.
 pub fn line_trace(backend: &str, x0: f32, y0: f32, x1: f32, y1: f32) -> Result<String> {
-    let frame = OctantFrame::new(centre(x0, y0)?, centre(x1, y1)?);
+    let frame = OctantFrame::new(
+        FixedPoint::snap_centre_of(x0, y0)?,
+        FixedPoint::snap_centre_of(x1, y1)?,
+    );
     let scale = SUBPIXEL_SCALE as f64;
     let du = frame.du() as f64;
     let m = if du > 0.0 {
@@ -286,12 +288,8 @@ pub fn scanline_trace(
     let order = sorted_by_y(&t);
     let [top, mid, bottom] = order;
     let pixel = |k: usize| {
-        let v = t.vertices[k];
-        format!(
-            "v{k} ({}, {})",
-            v.x.raw() as f64 / SUBPIXEL_SCALE as f64,
-            v.y.raw() as f64 / SUBPIXEL_SCALE as f64
-        )
+        let (x, y) = t.vertices[k].to_f64();
+        format!("v{k} ({x}, {y})")
     };
     let _ = writeln!(
         out,
