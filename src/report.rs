@@ -26,7 +26,7 @@
 //! use rasterlab::scene::Scene2D;
 //!
 //! let report = Report::compare(&CompareInput::Triangles(Scene2D::split_square()), 8, 8, 1).unwrap();
-//! assert!(report.runs.iter().all(|r| r.differing_pixels == Some(0)));
+//! assert!(report.runs.iter().all(|r| r.differing_pixels == 0));
 //! assert!(report.to_html().contains("<table"));
 //! ```
 
@@ -91,8 +91,28 @@ pub struct BackendRun {
     /// The buffers it produced.
     pub target: RenderTarget,
     /// Pixels whose colour, depth or coverage differ from the reference
-    /// (`None` for the reference itself).
-    pub differing_pixels: Option<usize>,
+    /// (0 for the reference itself).
+    pub differing_pixels: usize,
+}
+
+impl BackendRun {
+    /// A run, not yet compared with the reference.
+    fn new(
+        name: &'static str,
+        description: &'static str,
+        work: WorkCounters,
+        time: Duration,
+        target: RenderTarget,
+    ) -> BackendRun {
+        BackendRun {
+            name,
+            description,
+            work,
+            time,
+            target,
+            differing_pixels: 0,
+        }
+    }
 }
 
 /// One fill-rule heat map with its counts.
@@ -129,15 +149,25 @@ pub struct Report {
     pub grids: Vec<(&'static str, GridPicture)>,
 }
 
-/// Pixels where two targets differ in colour, depth or coverage.
-fn differing(a: &RenderTarget, b: &RenderTarget) -> usize {
-    (0..a.color.len())
-        .filter(|&i| {
-            a.color[i] != b.color[i]
-                || a.depth[i].to_bits() != b.depth[i].to_bits()
-                || a.coverage[i] != b.coverage[i]
-        })
-        .count()
+/// Whether pixel `i` of two targets differs in colour, depth or coverage.
+fn pixel_differs(a: &RenderTarget, b: &RenderTarget, i: usize) -> bool {
+    a.color[i] != b.color[i]
+        || a.depth[i].to_bits() != b.depth[i].to_bits()
+        || a.coverage[i] != b.coverage[i]
+}
+
+/// The triangle back-ends a report runs: all of them, but the naive loop
+/// only while its pixels x triangles tests stay within
+/// [`NAIVE_TEST_BUDGET`].
+fn triangle_backends_within_budget(
+    pixels: u64,
+    triangles: usize,
+) -> impl Iterator<Item = &'static dyn TriangleRasterizer> {
+    let naive_fits = pixels * triangles as u64 <= NAIVE_TEST_BUDGET;
+    triangle_backends()
+        .iter()
+        .copied()
+        .filter(move |b| naive_fits || b.name() != "naive")
 }
 
 /// The heat maps of `coverage_of(rule)` for every rule.
@@ -199,18 +229,20 @@ impl Report {
                     ..scene.clone()
                 };
                 description = format!("{} triangles", scene.triangles.len());
-                let naive_fits = pixels * scene.triangles.len() as u64 <= NAIVE_TEST_BUDGET;
-                for b in triangle_backends()
-                    .iter()
-                    .filter(|b| naive_fits || b.name() != "naive")
-                {
+                for b in triangle_backends_within_budget(pixels, scene.triangles.len()) {
                     let (time, drawn) =
-                        median_time(samples, || scene.render(*b, FillRule::TopLeft, &Flat));
+                        median_time(samples, || scene.render(b, FillRule::TopLeft, &Flat));
                     let (target, work) = drawn?;
-                    runs.push(Self::run(*b, target, work, time));
+                    runs.push(BackendRun::new(
+                        b.name(),
+                        b.description(),
+                        work,
+                        time,
+                        target,
+                    ));
                     if small {
                         let picture = GridPicture::of_snapped_triangles(
-                            *b,
+                            b,
                             &scene.triangles,
                             FillRule::TopLeft,
                             width,
@@ -230,14 +262,13 @@ impl Report {
                 for b in line_backends() {
                     let mut target = RenderTarget::new(width, height)?;
                     let (time, counters) = median_time(samples, || work.run(*b, &mut target));
-                    runs.push(BackendRun {
-                        name: b.name(),
-                        description: b.description(),
-                        work: counters,
+                    runs.push(BackendRun::new(
+                        b.name(),
+                        b.description(),
+                        counters,
                         time,
                         target,
-                        differing_pixels: None,
-                    });
+                    ));
                 }
             }
             CompareInput::Mesh(mesh) => {
@@ -256,14 +287,16 @@ impl Report {
                     s
                 };
                 let renderer = MeshRenderer::new(mesh, settings(FillRule::TopLeft))?;
-                let naive_fits = pixels * mesh.triangles.len() as u64 <= NAIVE_TEST_BUDGET;
-                for b in triangle_backends()
-                    .iter()
-                    .filter(|b| naive_fits || b.name() != "naive")
-                {
-                    let (time, frame) = median_time(samples, || renderer.render(*b));
+                for b in triangle_backends_within_budget(pixels, mesh.triangles.len()) {
+                    let (time, frame) = median_time(samples, || renderer.render(b));
                     let frame = frame?;
-                    runs.push(Self::run(*b, frame.target, frame.work, time));
+                    runs.push(BackendRun::new(
+                        b.name(),
+                        b.description(),
+                        frame.work,
+                        time,
+                        frame.target,
+                    ));
                 }
                 let scanline = triangle_backend("scanline")?;
                 rules = rule_pictures(width, height, |rule| {
@@ -272,22 +305,19 @@ impl Report {
                 })?;
             }
         }
-        let reference = runs
-            .first()
-            .ok_or_else(|| Error::InvalidArgument("no back-end ran".into()))?
-            .target
-            .clone();
-        for run in runs.iter_mut().skip(1) {
-            run.differing_pixels = Some(differing(&reference, &run.target));
+        let (reference, others) = runs
+            .split_first_mut()
+            .ok_or_else(|| Error::InvalidArgument("no back-end ran".into()))?;
+        for run in others {
+            run.differing_pixels = (0..run.target.color.len())
+                .filter(|&i| pixel_differs(&reference.target, &run.target, i))
+                .count();
         }
         let pinwheel = Scene2D::pinwheel();
         let bbox = triangle_backend("bbox")?;
         let pinwheel_rules = rule_pictures(pinwheel.width, pinwheel.height, |rule| {
             Ok(pinwheel.render(bbox, rule, &Flat)?.0.coverage)
         })?;
-        if let Some(first) = runs.first_mut() {
-            first.differing_pixels = Some(0);
-        }
         Ok(Report {
             input: description,
             width,
@@ -300,32 +330,13 @@ impl Report {
         })
     }
 
-    fn run(
-        b: &dyn TriangleRasterizer,
-        target: RenderTarget,
-        work: WorkCounters,
-        time: Duration,
-    ) -> BackendRun {
-        BackendRun {
-            name: b.name(),
-            description: b.description(),
-            work,
-            time,
-            target,
-            differing_pixels: None,
-        }
-    }
-
     /// The difference image of `run` against the reference: differing
     /// pixels red, the others a faded copy of the reference.
     pub fn difference_image(&self, run: &BackendRun) -> image::RgbaImage {
         let reference = &self.runs[0].target;
         let mut img = reference.to_image();
         for (i, p) in img.pixels_mut().enumerate() {
-            let same = reference.color[i] == run.target.color[i]
-                && reference.depth[i].to_bits() == run.target.depth[i].to_bits()
-                && reference.coverage[i] == run.target.coverage[i];
-            p.0 = if same {
+            p.0 = if !pixel_differs(reference, &run.target, i) {
                 let [r, g, b, _] = p.0;
                 let fade = |c: u8| (c as u16 / 3 + 150) as u8;
                 [fade(r), fade(g), fade(b), 255]
@@ -370,9 +381,8 @@ td:first-child, th:first-child {{ text-align: left; }}
         h.push_str("<h2>Work</h2>\n<table id=\"work\"><tr><th>back-end</th><th>fragments</th><th>samples tested</th><th>tests per fragment</th><th>rows / blocks</th><th>time (median)</th><th>pixels differing from the reference</th></tr>\n");
         for run in &self.runs {
             let differ = match run.differing_pixels {
-                Some(0) => r#"<span class="ok">0 (identical)</span>"#.to_string(),
-                Some(n) => format!(r#"<span class="bad">{n}</span>"#),
-                None => "-".into(),
+                0 => r#"<span class="ok">0 (identical)</span>"#.to_string(),
+                n => format!(r#"<span class="bad">{n}</span>"#),
             };
             let _ = writeln!(
                 h,
@@ -405,11 +415,7 @@ td:first-child, th:first-child {{ text-align: left; }}
                 &mut h,
                 &png_data(&self.difference_image(run)),
                 shown(self.width),
-                &format!(
-                    "{}: {} pixels differ",
-                    run.name,
-                    run.differing_pixels.unwrap_or(0)
-                ),
+                &format!("{}: {} pixels differ", run.name, run.differing_pixels),
             );
         }
         h.push_str("</div>\n");

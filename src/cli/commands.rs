@@ -691,7 +691,7 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
             run.work.samples_tested,
             run.work.tests_per_fragment(),
             run.time.as_secs_f64() * 1e3,
-            run.differing_pixels.unwrap_or(0)
+            run.differing_pixels
         );
     }
     println!("report: {}", path.display());
