@@ -522,16 +522,19 @@ impl ExplainArgs {
             (scene.width, scene.height) = self.size((scene.width, scene.height));
             return Ok(scene);
         }
-        let (width, height) = self.size((16, 16));
+        let (width, height) = self.size(EXPLAIN_GRID);
         Scene2D::with_depths(width, height, &self.coordinates)
     }
 }
+
+/// The grid `explain` draws on unless `--size` says otherwise.
+const EXPLAIN_GRID: (u32, u32) = (16, 16);
 
 const TRACES: &str = "bresenham, direct, dda, bbox, naive, scanline, depth-buffer";
 
 pub fn explain(args: &ExplainArgs) -> Result<()> {
     let rule: FillRule = args.rule.parse()?;
-    let (width, height) = args.size((16, 16));
+    let (width, height) = args.size(EXPLAIN_GRID);
     let text = match args.backend.as_str() {
         "bresenham" => {
             let [x0, y0, x1, y1] = args.line()?;
