@@ -132,6 +132,21 @@ proptest! {
     }
 }
 
+/// Shrunk by proptest: a sliver just left of the target (x from -0.33 to
+/// 0) has an empty clipped bounding box, so the bounding box tests
+/// nothing and reports no tested run (it once reported rows 0..=11 with
+/// an empty column range, which wrapped around).
+#[test]
+fn a_triangle_left_of_the_target_is_not_tested_by_the_bounding_box() {
+    let bbox = triangle_backend("bbox").unwrap();
+    let sliver = [(0.0, 0.0), (0.0, 11.6875), (-0.33203125, 0.0)];
+    let p = GridPicture::of_triangles(bbox, &[sliver], FillRule::TopLeft, SIZE, SIZE).unwrap();
+    assert_eq!((p.inside_cells(), p.outside_cells()), (0, 0));
+    assert!(p
+        .caption
+        .starts_with("bbox, top-left rule: 0 pixels tested"));
+}
+
 #[test]
 fn the_bounding_box_picture_is_a_red_frame_around_the_fragments() {
     let bbox = triangle_backend("bbox").unwrap();

@@ -41,6 +41,9 @@ impl TriangleRasterizer for BoundingBox {
         for t in triangles.iter() {
             work.primitives += 1;
             let r = t.bounds_within(viewport);
+            if r.is_empty() {
+                continue;
+            }
             for y in r.y0..=r.y1 {
                 sink.samples_tested(t.id, y as u32, r.x0 as u32, r.x1 as u32);
                 for x in r.x0..=r.x1 {
