@@ -134,7 +134,7 @@ pub fn draw_binned(
         .map(|(b, rows)| {
             let viewport = rows.rect();
             let mut stage = FragmentStage::on_rows(rows, shader)
-                .with_triangles(&geometry.triangles)
+                .with_triangles(&geometry.shaded)
                 .with_depth(depth)
                 .with_interpolation(interpolation);
             let mut work = WorkCounters::default();

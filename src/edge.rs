@@ -359,7 +359,7 @@ impl TriangleSetup {
             EdgeFunction::through(v2, v0),
             EdgeFunction::through(v0, v1),
         ];
-        let signed_area = edges[0].eval(v0);
+        let signed_area = Self::signed_area(vertices);
         if signed_area == 0 {
             return None;
         }
@@ -391,6 +391,15 @@ impl TriangleSetup {
             rule,
             bounds,
         })
+    }
+
+    /// Twice the signed area of the snapped triangle, `E0(v0)`: positive
+    /// when the vertices run counter-clockwise on screen (y down), negative
+    /// when clockwise, zero when degenerate. What culling looks at before
+    /// a triangle is set up.
+    #[inline]
+    pub fn signed_area(vertices: [FixedPoint; 3]) -> i64 {
+        EdgeFunction::through(vertices[1], vertices[2]).eval(vertices[0])
     }
 
     /// The three edge values at a point.

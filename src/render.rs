@@ -27,6 +27,7 @@ use crate::stage::{FragmentShader, FragmentStage, Interpolation, ShadedLine};
 use crate::target::{DepthState, DepthTest, RenderTarget};
 use crate::triangle::TriangleRasterizer;
 use glam::{Mat4, Vec4};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 /// How a mesh is coloured.
@@ -132,6 +133,9 @@ pub struct MeshRenderer {
     edges: Vec<[u32; 2]>,
     transform: Transform,
     shader: Box<dyn FragmentShader>,
+    /// The geometry buffers, filled again for each frame so that a frame
+    /// allocates nothing for them once the first is drawn.
+    geometry: Mutex<Geometry>,
 }
 
 impl MeshRenderer {
@@ -191,6 +195,7 @@ impl MeshRenderer {
             edges,
             transform,
             shader,
+            geometry: Mutex::new(Geometry::default()),
         })
     }
 
@@ -226,7 +231,20 @@ impl MeshRenderer {
     /// ([`crate::binning`]): the image does not depend on their number.
     pub fn render(&self, backend: &dyn TriangleRasterizer) -> Result<Frame> {
         let start = Instant::now();
-        let geometry = self.geometry()?;
+        // A renderer drawing from several threads at once gives the other
+        // threads buffers of their own.
+        let mut reused = self.geometry.try_lock().ok();
+        let mut own = Geometry::default();
+        let geometry = reused.as_deref_mut().unwrap_or(&mut own);
+        pipeline::process_triangles_into(
+            geometry,
+            &self.vertices,
+            &self.triangles,
+            &self.transform,
+            self.viewport(),
+            &self.settings.pipeline,
+        )?;
+        let geometry = &*geometry;
         let lines = if self.edges.is_empty() {
             Vec::new()
         } else {
@@ -242,7 +260,7 @@ impl MeshRenderer {
         let mut target = RenderTarget::new(self.settings.width, self.settings.height)?;
         target.clear_color(self.settings.background);
         let work = crate::binning::draw_binned(
-            &geometry,
+            geometry,
             backend,
             self.shader.as_ref(),
             self.settings.depth,

@@ -9,7 +9,7 @@ use crate::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::error::{Error, Result};
 use crate::fixed::FixedPoint;
 use crate::fragment::{FragmentList, WorkCounters};
-use crate::stage::{shade_triangles, FragmentShader, FragmentStage, ShadedVertex};
+use crate::stage::{FragmentShader, FragmentStage, ShadedVertex, TriangleData};
 use crate::target::{DepthState, RenderTarget};
 use crate::triangle::TriangleRasterizer;
 use glam::Vec4;
@@ -220,7 +220,7 @@ impl Scene2D {
     ) -> WorkCounters {
         let setups = self.setups(rule);
         let viewport = PixelRect::of_target(target.width(), target.height());
-        let triangles = shade_triangles(&setups, &self.vertices);
+        let triangles = TriangleData::of_triangles(&setups, &self.vertices);
         let mut stage = FragmentStage::new(target, shader)
             .with_triangles(&triangles)
             .with_depth(depth);

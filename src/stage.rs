@@ -168,51 +168,65 @@ impl DepthPlane {
     }
 }
 
-/// A triangle as the fragment stage needs it: vertex data and depth plane.
+/// A triangle as the fragment stage needs it: which vertices, and its
+/// depth plane.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct ShadedTriangle {
-    /// The three vertices, in the order of the set-up.
-    pub vertices: [ShadedVertex; 3],
+    /// Indices of its three vertices in [`TriangleData::vertices`], in the
+    /// order of the set-up.
+    pub vertices: [u32; 3],
     /// The depth plane through the snapped vertices.
     pub depth: DepthPlane,
 }
 
 impl ShadedTriangle {
-    /// Pairs a set-up triangle with its vertex data.
-    pub fn new(setup: &TriangleSetup, vertices: [ShadedVertex; 3]) -> ShadedTriangle {
+    /// Pairs a set-up triangle with its vertices (indices) and their depths.
+    pub fn new(setup: &TriangleSetup, vertices: [u32; 3], depths: [f32; 3]) -> ShadedTriangle {
         ShadedTriangle {
             vertices,
-            depth: DepthPlane::new(setup, vertices.map(|v| v.depth)),
-        }
-    }
-
-    /// A triangle of constant depth (its first vertex's), for primitives that
-    /// never produce a fragment, such as zero-area ones.
-    pub fn constant_depth(vertices: [ShadedVertex; 3]) -> ShadedTriangle {
-        ShadedTriangle {
-            vertices,
-            depth: DepthPlane::constant(vertices[0].depth),
+            depth: DepthPlane::new(setup, depths),
         }
     }
 }
 
-/// The stage's triangle data for a draw: entry `i` belongs to the triangle
-/// with id `i`, `vertices[i]`; those without a set-up (zero area) get a
-/// constant depth, as they produce no fragment.
-pub fn shade_triangles(
-    setups: &[TriangleSetup],
-    vertices: &[[ShadedVertex; 3]],
-) -> Vec<ShadedTriangle> {
-    let mut out: Vec<ShadedTriangle> = vertices
-        .iter()
-        .map(|v| ShadedTriangle::constant_depth(*v))
-        .collect();
-    for s in setups {
-        if let Some(slot) = out.get_mut(s.id as usize) {
-            *slot = ShadedTriangle::new(s, slot.vertices);
+/// The fragment stage's data for the triangles of a draw: the vertices,
+/// shared between triangles as in an index buffer, and per triangle id its
+/// three vertex indices and depth plane.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriangleData {
+    /// Vertex data, shared by index.
+    pub vertices: Vec<ShadedVertex>,
+    /// Entry `i` belongs to the triangle with id `i`.
+    pub triangles: Vec<ShadedTriangle>,
+}
+
+impl TriangleData {
+    /// The data for triangles given by their own three vertices each:
+    /// `vertices[i]` for the triangle with id `i`. Those without a set-up
+    /// (zero area) get a constant depth, as they produce no fragment.
+    pub fn of_triangles(setups: &[TriangleSetup], vertices: &[[ShadedVertex; 3]]) -> TriangleData {
+        let mut triangles: Vec<ShadedTriangle> = (0..vertices.len() as u32)
+            .map(|i| ShadedTriangle {
+                vertices: [3 * i, 3 * i + 1, 3 * i + 2],
+                depth: DepthPlane::constant(vertices[i as usize][0].depth),
+            })
+            .collect();
+        for s in setups {
+            if let Some(slot) = triangles.get_mut(s.id as usize) {
+                slot.depth = DepthPlane::new(s, vertices[s.id as usize].map(|v| v.depth));
+            }
+        }
+        TriangleData {
+            vertices: vertices.iter().flatten().copied().collect(),
+            triangles,
         }
     }
-    out
+
+    /// The three vertices of triangle `t`.
+    #[inline]
+    pub fn corners(&self, t: &ShadedTriangle) -> [ShadedVertex; 3] {
+        t.vertices.map(|i| self.vertices[i as usize])
+    }
 }
 
 /// A line segment as the fragment stage needs it.
@@ -286,6 +300,7 @@ pub struct FragmentStage<'a> {
     target: TargetRows<'a>,
     shader: &'a dyn FragmentShader,
     triangles: &'a [ShadedTriangle],
+    vertices: &'a [ShadedVertex],
     lines: &'a [ShadedLine],
     /// Depth comparison and write mask.
     pub depth: DepthState,
@@ -310,6 +325,7 @@ impl<'a> FragmentStage<'a> {
             target,
             shader,
             triangles: &[],
+            vertices: &[],
             lines: &[],
             depth: DepthState::DEFAULT,
             interpolation: Interpolation::PerspectiveCorrect,
@@ -318,8 +334,9 @@ impl<'a> FragmentStage<'a> {
     }
 
     /// Vertex data and depth planes of the triangles, indexed by triangle id.
-    pub fn with_triangles(mut self, triangles: &'a [ShadedTriangle]) -> Self {
-        self.triangles = triangles;
+    pub fn with_triangles(mut self, data: &'a TriangleData) -> Self {
+        self.triangles = &data.triangles;
+        self.vertices = &data.vertices;
         self
     }
 
@@ -367,11 +384,14 @@ impl<'a> FragmentStage<'a> {
         }
     }
 
-    /// The stage data of triangle `id`.
-    fn triangle(&self, id: u32) -> Option<ShadedTriangle> {
-        let t = self.triangles.get(id as usize).copied();
+    /// The depth plane and vertices of triangle `id`.
+    #[inline]
+    fn triangle(&self, id: u32) -> Option<(DepthPlane, [ShadedVertex; 3])> {
+        let t = self.triangles.get(id as usize);
         debug_assert!(t.is_some(), "no vertex data for triangle {id}");
-        t
+        let t = t?;
+        let [a, b, c] = t.vertices.map(|i| self.vertices.get(i as usize).copied());
+        Some((t.depth, [a?, b?, c?]))
     }
 
     /// The shader's input for a sample that passed the depth test.
@@ -467,15 +487,19 @@ impl Sample<3> {
     /// A triangle fragment's sample: barycentrics from its exact edge
     /// values, depth from the triangle's plane.
     #[inline]
-    fn of_triangle(t: &ShadedTriangle, f: &TriangleFragment) -> Sample<3> {
+    fn of_triangle(
+        depth: &DepthPlane,
+        vertices: [ShadedVertex; 3],
+        f: &TriangleFragment,
+    ) -> Sample<3> {
         let area = (f.edges[0] + f.edges[1] + f.edges[2]) as f64;
         Sample {
             x: f.x,
             y: f.y,
             primitive: f.triangle,
-            depth: t.depth.at(f.x, f.y),
+            depth: depth.at(f.x, f.y),
             screen: f.edges.map(|e| (e as f64 / area) as f32),
-            vertices: t.vertices,
+            vertices,
             coverage: 1.0,
         }
     }
@@ -483,21 +507,21 @@ impl Sample<3> {
 
 impl FragmentSink for FragmentStage<'_> {
     fn triangle_fragment(&mut self, f: &TriangleFragment) {
-        if let Some(t) = self.triangle(f.triangle) {
-            self.resolve(Sample::of_triangle(&t, f));
+        if let Some((plane, vertices)) = self.triangle(f.triangle) {
+            self.resolve(Sample::of_triangle(&plane, vertices, f));
         }
     }
 
     fn triangle_span(&mut self, span: &TriangleSpan) {
+        let Some((plane, vertices)) = self.triangle(span.triangle) else {
+            return;
+        };
         if !self.shader.uniform_per_primitive() {
             for f in span.fragments() {
-                self.triangle_fragment(&f);
+                self.resolve(Sample::of_triangle(&plane, vertices, &f));
             }
             return;
         }
-        let Some(t) = self.triangle(span.triangle) else {
-            return;
-        };
         // The colour is the same for every pixel: shade the first one.
         let first = TriangleFragment {
             x: span.x0,
@@ -505,7 +529,7 @@ impl FragmentSink for FragmentStage<'_> {
             triangle: span.triangle,
             edges: span.edges,
         };
-        let input = self.fragment_input(&Sample::of_triangle(&t, &first));
+        let input = self.fragment_input(&Sample::of_triangle(&plane, vertices, &first));
         let color = to_rgba8(self.color_of(&input));
         let start = self.target.index(span.x0, span.y);
         let end = start + (span.x1 - span.x0) as usize + 1;
@@ -514,7 +538,7 @@ impl FragmentSink for FragmentStage<'_> {
             depth: &mut self.target.depth[start..end],
             coverage: &mut self.target.coverage[start..end],
         };
-        let (plane, row, x0) = (t.depth, t.depth.row(span.y), span.x0);
+        let (row, x0) = (plane.row(span.y), span.x0);
         let write = self.depth.write;
         // One monomorphic loop per comparison, so the compare is not
         // re-dispatched per pixel.

@@ -113,6 +113,51 @@ fn seed_000_vertex_array_renders_exactly() {
     assert_eq!((g.culled, g.triangles), (0, 1));
 }
 
+/// A triangle whose bounding box holds no pixel centre, and one off the
+/// side of the screen, are dropped before the rasterizer and counted; a
+/// triangle covering one pixel centre is kept.
+#[test]
+fn triangles_without_a_pixel_centre_in_their_bounds_are_dropped() {
+    // Pixels of an 8x8 viewport are 0.25 wide in NDC; pixel (4, 3)'s centre
+    // is at x = 0.125, y = 0.125.
+    let positions = vec![
+        // Between the centres at x = 0.125 and x = 0.375.
+        Vec3::new(0.15, 0.0, 0.0),
+        Vec3::new(0.35, 0.0, 0.0),
+        Vec3::new(0.25, 0.3, 0.0),
+        // Right of the screen (x > 1), inside the guard band.
+        Vec3::new(1.5, 0.0, 0.0),
+        Vec3::new(1.9, 0.0, 0.0),
+        Vec3::new(1.7, 0.5, 0.0),
+        // Around the centre of pixel (4, 3).
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(0.3, 0.0, 0.0),
+        Vec3::new(0.1, 0.3, 0.0),
+    ];
+    let viewport = Viewport {
+        width: 8,
+        height: 8,
+    };
+    let triangles = [[0, 1, 2], [3, 4, 5], [6, 7, 8]];
+    let g = process_triangles(
+        &positions,
+        &triangles,
+        &Transform::identity(),
+        viewport,
+        &PipelineOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(
+        (g.stats.empty_bounds, g.stats.triangles),
+        (2, 1),
+        "{:?}",
+        g.stats
+    );
+    assert_eq!(g.source, vec![2]);
+    let b = g.setups[0].bounds;
+    assert_eq!((b.x0, b.y0, b.x1, b.y1), (4, 3, 4, 3));
+}
+
 #[test]
 fn bad_indices_and_arrays_are_errors() {
     let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
@@ -509,7 +554,7 @@ proptest! {
         for f in &list.triangles {
             prop_assert!(!covered[(f.y * w + f.x) as usize], "pixel ({}, {}) drawn twice", f.x, f.y);
             covered[(f.y * w + f.x) as usize] = true;
-            let z = geometry.triangles[f.triangle as usize].depth.at(f.x, f.y);
+            let z = geometry.shaded.triangles[f.triangle as usize].depth.at(f.x, f.y);
             prop_assert!((-1e-3..=1.001).contains(&z), "depth {z} outside [0, 1]");
         }
         for y in 0..h {

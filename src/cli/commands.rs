@@ -342,8 +342,8 @@ fn render_mesh(
         load_time.as_secs_f64() * 1e3
     );
     println!(
-        "pipeline: {} rejected, {} clipped, {} culled, {} degenerate, {} rasterized",
-        g.rejected, g.clipped, g.culled, g.degenerate, g.triangles
+        "pipeline: {} rejected, {} clipped, {} culled, {} degenerate, {} with no pixel centre, {} rasterized",
+        g.rejected, g.clipped, g.culled, g.degenerate, g.empty_bounds, g.triangles
     );
     println!(
         "{} at {}x{}: {} samples tested, {} fragments",

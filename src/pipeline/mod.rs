@@ -27,12 +27,13 @@ pub mod camera;
 pub mod clip;
 pub mod vertex;
 
-use crate::edge::{EdgeFunction, FillRule, PixelRect, TriangleSetup};
+use crate::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::error::{Error, Result};
 use crate::fixed::{Fixed, FixedPoint};
 use crate::fragment::WorkCounters;
 use crate::stage::{
     FragmentShader, FragmentStage, Interpolation, ShadedLine, ShadedTriangle, ShadedVertex,
+    TriangleData,
 };
 use crate::target::{DepthState, RenderTarget};
 use crate::triangle::TriangleRasterizer;
@@ -166,6 +167,10 @@ pub struct GeometryStats {
     /// Cut triangles dropped because their coordinates span more orders of
     /// magnitude than `f64` can intersect exactly enough (e.g. 1e30 and 1e-5).
     pub unresolvable: u64,
+    /// Triangles whose bounding box holds no pixel centre of the viewport
+    /// (too small to cover a sample, or off-screen): dropped, as they
+    /// could not produce a fragment.
+    pub empty_bounds: u64,
     /// Triangles handed to the rasterizer.
     pub triangles: u64,
 }
@@ -179,40 +184,76 @@ impl GeometryStats {
         self.culled += other.culled;
         self.degenerate += other.degenerate;
         self.unresolvable += other.unresolvable;
+        self.empty_bounds += other.empty_bounds;
         self.triangles += other.triangles;
     }
 }
 
 /// Triangles ready for a back-end, and their data for the fragment stage.
+///
+/// A `Geometry` can be filled again and again by [`process_triangles_into`]
+/// (one frame after the other): its buffers keep their memory, so a frame
+/// costs no allocation once the first is done.
 #[derive(Clone, Debug, Default)]
 pub struct Geometry {
     /// Set-up triangles; triangle `i` has id `i`.
     pub setups: Vec<TriangleSetup>,
-    /// The fragment stage's data for triangle id `i`.
-    pub triangles: Vec<ShadedTriangle>,
+    /// The fragment stage's data: the vertices, and for triangle id `i`
+    /// its vertex indices and depth plane.
+    pub shaded: TriangleData,
     /// The assembled primitive each triangle came from.
     pub source: Vec<u32>,
     /// Counts of what happened.
     pub stats: GeometryStats,
+    /// Buffers kept from one draw to the next.
+    scratch: Scratch,
 }
 
-/// A vertex after the divide and viewport transform.
-#[derive(Copy, Clone, Debug)]
-struct ScreenVertex {
+/// The working buffers of [`process_triangles_into`].
+#[derive(Clone, Debug, Default)]
+struct Scratch {
+    /// Per vertex: its snapped screen position and clip out-code.
+    screen: Vec<ScreenPoint>,
+    /// What each task made of its chunk of the triangles.
+    parts: Vec<Part>,
+}
+
+/// A vertex's place after the vertex shader: out-code, and when that is 0
+/// (inside every clip plane) its snapped screen position.
+#[derive(Copy, Clone, Debug, Default)]
+struct ScreenPoint {
     point: FixedPoint,
-    shaded: ShadedVertex,
+    outcode: u8,
 }
 
-fn to_screen_vertex(viewport: &Viewport, v: &ClipVertex) -> Result<ScreenVertex> {
+/// Out-code bit for a vertex the pipeline refuses (the seven clip planes
+/// use the bits below): a vertex shader output that is not finite, or one
+/// inside the clip volume that the viewport transform cannot snap.
+const REFUSED: u8 = 1 << 7;
+
+/// What one task makes of a chunk of the triangles: set-ups with ids
+/// counted from 0 in the chunk, and the vertices made by clipping in a
+/// list of their own (the k-th is vertex `n + k` of a draw of `n` vertices).
+#[derive(Clone, Debug, Default)]
+struct Part {
+    setups: Vec<TriangleSetup>,
+    triangles: Vec<ShadedTriangle>,
+    source: Vec<u32>,
+    clip_vertices: Vec<ShadedVertex>,
+    stats: GeometryStats,
+}
+
+/// Divides by `w`, maps to the viewport and snaps a clip-space vertex.
+fn to_screen_vertex(viewport: &Viewport, v: &ClipVertex) -> Result<(FixedPoint, ShadedVertex)> {
     let (point, depth, inv_w) = viewport.to_screen(v.position)?;
-    Ok(ScreenVertex {
+    Ok((
         point,
-        shaded: ShadedVertex {
+        ShadedVertex {
             depth,
             inv_w,
             varyings: v.varyings,
         },
-    })
+    ))
 }
 
 impl Geometry {
@@ -224,7 +265,7 @@ impl Geometry {
         vertices: &[[ShadedVertex; 3]],
     ) -> Geometry {
         Geometry {
-            triangles: crate::stage::shade_triangles(&setups, vertices),
+            shaded: TriangleData::of_triangles(&setups, vertices),
             source: (0..setups.len() as u32).collect(),
             stats: GeometryStats {
                 primitives: vertices.len() as u64,
@@ -233,72 +274,105 @@ impl Geometry {
                 ..GeometryStats::default()
             },
             setups,
+            scratch: Scratch::default(),
         }
     }
 
-    /// The parts one after the other, triangle ids renumbered from 0; the
-    /// copying is spread over rayon's threads.
-    fn join(parts: &[Geometry]) -> Geometry {
+    /// Gathers the parts into this geometry, one after the other, with
+    /// triangle ids renumbered from 0 and clip vertices appended after the
+    /// `mesh_vertices` shaded ones; the copying is spread over rayon's
+    /// threads. A single part is moved in without copying.
+    fn gather(&mut self, parts: &mut [Part], mesh_vertices: usize) {
+        self.stats = GeometryStats::default();
+        for p in parts.iter() {
+            self.stats.add(&p.stats);
+        }
+        if let [part] = parts {
+            std::mem::swap(&mut self.setups, &mut part.setups);
+            std::mem::swap(&mut self.shaded.triangles, &mut part.triangles);
+            std::mem::swap(&mut self.source, &mut part.source);
+            self.shaded.vertices.extend_from_slice(&part.clip_vertices);
+            return;
+        }
         let mut starts = Vec::with_capacity(parts.len());
-        let mut total = 0;
-        let mut stats = GeometryStats::default();
-        for p in parts {
+        let mut clip_starts = Vec::with_capacity(parts.len());
+        let (mut total, mut clipped) = (0, 0);
+        for p in parts.iter() {
             starts.push(total);
+            clip_starts.push(clipped as u32);
             total += p.setups.len();
-            stats.add(&p.stats);
+            clipped += p.clip_vertices.len();
+            self.shaded.vertices.extend_from_slice(&p.clip_vertices);
         }
         // The part holding triangle i, and i's index in it.
         let locate = |i: usize| {
             let part = starts.partition_point(|&s| s <= i) - 1;
-            (&parts[part], i - starts[part])
+            (part, i - starts[part])
         };
-        Geometry {
-            setups: (0..total)
-                .into_par_iter()
-                .map(|i| {
-                    let (p, j) = locate(i);
-                    TriangleSetup {
-                        id: i as u32,
-                        ..p.setups[j]
-                    }
-                })
-                .collect(),
-            triangles: (0..total)
-                .into_par_iter()
-                .map(|i| {
-                    let (p, j) = locate(i);
-                    p.triangles[j]
-                })
-                .collect(),
-            source: (0..total)
-                .into_par_iter()
-                .map(|i| {
-                    let (p, j) = locate(i);
-                    p.source[j]
-                })
-                .collect(),
-            stats,
-        }
+        let parts = &*parts;
+        self.setups.clear();
+        self.setups.par_extend((0..total).into_par_iter().map(|i| {
+            let (p, j) = locate(i);
+            TriangleSetup {
+                id: i as u32,
+                ..parts[p].setups[j]
+            }
+        }));
+        let n = mesh_vertices as u32;
+        self.shaded.triangles.clear();
+        self.shaded
+            .triangles
+            .par_extend((0..total).into_par_iter().map(|i| {
+                let (p, j) = locate(i);
+                let t = parts[p].triangles[j];
+                ShadedTriangle {
+                    vertices: t
+                        .vertices
+                        .map(|v| if v < n { v } else { v + clip_starts[p] }),
+                    ..t
+                }
+            }));
+        self.source.clear();
+        self.source.par_extend((0..total).into_par_iter().map(|i| {
+            let (p, j) = locate(i);
+            parts[p].source[j]
+        }));
+    }
+}
+
+impl Part {
+    /// Empties the part, keeping its memory.
+    fn clear(&mut self) {
+        self.setups.clear();
+        self.triangles.clear();
+        self.source.clear();
+        self.clip_vertices.clear();
+        self.stats = GeometryStats::default();
     }
 
-    /// Sets up one screen-space triangle and keeps it unless it is
-    /// degenerate, of a winding other than `winding` (when given), or culled.
+    /// Keeps the triangle with these vertices (indices, snapped positions
+    /// and depths) and sets it up, unless it is degenerate, of a winding
+    /// other than `winding` (when given), culled, or without a pixel sample
+    /// of the viewport in its bounding box.
+    #[allow(clippy::too_many_arguments)]
     fn push(
         &mut self,
-        v: [ScreenVertex; 3],
+        vertices: [u32; 3],
+        points: [FixedPoint; 3],
+        depths: [f32; 3],
         source: u32,
         winding: Option<i8>,
         options: &PipelineOptions,
+        viewport: PixelRect,
     ) {
-        let id = self.setups.len() as u32;
-        let Some(setup) = TriangleSetup::new(id, v.map(|s| s.point), options.rule)
-            .filter(|s| winding.is_none_or(|w| w == s.winding))
-        else {
+        let signed_area = TriangleSetup::signed_area(points);
+        let this_winding = signed_area.signum() as i8;
+        if signed_area == 0 || winding.is_some_and(|w| w != this_winding) {
             self.stats.degenerate += 1;
             return;
-        };
+        }
         let facing_viewer =
-            (setup.winding > 0) == (options.front_face == FrontFace::CounterClockwise);
+            (this_winding > 0) == (options.front_face == FrontFace::CounterClockwise);
         let culled = match options.cull {
             CullMode::None => false,
             CullMode::Back => !facing_viewer,
@@ -308,8 +382,16 @@ impl Geometry {
             self.stats.culled += 1;
             return;
         }
+        let id = self.setups.len() as u32;
+        let Some(setup) = TriangleSetup::new(id, points, options.rule) else {
+            unreachable!("the area was checked to be non-zero");
+        };
+        if setup.bounds_within(viewport).is_empty() {
+            self.stats.empty_bounds += 1;
+            return;
+        }
         self.triangles
-            .push(ShadedTriangle::new(&setup, v.map(|s| s.shaded)));
+            .push(ShadedTriangle::new(&setup, vertices, depths));
         self.setups.push(setup);
         self.source.push(source);
         self.stats.triangles += 1;
@@ -321,79 +403,106 @@ const MIN_TRIANGLE_CHUNK: usize = 16_384;
 
 /// The shaded vertices of a draw, shared by the tasks that assemble its
 /// triangles.
-struct AssemblyInput<'a> {
-    shaded: &'a [ClipVertex],
-    codes: &'a [u8],
-    screen: &'a [Option<ScreenVertex>],
+struct AssemblyInput<'a, V, S> {
+    /// The draw's vertices and vertex shader, to shade again the corners
+    /// of the (few) triangles that must be clipped.
+    vertices: &'a [V],
+    shader: &'a S,
+    screen: &'a [ScreenPoint],
+    shaded: &'a [ShadedVertex],
     clip: &'a ClipVolume,
     viewport: &'a Viewport,
     options: &'a PipelineOptions,
 }
 
-impl AssemblyInput<'_> {
+impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
     /// Assembles, clips, culls and sets up `triangles`, the first of which
-    /// is primitive number `first` of the draw; ids start at 0.
-    fn process(&self, triangles: &[[u32; 3]], first: usize) -> Geometry {
+    /// is primitive number `first` of the draw, into `part`.
+    fn process(&self, triangles: &[[u32; 3]], first: usize, part: &mut Part) {
         let (viewport, options) = (self.viewport, self.options);
-        let mut geometry = Geometry {
-            setups: Vec::with_capacity(triangles.len()),
-            triangles: Vec::with_capacity(triangles.len()),
-            source: Vec::with_capacity(triangles.len()),
-            stats: GeometryStats::default(),
-        };
+        let pixels = PixelRect::of_target(viewport.width, viewport.height);
+        let mesh_vertices = self.shaded.len() as u32;
+        part.clear();
+        part.setups.reserve(triangles.len());
+        part.triangles.reserve(triangles.len());
+        part.source.reserve(triangles.len());
         let mut polygon = Vec::with_capacity(10);
         for (index, t) in triangles.iter().enumerate() {
-            geometry.stats.primitives += 1;
+            part.stats.primitives += 1;
             let source = (first + index) as u32;
             let idx = t.map(|i| i as usize);
-            if let [Some(a), Some(b), Some(c)] = idx.map(|i| self.screen[i]) {
-                geometry.push([a, b, c], source, None, options);
+            let screen = idx.map(|i| self.screen[i]);
+            let codes = screen.map(|s| s.outcode);
+            if codes == [0; 3] {
+                let depths = idx.map(|i| self.shaded[i].depth);
+                part.push(
+                    *t,
+                    screen.map(|s| s.point),
+                    depths,
+                    source,
+                    None,
+                    options,
+                    pixels,
+                );
                 continue;
             }
-            let corners = idx.map(|i| self.shaded[i]);
-            let codes = idx.map(|i| self.codes[i]);
-            match self.clip.clip_triangle(&corners, codes, &mut polygon) {
-                ClipResult::Inside => unreachable!("inside vertices all have screen positions"),
-                ClipResult::Outside => geometry.stats.rejected += 1,
-                ClipResult::Cut(_) => {
-                    geometry.stats.clipped += 1;
-                    // A cut vertex can miss its plane when the triangle's
-                    // coordinates differ by more than f64 resolves (say 1e30
-                    // next to 1e-5); such a polygon is dropped, never drawn wrong.
-                    let Ok(screen) = polygon
-                        .iter()
-                        .map(|v| to_screen_vertex(viewport, v))
-                        .collect::<Result<Vec<ScreenVertex>>>()
-                    else {
-                        geometry.stats.unresolvable += 1;
-                        continue;
-                    };
-                    // The fan of a convex polygon keeps one winding. Cut points
-                    // that are nearly collinear can snap into a sliver of the
-                    // opposite winding, which would overlap its neighbour; the
-                    // polygon's winding (the sign of its area, the sum of its fan
-                    // triangles' signed areas) decides which slivers are dropped.
-                    let fan: Vec<[ScreenVertex; 3]> = (1..screen.len().saturating_sub(1))
-                        .map(|i| [screen[0], screen[i], screen[i + 1]])
-                        .collect();
-                    let twice_area: i64 = fan
-                        .iter()
-                        .map(|[a, b, c]| EdgeFunction::through(b.point, c.point).eval(a.point))
-                        .sum();
-                    let winding = if twice_area < 0 { -1 } else { 1 };
-                    for triangle in fan {
-                        geometry.push(triangle, source, Some(winding), options);
-                    }
-                }
+            if codes[0] & codes[1] & codes[2] != 0 {
+                part.stats.rejected += 1;
+                continue;
+            }
+            let corners = idx.map(|i| self.shader.shade(&self.vertices[i]));
+            let ClipResult::Cut(_) = self.clip.clip_triangle(&corners, codes, &mut polygon) else {
+                unreachable!("the out-codes say the triangle straddles a plane");
+            };
+            part.stats.clipped += 1;
+            // A cut vertex can miss its plane when the triangle's
+            // coordinates differ by more than f64 resolves (say 1e30
+            // next to 1e-5); such a polygon is dropped, never drawn wrong.
+            let Ok(screen) = polygon
+                .iter()
+                .map(|v| to_screen_vertex(viewport, v))
+                .collect::<Result<Vec<(FixedPoint, ShadedVertex)>>>()
+            else {
+                part.stats.unresolvable += 1;
+                continue;
+            };
+            let base = mesh_vertices + part.clip_vertices.len() as u32;
+            part.clip_vertices.extend(screen.iter().map(|(_, v)| *v));
+            // The fan of a convex polygon keeps one winding. Cut points
+            // that are nearly collinear can snap into a sliver of the
+            // opposite winding, which would overlap its neighbour; the
+            // polygon's winding (the sign of its area, the sum of its fan
+            // triangles' signed areas) decides which slivers are dropped.
+            let fan: Vec<[usize; 3]> = (1..screen.len().saturating_sub(1))
+                .map(|i| [0, i, i + 1])
+                .collect();
+            let twice_area: i64 = fan
+                .iter()
+                .map(|f| TriangleSetup::signed_area(f.map(|k| screen[k].0)))
+                .sum();
+            let winding = if twice_area < 0 { -1 } else { 1 };
+            for f in fan {
+                part.push(
+                    f.map(|k| base + k as u32),
+                    f.map(|k| screen[k].0),
+                    f.map(|k| screen[k].1.depth),
+                    source,
+                    Some(winding),
+                    options,
+                    pixels,
+                );
             }
         }
-        geometry
     }
 }
 
 /// Runs the vertex shader on every vertex, assembles `triangles` (indices
 /// into `vertices`), clips, divides, maps to the viewport, snaps, culls and
 /// sets up what is left.
+///
+/// Triangles whose bounding box holds no pixel centre of the viewport are
+/// dropped here too (counted in [`GeometryStats::empty_bounds`]): they
+/// could not produce a fragment.
 ///
 /// The work is spread over rayon's threads: vertices are shaded in
 /// parallel, triangles are processed in chunks in parallel, and the chunks'
@@ -409,46 +518,96 @@ pub fn process_triangles<V: Sync, S: VertexShader<V>>(
     viewport: Viewport,
     options: &PipelineOptions,
 ) -> Result<Geometry> {
+    let mut geometry = Geometry::default();
+    process_triangles_into(
+        &mut geometry,
+        vertices,
+        triangles,
+        shader,
+        viewport,
+        options,
+    )?;
+    Ok(geometry)
+}
+
+/// [`process_triangles`] into an existing [`Geometry`], whose contents are
+/// replaced and whose memory is reused: what a renderer drawing frame
+/// after frame calls.
+pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
+    geometry: &mut Geometry,
+    vertices: &[V],
+    triangles: &[[u32; 3]],
+    shader: &S,
+    viewport: Viewport,
+    options: &PipelineOptions,
+) -> Result<()> {
     Error::check_indices(triangles.iter().flatten(), vertices.len())?;
     let clip = ClipVolume::new(viewport.width, viewport.height);
-    let shaded: Vec<ClipVertex> = vertices.par_iter().map(|v| shader.shade(v)).collect();
-    Error::check_finite(shaded.iter().flat_map(|v| v.position.to_array()))?;
-    let codes: Vec<u8> = shaded
+    let mut scratch = std::mem::take(&mut geometry.scratch);
+    // Each vertex is shaded once, however many triangles share it; those
+    // inside the clip volume are divided and snapped once too.
+    vertices
         .par_iter()
-        .map(|v| clip.outcode(v.position))
-        .collect();
-    // Vertices inside the clip volume are divided and snapped once, however
-    // many triangles share them.
-    let screen: Vec<Option<ScreenVertex>> = shaded
-        .par_iter()
-        .zip(&codes)
-        .map(|(v, &c)| {
-            if c == 0 {
-                to_screen_vertex(&viewport, v).map(Some)
+        .map(|v| {
+            let out = shader.shade(v);
+            let outcode = if out.position.is_finite() {
+                clip.outcode(out.position)
             } else {
-                Ok(None)
+                REFUSED
+            };
+            let screen = (outcode == 0).then(|| to_screen_vertex(&viewport, &out));
+            match screen {
+                Some(Ok((point, shaded))) => (ScreenPoint { point, outcode }, shaded),
+                Some(Err(_)) | None => {
+                    let outcode = if screen.is_some() { REFUSED } else { outcode };
+                    let shaded = ShadedVertex {
+                        depth: 0.0,
+                        inv_w: 0.0,
+                        varyings: out.varyings,
+                    };
+                    let point = FixedPoint::default();
+                    (ScreenPoint { point, outcode }, shaded)
+                }
             }
         })
-        .collect::<Result<_>>()?;
-    let vertices = AssemblyInput {
-        shaded: &shaded,
-        codes: &codes,
-        screen: &screen,
+        .unzip_into_vecs(&mut scratch.screen, &mut geometry.shaded.vertices);
+    if let Some(i) = scratch
+        .screen
+        .par_iter()
+        .position_first(|s| s.outcode & REFUSED != 0)
+    {
+        // Shade the first refused vertex again to say why.
+        let out = shader.shade(&vertices[i]);
+        Error::check_finite(out.position.to_array())?;
+        to_screen_vertex(&viewport, &out)?;
+    }
+    let input = AssemblyInput {
+        vertices,
+        shader,
+        screen: &scratch.screen,
+        shaded: &geometry.shaded.vertices,
         clip: &clip,
         viewport: &viewport,
         options,
     };
     let chunk = crate::binning::chunk_len(triangles.len(), MIN_TRIANGLE_CHUNK);
-    let mut parts: Vec<Geometry> = triangles
-        .par_chunks(chunk)
+    let chunks = triangles.len().div_ceil(chunk).max(1);
+    scratch.parts.resize_with(chunks, Part::default);
+    scratch
+        .parts
+        .par_iter_mut()
+        .zip(triangles.par_chunks(chunk.max(1)))
         .enumerate()
-        .map(|(c, part)| vertices.process(part, c * chunk))
-        .collect();
-    if parts.len() <= 1 {
-        return Ok(parts.pop().unwrap_or_default());
+        .for_each(|(c, (part, list))| input.process(list, c * chunk, part));
+    if triangles.is_empty() {
+        scratch.parts[0].clear();
     }
-    Ok(Geometry::join(&parts))
+    let mesh_vertices = vertices.len();
+    geometry.gather(&mut scratch.parts, mesh_vertices);
+    geometry.scratch = scratch;
+    Ok(())
 }
+
 /// Runs the vertex shader on the end points of `segments` (index pairs
 /// into `vertices`), clips each segment, divides and maps it to the viewport.
 /// Segments entirely outside the clip volume are dropped; the rest keep
@@ -478,9 +637,9 @@ pub fn process_lines<V, S: VertexShader<V>>(
                 to_screen_vertex(&viewport, &b)?,
             );
             lines.push(ShadedLine {
-                from: a.point,
-                to: b.point,
-                vertices: [a.shaded, b.shaded],
+                from: a.0,
+                to: b.0,
+                vertices: [a.1, b.1],
             });
         }
     }
@@ -499,7 +658,7 @@ pub fn draw(
 ) -> WorkCounters {
     let viewport = PixelRect::of_target(target.width(), target.height());
     let mut stage = FragmentStage::new(target, shader)
-        .with_triangles(&geometry.triangles)
+        .with_triangles(&geometry.shaded)
         .with_depth(depth)
         .with_interpolation(interpolation);
     backend.rasterize(&geometry.setups, viewport, &mut stage)
