@@ -13,7 +13,7 @@ use rasterlab::input::{read_shapes, Shapes};
 use rasterlab::line::{Connectivity, Endpoints, LineOptions, LineSetup};
 use rasterlab::mesh::Mesh;
 use rasterlab::pipeline::{CullMode, PipelineOptions};
-use rasterlab::render::{Frame, MeshRenderer, RenderSettings};
+use rasterlab::render::{MeshRenderer, RenderSettings};
 use rasterlab::report::{CompareInput, Report};
 use rasterlab::scene::{setup_triangles, Scene2D};
 use rasterlab::shader::Flat;
@@ -318,19 +318,24 @@ fn render_mesh(
     let mesh = Mesh::load(path)?;
     let load_time = start.elapsed();
     let renderer = MeshRenderer::new(&mesh, args.mesh.settings(args.size, rule, depth)?)?;
-    let mut frames = Vec::with_capacity(args.mesh.frames as usize);
-    for _ in 0..args.mesh.frames {
-        frames.push(renderer.render(backend)?);
+    // Only the times of the earlier frames are kept, as an application
+    // drawing frame after frame keeps only the newest image.
+    let mut times: Vec<(Duration, Duration)> = Vec::with_capacity(args.mesh.frames as usize);
+    let mut last = renderer.render(backend)?;
+    for _ in 1..args.mesh.frames {
+        times.push((last.geometry_time, last.raster_time));
+        drop(last);
+        last = renderer.render(backend)?;
     }
-    let median = |f: &dyn Fn(&Frame) -> Duration| {
-        let mut t: Vec<Duration> = frames.iter().map(f).collect();
+    times.push((last.geometry_time, last.raster_time));
+    let median = |f: &dyn Fn(&(Duration, Duration)) -> Duration| {
+        let mut t: Vec<Duration> = times.iter().map(f).collect();
         t.sort();
         t[t.len() / 2]
     };
-    let geometry = median(&|f| f.geometry_time);
-    let raster = median(&|f| f.raster_time);
-    let total = median(&|f| f.geometry_time + f.raster_time);
-    let last = frames.pop().expect("at least one frame");
+    let geometry = median(&|t| t.0);
+    let raster = median(&|t| t.1);
+    let total = median(&|t| t.0 + t.1);
     last.target.save_png(&args.out)?;
     let g = last.geometry;
     let s = renderer.settings();
