@@ -135,6 +135,7 @@ impl Viewport {
     ///
     /// Errors: `w <= 0` ([`Error::NonPositiveW`]), a non-finite value, or a
     /// point beyond the guard band.
+    #[inline]
     pub fn to_screen(&self, clip: glam::Vec4) -> Result<(FixedPoint, f32, f32)> {
         if clip.w.is_nan() || clip.w <= 0.0 {
             return Err(Error::NonPositiveW { w: clip.w });
@@ -219,10 +220,12 @@ struct Scratch {
 }
 
 /// A vertex's place after the vertex shader: out-code, and when that is 0
-/// (inside every clip plane) its snapped screen position.
+/// (inside every clip plane) its snapped screen position and depth (kept
+/// here too, so that assembly reads only these 16 bytes per vertex).
 #[derive(Copy, Clone, Debug, Default)]
 struct ScreenPoint {
     point: FixedPoint,
+    depth: f32,
     outcode: u8,
 }
 
@@ -409,7 +412,9 @@ struct AssemblyInput<'a, V, S> {
     vertices: &'a [V],
     shader: &'a S,
     screen: &'a [ScreenPoint],
-    shaded: &'a [ShadedVertex],
+    /// The number of vertices of the draw: vertices made by clipping are
+    /// numbered after them.
+    mesh_vertices: u32,
     clip: &'a ClipVolume,
     viewport: &'a Viewport,
     options: &'a PipelineOptions,
@@ -421,7 +426,7 @@ impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
     fn process(&self, triangles: &[[u32; 3]], first: usize, part: &mut Part) {
         let (viewport, options) = (self.viewport, self.options);
         let pixels = PixelRect::of_target(viewport.width, viewport.height);
-        let mesh_vertices = self.shaded.len() as u32;
+        let mesh_vertices = self.mesh_vertices;
         part.clear();
         part.setups.reserve(triangles.len());
         part.triangles.reserve(triangles.len());
@@ -434,7 +439,7 @@ impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
             let screen = idx.map(|i| self.screen[i]);
             let codes = screen.map(|s| s.outcode);
             if codes == [0; 3] {
-                let depths = idx.map(|i| self.shaded[i].depth);
+                let depths = screen.map(|s| s.depth);
                 part.push(
                     *t,
                     screen.map(|s| s.point),
@@ -557,7 +562,17 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
             };
             let screen = (outcode == 0).then(|| to_screen_vertex(&viewport, &out));
             match screen {
-                Some(Ok((point, shaded))) => (ScreenPoint { point, outcode }, shaded),
+                Some(Ok((point, shaded))) => {
+                    let depth = shaded.depth;
+                    (
+                        ScreenPoint {
+                            point,
+                            depth,
+                            outcode,
+                        },
+                        shaded,
+                    )
+                }
                 Some(Err(_)) | None => {
                     let outcode = if screen.is_some() { REFUSED } else { outcode };
                     let shaded = ShadedVertex {
@@ -565,8 +580,11 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
                         inv_w: 0.0,
                         varyings: out.varyings,
                     };
-                    let point = FixedPoint::default();
-                    (ScreenPoint { point, outcode }, shaded)
+                    let screen = ScreenPoint {
+                        outcode,
+                        ..ScreenPoint::default()
+                    };
+                    (screen, shaded)
                 }
             }
         })
@@ -585,7 +603,7 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
         vertices,
         shader,
         screen: &scratch.screen,
-        shaded: &geometry.shaded.vertices,
+        mesh_vertices: vertices.len() as u32,
         clip: &clip,
         viewport: &viewport,
         options,
