@@ -131,11 +131,13 @@ impl LineWorkload {
         backend.rasterize(&self.lines, &LineOptions::DEFAULT, viewport, &mut stage)
     }
 
-    /// Clears depth and coverage of `target` and draws the segments with
-    /// the fast line path; returns the pixels written. The same buffers as
-    /// [`run`](Self::run) with `bresenham`.
+    /// Clears the coverage of `target` and draws the segments with the
+    /// fast line path; returns the pixels written. The same colour and
+    /// coverage as [`run`](Self::run) with `bresenham`; depth, which lines
+    /// drawn with the test `always` and no depth write never touch, is left
+    /// as it is.
     pub fn run_fast(&self, target: &mut RenderTarget) -> u64 {
-        target.clear_depth_and_coverage();
+        target.coverage.fill(0);
         draw_lines(target, &self.lines, to_rgba8(COLOR))
     }
 }

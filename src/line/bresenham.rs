@@ -54,7 +54,8 @@ impl Bresenham {
         let s = SUBPIXEL_SCALE as i128;
         let mut k = frame.nearest_row(frame.i0);
         // d = f(i0 + 1, k + 0.5) = du * (midpoint row) - du * v(i0 + 1)
-        let mut d = du * (s * k as i128 + HALF_PIXEL as i128) - frame.scaled_v_at(frame.i0 + 1);
+        let mut d =
+            du * (s * k as i128 + HALF_PIXEL as i128) - i128::from(frame.scaled_v_at(frame.i0 + 1));
         let mut steps = Vec::with_capacity((frame.i1 - frame.i0 + 1) as usize);
         for i in frame.i0..=frame.i1 {
             let step_up = d < 0;

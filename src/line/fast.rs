@@ -79,8 +79,20 @@ fn visible_columns(frame: &OctantFrame, major_len: i64, minor_len: i64) -> Optio
     } else {
         (0, minor_len - 1)
     };
+    // The common case, found without a division: every column's row lies
+    // on the target. Column centres are within half a pixel of the segment's
+    // ends and the slope is at most 1, so the ideal line's v over the
+    // columns stays within [v0 - 128, v1 + 128], and its nearest rows,
+    // ceil((v - 128) / 256), within the bounds below.
+    let (rows_from, rows_to) = (
+        (frame.v0 - SUBPIXEL_SCALE).div_euclid(SUBPIXEL_SCALE),
+        frame.v1.div_euclid(SUBPIXEL_SCALE) + 1,
+    );
+    if k_lo <= rows_from && rows_to <= k_hi {
+        return Some((first, last));
+    }
     // k grows with i: when both end columns are on the target, so is every
-    // column between them (the common case, found without a search).
+    // column between them.
     let on_target = |i: i64| (k_lo..=k_hi).contains(&frame.nearest_row(i));
     if on_target(first) && on_target(last) {
         return Some((first, last));
@@ -106,10 +118,11 @@ fn first_column_where(mut lo: i64, mut hi: i64, pred: impl Fn(i64) -> bool) -> i
 /// The midpoint walk over columns `first..=last`, all on the target.
 fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, color: [u8; 4]) {
     let width = target.width() as usize;
-    let s = SUBPIXEL_SCALE as i128;
-    let (du, dv) = (frame.du() as i128, frame.dv() as i128);
+    // i64 is exact here, as in OctantFrame::scaled_v_at: |d| < 2^58.
+    let s = SUBPIXEL_SCALE;
+    let (du, dv) = (frame.du(), frame.dv());
     let mut k = frame.nearest_row(first);
-    let mut d = du * (s * k as i128 + HALF_PIXEL as i128) - frame.scaled_v_at(first + 1);
+    let mut d = du * (s * k + HALF_PIXEL) - frame.scaled_v_at(first + 1);
     let (up, flat) = (s * (du - dv), s * dv);
     let screen = |i: i64, k: i64| {
         let (x, y) = frame.to_screen(i, k);

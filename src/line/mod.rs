@@ -266,22 +266,32 @@ impl OctantFrame {
     /// `du * v(i)`: the ideal line's minor coordinate at column `i`'s centre,
     /// times `du` so that it stays an exact integer (seed 004's
     /// `y = m (x - x0) + y0` with `m = dv / du`).
-    pub fn scaled_v_at(&self, i: i64) -> i128 {
-        let (du, dv) = (self.du() as i128, self.dv() as i128);
-        self.v0 as i128 * du + dv * (i as i128 * SUBPIXEL_SCALE as i128 - self.u0 as i128)
+    ///
+    /// Exact in `i64`: snapped coordinates lie within the guard band
+    /// (`|raw| < 2^23`), so `|u|, |v|, du, dv < 2^25`, and for any column
+    /// within `2^24` pixels of the origin (every column of a segment is
+    /// within `2^15`) each product is below `2^58`.
+    #[inline]
+    pub fn scaled_v_at(&self, i: i64) -> i64 {
+        debug_assert!(
+            i.abs() < 1 << 24,
+            "column {i} is far outside the guard band"
+        );
+        self.v0 * self.du() + self.dv() * (i * SUBPIXEL_SCALE - self.u0)
     }
 
     /// The row nearest the ideal line at column `i`, ties to the lower row
     /// (the start's side). For a zero-length segment, the start's row.
+    #[inline]
     pub fn nearest_row(&self, i: i64) -> i64 {
-        let du = self.du() as i128;
+        let du = self.du();
         if du == 0 {
             return pixel_containing(self.v0 + HALF_PIXEL);
         }
         // ceil((v - 128) / 256) with v = scaled / du.
-        let num = self.scaled_v_at(i) - HALF_PIXEL as i128 * du;
-        let den = SUBPIXEL_SCALE as i128 * du;
-        (-((-num).div_euclid(den))) as i64
+        let num = self.scaled_v_at(i) - HALF_PIXEL * du;
+        let den = SUBPIXEL_SCALE * du;
+        -((-num).div_euclid(den))
     }
 
     /// Maps a frame pixel `(i, k)` back to a screen pixel.
@@ -334,7 +344,8 @@ pub fn finish_pixels(
                 // It crosses the row boundary v = 256 pk + 128 before the
                 // column boundary u = 256 pi + 128 when v there is above it.
                 let du = frame.du() as i128;
-                let v_at_boundary = frame.scaled_v_at(pi) + frame.dv() as i128 * HALF_PIXEL as i128;
+                let v_at_boundary =
+                    i128::from(frame.scaled_v_at(pi)) + frame.dv() as i128 * HALF_PIXEL as i128;
                 let row_boundary = (SUBPIXEL_SCALE as i128 * pk as i128 + HALF_PIXEL as i128) * du;
                 let corner = if v_at_boundary > row_boundary {
                     (pi, k)

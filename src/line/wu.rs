@@ -34,7 +34,7 @@ impl Wu {
                     frame.v0.rem_euclid(SUBPIXEL_SCALE) as f64 / s as f64,
                 )
             } else {
-                let scaled = frame.scaled_v_at(i);
+                let scaled = i128::from(frame.scaled_v_at(i));
                 let k = scaled.div_euclid(s * du);
                 let rem = scaled.rem_euclid(s * du);
                 (k as i64, rem as f64 / (s * du) as f64)
