@@ -221,12 +221,6 @@ impl TriangleData {
             triangles,
         }
     }
-
-    /// The three vertices of triangle `t`.
-    #[inline]
-    pub fn corners(&self, t: &ShadedTriangle) -> [ShadedVertex; 3] {
-        t.vertices.map(|i| self.vertices[i as usize])
-    }
 }
 
 /// A line segment as the fragment stage needs it.
