@@ -9,6 +9,17 @@ fn rasterlab(args: &[&str]) -> Output {
         .expect("the binary runs")
 }
 
+/// Asserts that the command succeeded (showing its stderr when not) and
+/// returns its standard output.
+fn success_stdout(out: Output) -> String {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
 fn temp_file(name: &str, text: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("rasterlab-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -20,8 +31,7 @@ fn temp_file(name: &str, text: &str) -> std::path::PathBuf {
 #[test]
 fn backends_lists_name_kind_and_description() {
     let out = rasterlab(&["backends"]);
-    assert!(out.status.success());
-    let text = String::from_utf8(out.stdout).unwrap();
+    let text = success_stdout(out);
     let names: Vec<&str> = text
         .lines()
         .map(|l| l.split_whitespace().next().unwrap())
@@ -47,12 +57,7 @@ fn fragments_prints_x_y_t_in_emission_order() {
         "5x5",
         soup.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
+    let text = success_stdout(out);
     let rows: Vec<(u32, u32, u32)> = text
         .lines()
         .map(|l| {
@@ -75,8 +80,7 @@ fn fragments_prints_x_y_t_in_emission_order() {
         "bottom-right",
         soup.to_str().unwrap(),
     ]);
-    assert!(naive.status.success());
-    assert_eq!(String::from_utf8(naive.stdout).unwrap().lines().count(), 25);
+    assert_eq!(success_stdout(naive).lines().count(), 25);
 }
 
 #[test]
@@ -186,12 +190,7 @@ fn render_draws_a_bundled_mesh() {
         "--out",
         out_png.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
+    let text = success_stdout(out);
     assert!(text.contains("3674 triangles"), "{text}");
     assert!(text.contains("time per frame (median of 2)"), "{text}");
     let image = image::open(&out_png).unwrap();
@@ -267,12 +266,7 @@ fn bench_prints_a_table_and_writes_json_and_charts() {
         "--out",
         dir.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let printed: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let printed: serde_json::Value = serde_json::from_str(&success_stdout(out)).unwrap();
     let rows = printed.as_array().unwrap();
     assert!(rows.iter().any(|r| r["backend"] == "fast-bresenham"));
     assert!(rows.iter().any(|r| r["workload"] == "dragon_vrip_res4"));
@@ -303,8 +297,7 @@ fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
         "3",
         "7",
     ]);
-    assert!(out.status.success());
-    let text = String::from_utf8(out.stdout).unwrap();
+    let text = success_stdout(out);
     assert!(text.ends_with("6 rows, 24 fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last\n"), "{text}");
 
     let svg = temp_file("depth.svg", "");
@@ -315,8 +308,7 @@ fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
         "--picture",
         svg.to_str().unwrap(),
     ]);
-    assert!(out.status.success());
-    let text = String::from_utf8(out.stdout).unwrap();
+    let text = success_stdout(out);
     assert!(
         text.contains("triangle 2 (z = 0.8, 0.8, 0.8): 12 fragments, 8 kept"),
         "{text}"
@@ -346,11 +338,7 @@ fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
         "4",
         "17",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    success_stdout(out);
     assert_eq!(image::open(&png).unwrap().width(), 20 * 24);
 
     for (args, message) in [
@@ -448,12 +436,7 @@ fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
             "--out",
             out_dir.to_str().unwrap(),
         ]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let table = String::from_utf8(out.stdout).unwrap();
+        let table = success_stdout(out);
         assert_eq!(table.lines().count(), rows + 2, "{table}");
         let html = std::fs::read_to_string(out_dir.join("index.html")).unwrap();
         assert!(html.contains("<table id=\"work\">"));
