@@ -218,7 +218,16 @@ impl MeshRenderer {
 
     /// Runs the geometry stages (vertex shader, clipping, set-up).
     pub fn geometry(&self) -> Result<Geometry> {
-        pipeline::process_triangles(
+        let mut geometry = Geometry::default();
+        self.geometry_into(&mut geometry)?;
+        Ok(geometry)
+    }
+
+    /// [`geometry`](Self::geometry) into buffers used before, whose memory
+    /// is reused.
+    fn geometry_into(&self, geometry: &mut Geometry) -> Result<()> {
+        pipeline::process_triangles_into(
+            geometry,
             &self.vertices,
             &self.triangles,
             &self.transform,
@@ -236,14 +245,7 @@ impl MeshRenderer {
         let mut reused = self.geometry.try_lock().ok();
         let mut own = Geometry::default();
         let geometry = reused.as_deref_mut().unwrap_or(&mut own);
-        pipeline::process_triangles_into(
-            geometry,
-            &self.vertices,
-            &self.triangles,
-            &self.transform,
-            self.viewport(),
-            &self.settings.pipeline,
-        )?;
+        self.geometry_into(geometry)?;
         let geometry = &*geometry;
         let lines = if self.edges.is_empty() {
             Vec::new()
