@@ -560,9 +560,27 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
             } else {
                 REFUSED
             };
-            let screen = (outcode == 0).then(|| to_screen_vertex(&viewport, &out));
-            match screen {
-                Some(Ok((point, shaded))) => {
+            // Outside a clip plane (or refused): no screen position. The
+            // stage vertex is a placeholder no triangle refers to: a
+            // triangle with such a corner is clipped, from its corners
+            // shaded again.
+            let off_screen = |outcode| {
+                let shaded = ShadedVertex {
+                    depth: 0.0,
+                    inv_w: 0.0,
+                    varyings: out.varyings,
+                };
+                let screen = ScreenPoint {
+                    outcode,
+                    ..ScreenPoint::default()
+                };
+                (screen, shaded)
+            };
+            if outcode != 0 {
+                return off_screen(outcode);
+            }
+            match to_screen_vertex(&viewport, &out) {
+                Ok((point, shaded)) => {
                     let depth = shaded.depth;
                     (
                         ScreenPoint {
@@ -573,19 +591,7 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
                         shaded,
                     )
                 }
-                Some(Err(_)) | None => {
-                    let outcode = if screen.is_some() { REFUSED } else { outcode };
-                    let shaded = ShadedVertex {
-                        depth: 0.0,
-                        inv_w: 0.0,
-                        varyings: out.varyings,
-                    };
-                    let screen = ScreenPoint {
-                        outcode,
-                        ..ScreenPoint::default()
-                    };
-                    (screen, shaded)
-                }
+                Err(_) => off_screen(REFUSED),
             }
         })
         .unzip_into_vecs(&mut scratch.screen, &mut geometry.shaded.vertices);
