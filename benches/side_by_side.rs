@@ -11,6 +11,10 @@
 //!   back-end through the stage and the fast path, against the
 //!   `line_drawing` crate's Bresenham writing into a colour buffer.
 //!
+//! rasterlab draws into one reused target made
+//! `RenderTarget::without_coverage`: colour and depth, as the peers, without
+//! the per-pixel fragment count that the correctness tests read.
+//!
 //! `cargo bench --bench side_by_side` (needs `../shared/data` for the full
 //! dragon; without it, only the bundled `dragon_vrip_res4` is run).
 
@@ -85,16 +89,33 @@ fn dragon(c: &mut Criterion) {
         let renderer = MeshRenderer::new(&mesh, settings).unwrap();
         let mut group = c.benchmark_group(format!("mesh/{name}"));
         group.throughput(Throughput::Elements(mesh.triangles.len() as u64));
+        let mut target = RenderTarget::without_coverage(W, H).unwrap();
         let one = pool(1);
         for b in triangle_backends().iter().filter(|b| b.name() != "naive") {
             group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
-                bench.iter(|| one.install(|| renderer.render(*b).unwrap().work.fragments))
+                bench.iter(|| {
+                    one.install(|| {
+                        renderer
+                            .render_into(*b, &mut target)
+                            .unwrap()
+                            .work
+                            .fragments
+                    })
+                })
             });
         }
         let two = pool(2);
         let tiled = triangle_backend("tiled").unwrap();
         group.bench_function(BenchmarkId::from_parameter("tiled-2-threads"), |bench| {
-            bench.iter(|| two.install(|| renderer.render(tiled).unwrap().work.fragments))
+            bench.iter(|| {
+                two.install(|| {
+                    renderer
+                        .render_into(tiled, &mut target)
+                        .unwrap()
+                        .work
+                        .fragments
+                })
+            })
         });
         // The same camera, the same per-vertex light, through euc.
         let transform = renderer.transform();
@@ -165,7 +186,7 @@ fn triangles(c: &mut Criterion) {
     for angle in [0.0, 45.0, 90.0] {
         workloads.push(workload::slivers(W, H, angle));
     }
-    let mut target = RenderTarget::new(W, H).unwrap();
+    let mut target = RenderTarget::without_coverage(W, H).unwrap();
     let mut pixmap = tiny_skia::Pixmap::new(W, H).unwrap();
     for work in &workloads {
         let mut group = c.benchmark_group(format!("triangles/{}", work.name));
@@ -206,7 +227,7 @@ fn lines(c: &mut Criterion) {
         LineWorkload::new("lines/short-1M", workload::short_lines(W, H, 1_000_000)),
         LineWorkload::new("lines/long-10k", workload::long_lines(W, H, 10_000)),
     ];
-    let mut target = RenderTarget::new(W, H).unwrap();
+    let mut target = RenderTarget::without_coverage(W, H).unwrap();
     for work in &sets {
         let ints: Vec<(i32, i32, i32, i32)> = work
             .lines

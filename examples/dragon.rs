@@ -32,10 +32,10 @@ fn main() -> rasterlab::Result<()> {
         println!(
             "{:<12} {:>6} triangles drawn, {:>7} fragments, {:>7} samples tested, {:.2} ms",
             backend.name(),
-            frame.geometry.triangles,
-            frame.work.fragments,
-            frame.work.samples_tested,
-            frame.raster_time.as_secs_f64() * 1e3
+            frame.stats.geometry.triangles,
+            frame.stats.work.fragments,
+            frame.stats.work.samples_tested,
+            frame.stats.raster_time.as_secs_f64() * 1e3
         );
         match &reference {
             None => reference = Some(frame.target),

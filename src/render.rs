@@ -12,7 +12,7 @@
 //! let a = renderer.render(backend::triangle_backend("scanline").unwrap()).unwrap();
 //! let b = renderer.render(backend::triangle_backend("incremental").unwrap()).unwrap();
 //! assert_eq!(a.target, b.target); // bit-identical colour, depth and coverage
-//! assert!(a.work.fragments > 0);
+//! assert!(a.stats.work.fragments > 0);
 //! ```
 
 use crate::error::{Error, Result};
@@ -110,11 +110,9 @@ impl Default for RenderSettings {
     }
 }
 
-/// One rendered frame and what it cost.
-#[derive(Clone, Debug)]
-pub struct Frame {
-    /// The colour, depth and coverage buffers.
-    pub target: RenderTarget,
+/// What drawing one frame did and cost.
+#[derive(Copy, Clone, Debug)]
+pub struct FrameStats {
     /// What the pipeline did with the triangles.
     pub geometry: GeometryStats,
     /// The triangle back-end's work.
@@ -123,6 +121,15 @@ pub struct Frame {
     pub geometry_time: Duration,
     /// Time clearing, rasterizing and shading (including the wireframe).
     pub raster_time: Duration,
+}
+
+/// One rendered frame: its buffers and what it cost.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// The colour, depth and coverage buffers.
+    pub target: RenderTarget,
+    /// The pipeline's and the back-end's work, and the times.
+    pub stats: FrameStats,
 }
 
 /// A mesh prepared for rendering from one view.
@@ -236,9 +243,32 @@ impl MeshRenderer {
         )
     }
 
-    /// Renders one frame with `backend`, on rayon's threads
-    /// ([`crate::binning`]): the image does not depend on their number.
+    /// Renders one frame with `backend` into a new target that counts
+    /// coverage, on rayon's threads ([`crate::binning`]): the image does not
+    /// depend on their number.
     pub fn render(&self, backend: &dyn TriangleRasterizer) -> Result<Frame> {
+        let mut target = RenderTarget::new(self.settings.width, self.settings.height)?;
+        let stats = self.render_into(backend, &mut target)?;
+        Ok(Frame { target, stats })
+    }
+
+    /// Clears `target` and renders one frame into it, as an application
+    /// redraws its framebuffer: the buffers are reused, and a target made
+    /// [`without_coverage`](RenderTarget::without_coverage) skips the
+    /// coverage count. Errors if `target` is not the size of the settings.
+    pub fn render_into(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        target: &mut RenderTarget,
+    ) -> Result<FrameStats> {
+        let (width, height) = (self.settings.width, self.settings.height);
+        if (target.width(), target.height()) != (width, height) {
+            return Err(Error::InvalidArgument(format!(
+                "the target is {}x{}, the renderer draws {width}x{height}",
+                target.width(),
+                target.height()
+            )));
+        }
         let start = Instant::now();
         // A renderer drawing from several threads at once gives the other
         // threads buffers of their own.
@@ -259,21 +289,20 @@ impl MeshRenderer {
         };
         let geometry_time = start.elapsed();
         let start = Instant::now();
-        let mut target = RenderTarget::new(self.settings.width, self.settings.height)?;
         target.clear_color(self.settings.background);
+        target.clear_depth_and_coverage();
         let work = crate::binning::draw_binned(
             geometry,
             backend,
             self.shader.as_ref(),
             self.settings.depth,
             self.settings.interpolation,
-            &mut target,
+            target,
         );
         if let Some(line_backend) = self.settings.wireframe {
-            self.draw_wireframe(line_backend, &lines, &mut target);
+            self.draw_wireframe(line_backend, &lines, target);
         }
-        Ok(Frame {
-            target,
+        Ok(FrameStats {
             geometry: geometry.stats,
             work,
             geometry_time,

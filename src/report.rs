@@ -293,7 +293,7 @@ impl Report {
                     runs.push(BackendRun::new(
                         b.name(),
                         b.description(),
-                        frame.work,
+                        frame.stats.work,
                         time,
                         frame.target,
                     ));

@@ -158,7 +158,14 @@ impl DepthPlane {
     /// can otherwise step outside it).
     #[inline]
     pub fn in_row(&self, row: f32, x: u32) -> f32 {
-        (row + self.dz_dx * (i64::from(x) - self.origin_x) as f32).clamp(0.0, 1.0)
+        self.in_row_at_offset(row, (i64::from(x) - self.origin_x) as f32)
+    }
+
+    /// [`in_row`](Self::in_row) for the column `dx` pixels right of the
+    /// origin (`dx` an integer, given as `f32`).
+    #[inline(always)]
+    fn in_row_at_offset(&self, row: f32, dx: f32) -> f32 {
+        (row + self.dz_dx * dx).clamp(0.0, 1.0)
     }
 
     /// The depth at the centre of pixel `(x, y)`.
@@ -412,7 +419,9 @@ impl<'a> FragmentStage<'a> {
     #[inline]
     fn resolve<const N: usize>(&mut self, s: Sample<N>) {
         let idx = self.target.index(s.x, s.y);
-        self.target.coverage[idx] = self.target.coverage[idx].saturating_add(1);
+        if self.target.counts_coverage() {
+            self.target.coverage[idx] = self.target.coverage[idx].saturating_add(1);
+        }
         if !self.depth.test.passes(s.depth, self.target.depth[idx]) {
             return;
         }
@@ -437,9 +446,15 @@ struct SpanRows<'s> {
 }
 
 impl SpanRows<'_> {
-    /// Counts coverage, then depth-tests each pixel against the plane
-    /// (evaluated exactly as [`DepthPlane::at`] does) and writes `color`
-    /// (and the depth when `write`) where `passes`.
+    /// Counts coverage (when the target counts), then depth-tests each
+    /// pixel against the plane (evaluated exactly as [`DepthPlane::at`]
+    /// does) and writes `color` (and the depth when `write`) where `passes`.
+    ///
+    /// The loop has no branch: every pixel's colour and depth are stored,
+    /// the old value where the test fails, so the compiler can run it on
+    /// vectors. The column offset is counted in `i32`, whose conversion to
+    /// `f32` gives the same value as [`DepthPlane::in_row`]'s `i64` one:
+    /// both are the same integer, which the guard band keeps below 2^17.
     #[inline(always)]
     fn fill(
         self,
@@ -453,14 +468,16 @@ impl SpanRows<'_> {
         for c in self.coverage.iter_mut() {
             *c = c.saturating_add(1);
         }
+        let first = (i64::from(x0) - plane.origin_x) as i32;
+        let color = u32::from_ne_bytes(color);
         for (i, (d, c)) in self.depth.iter_mut().zip(self.color.iter_mut()).enumerate() {
-            let z = plane.in_row(row, x0 + i as u32);
-            if passes(z, *d) {
-                *c = color;
-                if write {
-                    *d = z;
-                }
-            }
+            let z = plane.in_row_at_offset(row, (first + i as i32) as f32);
+            // All ones where the test passes, as a vector compare gives.
+            let pass = u32::from(passes(z, *d)).wrapping_neg();
+            let keep = u32::from_ne_bytes(*c) & !pass;
+            *c = (color & pass | keep).to_ne_bytes();
+            let written = pass & u32::from(write).wrapping_neg();
+            *d = f32::from_bits(z.to_bits() & written | d.to_bits() & !written);
         }
     }
 }
@@ -527,10 +544,15 @@ impl FragmentSink for FragmentStage<'_> {
         let color = to_rgba8(self.color_of(&input));
         let start = self.target.index(span.x0, span.y);
         let end = start + (span.x1 - span.x0) as usize + 1;
+        let counts = self.target.counts_coverage();
         let rows = SpanRows {
             color: &mut self.target.color[start..end],
             depth: &mut self.target.depth[start..end],
-            coverage: &mut self.target.coverage[start..end],
+            coverage: if counts {
+                &mut self.target.coverage[start..end]
+            } else {
+                &mut []
+            },
         };
         let (row, x0) = (plane.row(span.y), span.x0);
         let write = self.depth.write;

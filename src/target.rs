@@ -135,7 +135,9 @@ pub struct RenderTarget {
     pub color: Vec<[u8; 4]>,
     /// Depths, starting at 1.0.
     pub depth: Vec<f32>,
-    /// Fragments received per pixel (before the depth test), saturating.
+    /// Fragments received per pixel (before the depth test), saturating;
+    /// empty when the target does not count them
+    /// ([`without_coverage`](Self::without_coverage)).
     pub coverage: Vec<u16>,
 }
 
@@ -156,6 +158,31 @@ impl RenderTarget {
             depth: vec![1.0; n],
             coverage: vec![0; n],
         })
+    }
+
+    /// A cleared target that does not count coverage: colour and depth
+    /// only, as an application's framebuffer. The count is a checking aid
+    /// (the watertightness tests read it); without it each fragment reads
+    /// and writes two bytes less, which is what the benchmarks measure
+    /// against peers that do not count either. The image and depth are the
+    /// same as with [`new`](Self::new).
+    ///
+    /// ```
+    /// use rasterlab::target::RenderTarget;
+    ///
+    /// let target = RenderTarget::without_coverage(4, 3).unwrap();
+    /// assert!(!target.counts_coverage() && target.coverage.is_empty());
+    /// assert_eq!(target.depth.len(), 12);
+    /// ```
+    pub fn without_coverage(width: u32, height: u32) -> Result<RenderTarget> {
+        let mut target = Self::new(width, height)?;
+        target.coverage = Vec::new();
+        Ok(target)
+    }
+
+    /// Whether fragments are counted in [`coverage`](Self::coverage).
+    pub fn counts_coverage(&self) -> bool {
+        !self.coverage.is_empty()
     }
 
     /// Errors unless both sides are between 1 and [`MAX_TARGET_SIDE`].
@@ -231,10 +258,14 @@ impl RenderTarget {
         let width = self.width;
         let rows_per_band = rows_per_band.max(1);
         let n = width as usize * rows_per_band as usize;
+        // A target that does not count coverage lends every band an empty
+        // count.
+        let counts = self.counts_coverage();
+        let mut coverage = self.coverage.chunks_mut(n);
         self.color
             .chunks_mut(n)
             .zip(self.depth.chunks_mut(n))
-            .zip(self.coverage.chunks_mut(n))
+            .map(|bufs| (bufs, if counts { coverage.next() } else { None }))
             .enumerate()
             .map(|(i, ((color, depth), coverage))| TargetRows {
                 width,
@@ -242,12 +273,13 @@ impl RenderTarget {
                 rows: (color.len() / width as usize) as u32,
                 color,
                 depth,
-                coverage,
+                coverage: coverage.unwrap_or_default(),
             })
             .collect()
     }
 
-    /// Pixels whose coverage count is exactly `n`.
+    /// Pixels whose coverage count is exactly `n` (none when the target
+    /// does not count).
     pub fn pixels_with_coverage(&self, n: u16) -> usize {
         self.coverage.iter().filter(|&&c| c == n).count()
     }
@@ -266,7 +298,8 @@ pub struct TargetRows<'a> {
     pub color: &'a mut [[u8; 4]],
     /// Depths of these rows.
     pub depth: &'a mut [f32],
-    /// Coverage counts of these rows.
+    /// Coverage counts of these rows; empty when the target does not
+    /// count coverage.
     pub coverage: &'a mut [u16],
 }
 
@@ -294,6 +327,12 @@ impl TargetRows<'_> {
             x1: i64::from(self.width) - 1,
             y1: i64::from(self.first_row) + i64::from(self.rows) - 1,
         }
+    }
+
+    /// Whether fragments are counted in [`coverage`](Self::coverage).
+    #[inline]
+    pub fn counts_coverage(&self) -> bool {
+        !self.coverage.is_empty()
     }
 
     /// The buffer index of target pixel `(x, y)` (`y` among the rows held).
@@ -327,6 +366,9 @@ mod tests {
         let rows: Vec<(u32, u32)> = bands.iter().map(|b| (b.first_row(), b.rows())).collect();
         assert_eq!(rows, [(0, 3), (3, 3), (6, 1)]);
         assert_eq!(bands[1].index(2, 4), 5);
+        assert!(bands
+            .iter()
+            .all(|b| b.counts_coverage() && b.coverage.len() == b.color.len()));
         assert_eq!(
             bands[2].rect(),
             PixelRect {
@@ -336,6 +378,16 @@ mod tests {
                 y1: 6
             }
         );
+    }
+
+    #[test]
+    fn a_target_without_coverage_lends_bands_empty_counts() {
+        let mut t = RenderTarget::without_coverage(3, 7).unwrap();
+        let bands = t.bands_mut(3);
+        assert_eq!(bands.len(), 3);
+        assert!(bands
+            .iter()
+            .all(|b| !b.counts_coverage() && b.color.len() == 3 * b.rows() as usize));
     }
 
     #[test]

@@ -97,3 +97,30 @@ fn triangles_spanning_the_whole_guard_band_do_not_overflow() {
         assert_eq!(list.triangles.len(), 256, "{}", b.name());
     }
 }
+
+#[test]
+fn rendering_into_a_target_of_another_size_is_an_error() {
+    use rasterlab::mesh::Mesh;
+    use rasterlab::render::{MeshRenderer, RenderSettings};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bunny.ply");
+    let settings = RenderSettings {
+        width: 32,
+        height: 24,
+        ..RenderSettings::default()
+    };
+    let renderer = MeshRenderer::new(&Mesh::load(&path).unwrap(), settings).unwrap();
+    let scanline = triangle_backend("scanline").unwrap();
+    let mut wrong = RenderTarget::without_coverage(24, 32).unwrap();
+    let err = renderer.render_into(scanline, &mut wrong).unwrap_err();
+    assert!(matches!(err, Error::InvalidArgument(_)), "{err}");
+    assert!(err.to_string().contains("24x32"), "{err}");
+    let mut right = RenderTarget::without_coverage(32, 24).unwrap();
+    assert!(
+        renderer
+            .render_into(scanline, &mut right)
+            .unwrap()
+            .work
+            .fragments
+            > 0
+    );
+}

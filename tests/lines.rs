@@ -580,7 +580,8 @@ proptest! {
 
     /// The fast path writes exactly the pixels the `bresenham` back-end
     /// sends through the stage (colour and coverage), lines partly or wholly
-    /// off the target included.
+    /// off the target included; into a target without coverage count, the
+    /// same colours.
     #[test]
     fn fast_path_equals_bresenham_through_the_stage(
         lines in proptest::collection::vec((endpoint(), endpoint()), 1..6),
@@ -599,6 +600,10 @@ proptest! {
         prop_assert!(fast == expected);
         let counted: u64 = expected.coverage.iter().map(|&c| u64::from(c)).sum();
         prop_assert_eq!(written, counted);
+        // Into a target that does not count: the same colours.
+        let mut uncounted = RenderTarget::without_coverage(w, h).unwrap();
+        prop_assert_eq!(work.run_fast(&mut uncounted), written);
+        prop_assert!(uncounted.color == expected.color);
     }
 }
 

@@ -160,7 +160,7 @@ fn meshes_render_identically_on_any_number_of_threads() {
         settings.pipeline.cull = cull;
         let renderer = MeshRenderer::new(&bunny, settings).unwrap();
         let reference = pool(1).install(|| renderer.render(triangle_backends()[2]).unwrap());
-        assert!(reference.work.fragments > 5000);
+        assert!(reference.stats.work.fragments > 5000);
         let geometry = pool(1).install(|| renderer.geometry().unwrap());
         for threads in [2, 3] {
             let parallel = pool(threads).install(|| renderer.geometry().unwrap());
@@ -175,7 +175,7 @@ fn meshes_render_identically_on_any_number_of_threads() {
                     "{shading}, {threads} threads, {}",
                     b.name()
                 );
-                assert_eq!(frame.work.fragments, reference.work.fragments);
+                assert_eq!(frame.stats.work.fragments, reference.stats.work.fragments);
             }
         }
     }

@@ -21,7 +21,7 @@
 //!
 //! What is written is what the shared stage writes for a constant colour
 //! with the depth test off (`always`, no depth write): the colour, and one
-//! more in the coverage count. A test checks both against the `bresenham`
+//! more in the coverage count when the target counts coverage. A test checks both against the `bresenham`
 //! back-end through the stage, pixel for pixel.
 
 use super::{LineSetup, OctantFrame};
@@ -128,6 +128,7 @@ fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, c
         let (x, y) = frame.to_screen(i, k);
         (x as usize, y as usize)
     };
+    let count = target.counts_coverage();
     let colors = &mut target.color;
     let coverage = &mut target.coverage;
     if !frame.swap {
@@ -147,8 +148,10 @@ fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, c
                 let (x0, x1) = (xa.min(xb), xa.max(xb));
                 let row = y * width;
                 colors[row + x0..=row + x1].fill(color);
-                for c in &mut coverage[row + x0..=row + x1] {
-                    *c = c.saturating_add(1);
+                if count {
+                    for c in &mut coverage[row + x0..=row + x1] {
+                        *c = c.saturating_add(1);
+                    }
                 }
                 run_start = i + 1;
             }
@@ -159,7 +162,9 @@ fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, c
             let (x, y) = screen(i, k);
             let at = y * width + x;
             colors[at] = color;
-            coverage[at] = coverage[at].saturating_add(1);
+            if count {
+                coverage[at] = coverage[at].saturating_add(1);
+            }
             if d < 0 {
                 k += 1;
                 d += up;
