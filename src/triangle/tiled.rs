@@ -15,18 +15,26 @@
 //! * otherwise the block straddles an edge and each of its pixels is
 //!   tested by [`incremental`](super::incremental)'s loop.
 //!
-//! The blocks of one block row are classified first; then each pixel row
-//! is walked across them, so that a row's inside pixels (one run, the
-//! triangle being convex) reach the fragment stage as one span however
-//! many blocks it crosses.
+//! The blocks of one block row are classified first, neighbouring inside
+//! (or outside) blocks merged; then each pixel row is walked across them,
+//! so that a row's inside pixels (one run, the triangle being convex) reach
+//! the fragment stage as one span however many blocks it crosses.
+//!
+//! Wide triangles add one level of hierarchy: a block row is first
+//! classified in aligned stretches of [`STRETCH`] blocks, and only a
+//! straddling stretch is classified block by block, so the inside of a
+//! large triangle costs one test per 64 pixels of a block row. The corner
+//! test itself needs two corners per edge, not four: the signs of the
+//! edge's steps say at which corner it is smallest and largest.
 //!
 //! Triangles whose bounding box fits in one block skip the block step and
 //! go straight to the per-pixel loop (cheap set-up for small triangles).
-//! The work counters show the saving: `spans` counts blocks visited,
-//! `samples_tested` only the pixels of straddling blocks.
+//! The work counters show the saving: `spans` counts the blocks and
+//! stretches classified, `samples_tested` only the pixels of straddling
+//! blocks.
 //!
 //! ```text
-//! for each block B meeting the bounding box
+//! for each block B meeting the bounding box (stretch by stretch if wide)
 //!   c[k] = E_k + bias_k at B's four corner samples
 //!   if some k has all c[k] < 0: skip B
 //!   else if every c >= 0:       every pixel of B is inside
@@ -42,6 +50,10 @@ use crate::fragment::{FragmentSink, WorkCounters};
 
 /// Block side in pixels.
 pub const BLOCK: i64 = 8;
+/// Blocks per stretch: in a triangle at least this many blocks wide, a
+/// block row is first classified in stretches of this many blocks (64
+/// pixels), and only straddling stretches block by block.
+pub const STRETCH: i64 = 8;
 
 /// 8x8 blocks with trivial reject and trivial accept.
 #[derive(Copy, Clone, Debug, Default)]
@@ -61,19 +73,34 @@ pub enum BlockClass {
 /// Classifies the pixels of `r` against triangle `t` from the edge values
 /// at `r`'s four corner samples.
 pub fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
-    let corners = [
-        t.edge_values_at_pixel(r.x0, r.y0),
-        t.edge_values_at_pixel(r.x1, r.y0),
-        t.edge_values_at_pixel(r.x0, r.y1),
-        t.edge_values_at_pixel(r.x1, r.y1),
-    ];
+    let top_left = t.edge_values_at_pixel(r.x0, r.y0);
+    let steps = [0, 1, 2].map(|k| (t.edges[k].a * SUBPIXEL_SCALE, t.edges[k].b * SUBPIXEL_SCALE));
+    classify_from_corner(t, top_left, steps, r.x1 - r.x0, r.y1 - r.y0)
+}
+
+/// [`classify_block`] for a block `w + 1` by `h + 1` pixels whose top-left
+/// sample has edge values `top_left`; `steps[k]` is edge `k`'s change per
+/// pixel right and per pixel down.
+///
+/// Of the four corners, the one where edge `k` is smallest is found from
+/// the signs of its steps alone (a step that lowers the value is taken),
+/// and likewise the largest: two values per edge instead of four.
+#[inline]
+fn classify_from_corner(
+    t: &TriangleSetup,
+    top_left: [i64; 3],
+    steps: [(i64, i64); 3],
+    w: i64,
+    h: i64,
+) -> BlockClass {
     let mut all_inside = true;
     for k in 0..3 {
-        let inside = corners.map(|e| e[k] + t.bias[k] >= 0);
-        if inside.iter().all(|i| !i) {
+        let (dx, dy) = (steps[k].0 * w, steps[k].1 * h);
+        let base = top_left[k] + t.bias[k];
+        if base + dx.max(0) + dy.max(0) < 0 {
             return BlockClass::Outside;
         }
-        all_inside &= inside.iter().all(|i| *i);
+        all_inside &= base + dx.min(0) + dy.min(0) >= 0;
     }
     if all_inside {
         BlockClass::Inside
@@ -113,21 +140,47 @@ impl TriangleRasterizer for Tiled {
             let step_y = t.edges.map(|e| e.b * SUBPIXEL_SCALE);
             let (bx0, by0) = (r.x0.div_euclid(BLOCK), r.y0.div_euclid(BLOCK));
             let (bx1, by1) = (r.x1.div_euclid(BLOCK), r.y1.div_euclid(BLOCK));
+            let steps = [0, 1, 2].map(|k| (step_x[k], step_y[k]));
+            // Stretches pay only where one can be wholly inside or outside.
+            let stretch = if r.x1 - r.x0 >= STRETCH * BLOCK {
+                STRETCH
+            } else {
+                1
+            };
             let mut row = t.edge_values_at_pixel(r.x0, r.y0);
             for by in by0..=by1 {
                 // One row of blocks: classify each block once ...
                 let y0 = (by * BLOCK).max(r.y0);
                 let y1 = (by * BLOCK + BLOCK - 1).min(r.y1);
                 blocks.clear();
-                for bx in bx0..=bx1 {
-                    let block = PixelRect {
-                        x0: (bx * BLOCK).max(r.x0),
-                        y0,
-                        x1: (bx * BLOCK + BLOCK - 1).min(r.x1),
-                        y1,
-                    };
+                let classify = |x0: i64, x1: i64| {
+                    let top_left = [0, 1, 2].map(|k| row[k] + step_x[k] * (x0 - r.x0));
+                    classify_from_corner(t, top_left, steps, x1 - x0, y1 - y0)
+                };
+                let mut bx = bx0;
+                while bx <= bx1 {
+                    // A stretch of aligned blocks is classified as a whole
+                    // first; only a straddling one is looked into.
+                    let last = ((bx / stretch + 1) * stretch - 1).min(bx1);
+                    let x0 = (bx * BLOCK).max(r.x0);
+                    let x1 = (last * BLOCK + BLOCK - 1).min(r.x1);
                     work.spans += 1;
-                    blocks.push((block, classify_block(t, block)));
+                    let class = classify(x0, x1);
+                    if class != BlockClass::Partial || last == bx {
+                        push_merged(&mut blocks, PixelRect { x0, y0, x1, y1 }, class);
+                    } else {
+                        for b in bx..=last {
+                            let x0 = (b * BLOCK).max(r.x0);
+                            let x1 = (b * BLOCK + BLOCK - 1).min(r.x1);
+                            work.spans += 1;
+                            push_merged(
+                                &mut blocks,
+                                PixelRect { x0, y0, x1, y1 },
+                                classify(x0, x1),
+                            );
+                        }
+                    }
+                    bx = last + 1;
                 }
                 // ... then walk its pixel rows across the blocks.
                 for y in y0..=y1 {
@@ -149,8 +202,19 @@ impl TriangleRasterizer for Tiled {
     }
 }
 
-/// The inside pixels of one pixel row, across a row of classified blocks:
-/// outside blocks are skipped, inside blocks join the run untested, and
+/// Appends a classified block to a block row, merged into the previous
+/// one when both are inside or both outside, so the row walk steps over
+/// them at once.
+fn push_merged(blocks: &mut Vec<(PixelRect, BlockClass)>, block: PixelRect, class: BlockClass) {
+    match blocks.last_mut() {
+        Some((last, c)) if *c == class && class != BlockClass::Partial => last.x1 = block.x1,
+        _ => blocks.push((block, class)),
+    }
+}
+
+/// The inside pixels of one pixel row, across a row of classified blocks
+/// (merged where neighbours agree): outside blocks are skipped, inside
+/// blocks join the run untested, and
 /// only straddling blocks are tested pixel by pixel. `at(x)` gives the
 /// edge values at column `x` of the row.
 fn row_run(
@@ -197,4 +261,39 @@ fn row_run(
         }
     }
     run
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::edge::FillRule;
+    use crate::fixed::FixedPoint;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The two-corner test says what testing every pixel says: a block
+        /// is inside exactly when all its pixels are, and no pixel of an
+        /// outside block is inside (a straddling block may still hold none:
+        /// the test is conservative there).
+        #[test]
+        fn block_classes_agree_with_the_pixels(
+            v in proptest::array::uniform3((-2000i64..6000, -2000i64..6000)),
+            (x0, y0) in (-4i64..24, -4i64..24),
+            (w, h) in (0i64..20, 0i64..20),
+            rule in proptest::sample::select(FillRule::ALL.to_vec()),
+        ) {
+            let v = v.map(|(x, y)| FixedPoint::from_raw(x, y).unwrap());
+            let Some(t) = TriangleSetup::new(0, v, rule) else { return Ok(()) };
+            let r = PixelRect { x0, y0, x1: x0 + w, y1: y0 + h };
+            let pixels: Vec<bool> = (y0..=r.y1)
+                .flat_map(|y| (x0..=r.x1).map(move |x| (x, y)))
+                .map(|(x, y)| t.inside(t.edge_values_at_pixel(x, y)))
+                .collect();
+            let class = classify_block(&t, r);
+            prop_assert_eq!(class == BlockClass::Inside, pixels.iter().all(|&p| p));
+            if class == BlockClass::Outside {
+                prop_assert!(pixels.iter().all(|&p| !p));
+            }
+        }
+    }
 }
