@@ -14,10 +14,10 @@
 //!    found by binary search. The walk then starts at the first visible
 //!    column with the decision variable it would have had there,
 //!    `d = du (256 k + 128) - du v(i + 1)`, so no pixel is tested;
-//! 2. **write runs**: in an x-major segment, the pixels between two row
-//!    steps are consecutive in memory and are written as one slice; in a
-//!    y-major one, each step moves one row, and the pixel is written in that
-//!    row's slice.
+//! 2. **step a buffer index**: each column step moves the pixel's index in
+//!    the colour buffer by one pixel along the major axis, and a row step by
+//!    one along the minor axis too; no coordinates are converted and no
+//!    pixel is tested.
 //!
 //! What is written is what the shared stage writes for a constant colour
 //! with the depth test off (`always`, no depth write): the colour, and one
@@ -116,61 +116,42 @@ fn first_column_where(mut lo: i64, mut hi: i64, pred: impl Fn(i64) -> bool) -> i
 }
 
 /// The midpoint walk over columns `first..=last`, all on the target.
+///
+/// The pixel is tracked as a buffer index: a column step moves it by
+/// `major` (one pixel along the major axis: 1 or the row length, signed by
+/// the octant), a row step by `minor` as well. The choice between the two
+/// is made with selects rather than a branch, since on a short or
+/// steep-ish segment it is a coin toss the branch predictor loses.
 fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, color: [u8; 4]) {
-    let width = target.width() as usize;
+    let width = target.width() as isize;
     // i64 is exact here, as in OctantFrame::scaled_v_at: |d| < 2^58.
     let s = SUBPIXEL_SCALE;
     let (du, dv) = (frame.du(), frame.dv());
-    let mut k = frame.nearest_row(first);
+    let k = frame.nearest_row(first);
     let mut d = du * (s * k + HALF_PIXEL) - frame.scaled_v_at(first + 1);
     let (up, flat) = (s * (du - dv), s * dv);
-    let screen = |i: i64, k: i64| {
-        let (x, y) = frame.to_screen(i, k);
-        (x as usize, y as usize)
-    };
-    let count = target.counts_coverage();
-    let colors = &mut target.color;
-    let coverage = &mut target.coverage;
-    if !frame.swap {
-        // x-major: runs of one row are consecutive pixels.
-        let mut run_start = first;
-        for i in first..=last {
-            let step_up = d < 0;
-            if step_up {
-                k += 1;
-                d += up;
-            } else {
-                d -= flat;
-            }
-            if step_up || i == last {
-                let (xa, y) = screen(run_start, if step_up { k - 1 } else { k });
-                let (xb, _) = screen(i, 0);
-                let (x0, x1) = (xa.min(xb), xa.max(xb));
-                let row = y * width;
-                colors[row + x0..=row + x1].fill(color);
-                if count {
-                    for c in &mut coverage[row + x0..=row + x1] {
-                        *c = c.saturating_add(1);
-                    }
-                }
-                run_start = i + 1;
-            }
-        }
+    let (along_major, along_minor) = if frame.swap { (width, 1) } else { (1, width) };
+    let major = if frame.flip_major {
+        -along_major
     } else {
-        // y-major: one pixel per row.
-        for i in first..=last {
-            let (x, y) = screen(i, k);
-            let at = y * width + x;
-            colors[at] = color;
-            if count {
-                coverage[at] = coverage[at].saturating_add(1);
-            }
-            if d < 0 {
-                k += 1;
-                d += up;
-            } else {
-                d -= flat;
-            }
+        along_major
+    };
+    let minor = if frame.flip_minor {
+        -along_minor
+    } else {
+        along_minor
+    };
+    let (x, y) = frame.to_screen(first, k);
+    let mut at = y as isize * width + x as isize;
+    let count = target.counts_coverage();
+    let (colors, coverage) = (&mut target.color, &mut target.coverage);
+    for _ in first..=last {
+        colors[at as usize] = color;
+        if count {
+            coverage[at as usize] = coverage[at as usize].saturating_add(1);
         }
+        let step_up = d < 0;
+        at += major + if step_up { minor } else { 0 };
+        d += if step_up { up } else { -flat };
     }
 }
