@@ -21,8 +21,9 @@
 //!
 //! What is written is what the shared stage writes for a constant colour
 //! with the depth test off (`always`, no depth write): the colour, and one
-//! more in the coverage count when the target counts coverage. A test checks both against the `bresenham`
-//! back-end through the stage, pixel for pixel.
+//! more in the coverage count when the target counts coverage. A test
+//! checks both against the `bresenham` back-end through the stage, pixel
+//! for pixel.
 
 use super::{LineSetup, OctantFrame};
 use crate::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
