@@ -385,14 +385,23 @@ impl<'a> FragmentStage<'a> {
         }
     }
 
-    /// The depth plane and vertices of triangle `id`.
+    /// Triangle `id`'s stage data.
     #[inline]
-    fn triangle(&self, id: u32) -> Option<(DepthPlane, [ShadedVertex; 3])> {
+    fn triangle(&self, id: u32) -> Option<&'a ShadedTriangle> {
         let t = self.triangles.get(id as usize);
         debug_assert!(t.is_some(), "no vertex data for triangle {id}");
-        let t = t?;
+        t
+    }
+
+    /// The three vertices of `t`.
+    #[inline]
+    fn vertices_of(&self, t: &ShadedTriangle) -> Option<[ShadedVertex; 3]> {
         let [a, b, c] = t.vertices.map(|i| self.vertices.get(i as usize).copied());
-        Some((t.depth, [a?, b?, c?]))
+        debug_assert!(
+            a.is_some() && b.is_some() && c.is_some(),
+            "vertex index out of range"
+        );
+        Some([a?, b?, c?])
     }
 
     /// The shader's input for a sample that passed the depth test.
@@ -415,16 +424,24 @@ impl<'a> FragmentStage<'a> {
         self.shader.shade(input).clamp(Vec4::ZERO, Vec4::ONE)
     }
 
-    /// Depth test, shading and writes shared by triangles and lines.
+    /// Counts a fragment of depth `z` at pixel `(x, y)` and depth-tests it;
+    /// the pixel's buffer index when it passes.
     #[inline]
-    fn resolve<const N: usize>(&mut self, s: Sample<N>) {
-        let idx = self.target.index(s.x, s.y);
+    fn depth_test(&mut self, x: u32, y: u32, z: f32) -> Option<usize> {
+        let idx = self.target.index(x, y);
         if self.target.counts_coverage() {
             self.target.coverage[idx] = self.target.coverage[idx].saturating_add(1);
         }
-        if !self.depth.test.passes(s.depth, self.target.depth[idx]) {
-            return;
-        }
+        self.depth
+            .test
+            .passes(z, self.target.depth[idx])
+            .then_some(idx)
+    }
+
+    /// Shades a sample that passed the depth test at buffer index `idx`
+    /// and writes its colour (blended by its coverage) and depth.
+    #[inline]
+    fn write<const N: usize>(&mut self, idx: usize, s: Sample<N>) {
         let color = self.color_of(&self.fragment_input(&s));
         self.target.color[idx] = if s.coverage >= 1.0 {
             to_rgba8(color)
@@ -434,6 +451,18 @@ impl<'a> FragmentStage<'a> {
         };
         if self.depth.write {
             self.target.depth[idx] = s.depth;
+        }
+    }
+
+    /// One fragment of triangle `t`: depth from its plane, then, only if
+    /// the depth test passes, its vertices and weights for shading.
+    #[inline]
+    fn triangle_sample(&mut self, t: &ShadedTriangle, f: &TriangleFragment) {
+        let z = t.depth.at(f.x, f.y);
+        if let Some(idx) = self.depth_test(f.x, f.y, z) {
+            if let Some(vertices) = self.vertices_of(t) {
+                self.write(idx, Sample::of_triangle(z, vertices, f));
+            }
         }
     }
 }
@@ -482,7 +511,7 @@ impl SpanRows<'_> {
     }
 }
 
-/// A fragment after interpolation of its depth, before the depth test.
+/// A fragment that passed the depth test, with what shading it needs.
 struct Sample<const N: usize> {
     x: u32,
     y: u32,
@@ -495,20 +524,16 @@ struct Sample<const N: usize> {
 }
 
 impl Sample<3> {
-    /// A triangle fragment's sample: barycentrics from its exact edge
-    /// values, depth from the triangle's plane.
+    /// A triangle fragment's sample at depth `depth` (from the triangle's
+    /// plane): barycentrics from its exact edge values.
     #[inline]
-    fn of_triangle(
-        depth: &DepthPlane,
-        vertices: [ShadedVertex; 3],
-        f: &TriangleFragment,
-    ) -> Sample<3> {
+    fn of_triangle(depth: f32, vertices: [ShadedVertex; 3], f: &TriangleFragment) -> Sample<3> {
         let area = (f.edges[0] + f.edges[1] + f.edges[2]) as f64;
         Sample {
             x: f.x,
             y: f.y,
             primitive: f.triangle,
-            depth: depth.at(f.x, f.y),
+            depth,
             screen: f.edges.map(|e| (e as f64 / area) as f32),
             vertices,
             coverage: 1.0,
@@ -518,18 +543,18 @@ impl Sample<3> {
 
 impl FragmentSink for FragmentStage<'_> {
     fn triangle_fragment(&mut self, f: &TriangleFragment) {
-        if let Some((plane, vertices)) = self.triangle(f.triangle) {
-            self.resolve(Sample::of_triangle(&plane, vertices, f));
+        if let Some(t) = self.triangle(f.triangle) {
+            self.triangle_sample(t, f);
         }
     }
 
     fn triangle_span(&mut self, span: &TriangleSpan) {
-        let Some((plane, vertices)) = self.triangle(span.triangle) else {
+        let Some(t) = self.triangle(span.triangle) else {
             return;
         };
         if !self.shader.uniform_per_primitive() {
             for f in span.fragments() {
-                self.resolve(Sample::of_triangle(&plane, vertices, &f));
+                self.triangle_sample(t, &f);
             }
             return;
         }
@@ -540,7 +565,12 @@ impl FragmentSink for FragmentStage<'_> {
             triangle: span.triangle,
             edges: span.edges,
         };
-        let input = self.fragment_input(&Sample::of_triangle(&plane, vertices, &first));
+        let Some(vertices) = self.vertices_of(t) else {
+            return;
+        };
+        let plane = t.depth;
+        let depth = plane.at(first.x, first.y);
+        let input = self.fragment_input(&Sample::of_triangle(depth, vertices, &first));
         let color = to_rgba8(self.color_of(&input));
         let start = self.target.index(span.x0, span.y);
         let end = start + (span.x1 - span.x0) as usize + 1;
@@ -589,16 +619,22 @@ impl FragmentSink for FragmentStage<'_> {
         let [v0, v1] = line.vertices;
         let z0 = f64::from(v0.depth);
         let z = (z0 + t * (f64::from(v1.depth) - z0)) as f32 + self.line_depth_offset;
+        let Some(idx) = self.depth_test(f.x, f.y, z) else {
+            return;
+        };
         let screen = [(1.0 - t) as f32, t as f32];
-        self.resolve(Sample {
-            x: f.x,
-            y: f.y,
-            primitive: f.line,
-            depth: z,
-            screen,
-            vertices: line.vertices,
-            coverage: f.coverage,
-        });
+        self.write(
+            idx,
+            Sample {
+                x: f.x,
+                y: f.y,
+                primitive: f.line,
+                depth: z,
+                screen,
+                vertices: line.vertices,
+                coverage: f.coverage,
+            },
+        );
     }
 }
 
