@@ -371,16 +371,6 @@ impl TriangleSetup {
             edges = edges.map(EdgeFunction::negated);
         }
         let bias = edges.map(|e| if rule.owns_ties(&e) { 0 } else { -1 });
-        let xs = vertices.map(|v| v.x.raw());
-        let ys = vertices.map(|v| v.y.raw());
-        let min = |v: [i64; 3]| v[0].min(v[1]).min(v[2]);
-        let max = |v: [i64; 3]| v[0].max(v[1]).max(v[2]);
-        let bounds = PixelRect {
-            x0: first_sample_at_or_after(min(xs)),
-            y0: first_sample_at_or_after(min(ys)),
-            x1: last_sample_at_or_before(max(xs)),
-            y1: last_sample_at_or_before(max(ys)),
-        };
         Some(TriangleSetup {
             id,
             vertices,
@@ -389,8 +379,26 @@ impl TriangleSetup {
             area: signed_area.abs(),
             winding,
             rule,
-            bounds,
+            bounds: Self::sample_bounds(vertices),
         })
+    }
+
+    /// The pixels whose sample points lie in the bounding box of
+    /// `vertices`: the set-up's [`bounds`](Self::bounds), known before the
+    /// set-up, so that a pipeline can drop a triangle with no pixel centre
+    /// on screen without setting it up.
+    #[inline]
+    pub fn sample_bounds(vertices: [FixedPoint; 3]) -> PixelRect {
+        let xs = vertices.map(|v| v.x.raw());
+        let ys = vertices.map(|v| v.y.raw());
+        let min = |v: [i64; 3]| v[0].min(v[1]).min(v[2]);
+        let max = |v: [i64; 3]| v[0].max(v[1]).max(v[2]);
+        PixelRect {
+            x0: first_sample_at_or_after(min(xs)),
+            y0: first_sample_at_or_after(min(ys)),
+            x1: last_sample_at_or_before(max(xs)),
+            y1: last_sample_at_or_before(max(ys)),
+        }
     }
 
     /// Twice the signed area of the snapped triangle, `E0(v0)`: positive

@@ -385,19 +385,74 @@ impl Part {
             self.stats.culled += 1;
             return;
         }
+        if TriangleSetup::sample_bounds(points)
+            .intersect(viewport)
+            .is_empty()
+        {
+            self.stats.empty_bounds += 1;
+            return;
+        }
         let id = self.setups.len() as u32;
         let Some(setup) = TriangleSetup::new(id, points, options.rule) else {
             unreachable!("the area was checked to be non-zero");
         };
-        if setup.bounds_within(viewport).is_empty() {
-            self.stats.empty_bounds += 1;
-            return;
-        }
         self.triangles
             .push(ShadedTriangle::new(&setup, vertices, depths));
         self.setups.push(setup);
         self.source.push(source);
         self.stats.triangles += 1;
+    }
+}
+
+/// Vertices shaded per task.
+const VERTEX_CHUNK: usize = 4096;
+
+/// Shades one vertex and, when it lies inside every clip plane, divides
+/// and snaps it: its assembly record and its stage vertex.
+#[inline]
+fn screen_vertex<V, S: VertexShader<V>>(
+    shader: &S,
+    clip: &ClipVolume,
+    viewport: &Viewport,
+    vertex: &V,
+) -> (ScreenPoint, ShadedVertex) {
+    let out = shader.shade(vertex);
+    let outcode = if out.position.is_finite() {
+        clip.outcode(out.position)
+    } else {
+        REFUSED
+    };
+    // Outside a clip plane (or refused): no screen position. The stage
+    // vertex is a placeholder no triangle refers to: a triangle with such a
+    // corner is clipped, from its corners shaded again.
+    let off_screen = |outcode| {
+        let shaded = ShadedVertex {
+            depth: 0.0,
+            inv_w: 0.0,
+            varyings: out.varyings,
+        };
+        let screen = ScreenPoint {
+            outcode,
+            ..ScreenPoint::default()
+        };
+        (screen, shaded)
+    };
+    if outcode != 0 {
+        return off_screen(outcode);
+    }
+    match to_screen_vertex(viewport, &out) {
+        Ok((point, shaded)) => {
+            let depth = shaded.depth;
+            (
+                ScreenPoint {
+                    point,
+                    depth,
+                    outcode,
+                },
+                shaded,
+            )
+        }
+        Err(_) => off_screen(REFUSED),
     }
 }
 
@@ -550,51 +605,25 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
     let clip = ClipVolume::new(viewport.width, viewport.height);
     let mut scratch = std::mem::take(&mut geometry.scratch);
     // Each vertex is shaded once, however many triangles share it; those
-    // inside the clip volume are divided and snapped once too.
-    vertices
-        .par_iter()
-        .map(|v| {
-            let out = shader.shade(v);
-            let outcode = if out.position.is_finite() {
-                clip.outcode(out.position)
-            } else {
-                REFUSED
-            };
-            // Outside a clip plane (or refused): no screen position. The
-            // stage vertex is a placeholder no triangle refers to: a
-            // triangle with such a corner is clipped, from its corners
-            // shaded again.
-            let off_screen = |outcode| {
-                let shaded = ShadedVertex {
-                    depth: 0.0,
-                    inv_w: 0.0,
-                    varyings: out.varyings,
-                };
-                let screen = ScreenPoint {
-                    outcode,
-                    ..ScreenPoint::default()
-                };
-                (screen, shaded)
-            };
-            if outcode != 0 {
-                return off_screen(outcode);
+    // inside the clip volume are divided and snapped once too. Both
+    // buffers are sized first (reused from the last draw) and filled in
+    // place, chunk by chunk.
+    let n = vertices.len();
+    let placeholder = ShadedVertex::flat(0.0, glam::Vec4::ZERO);
+    scratch.screen.truncate(n);
+    scratch.screen.resize(n, ScreenPoint::default());
+    geometry.shaded.vertices.truncate(n);
+    geometry.shaded.vertices.resize(n, placeholder);
+    scratch
+        .screen
+        .par_chunks_mut(VERTEX_CHUNK)
+        .zip(geometry.shaded.vertices.par_chunks_mut(VERTEX_CHUNK))
+        .zip(vertices.par_chunks(VERTEX_CHUNK))
+        .for_each(|((screen, shaded), input)| {
+            for ((s, v), vertex) in screen.iter_mut().zip(shaded).zip(input) {
+                (*s, *v) = screen_vertex(shader, &clip, &viewport, vertex);
             }
-            match to_screen_vertex(&viewport, &out) {
-                Ok((point, shaded)) => {
-                    let depth = shaded.depth;
-                    (
-                        ScreenPoint {
-                            point,
-                            depth,
-                            outcode,
-                        },
-                        shaded,
-                    )
-                }
-                Err(_) => off_screen(REFUSED),
-            }
-        })
-        .unzip_into_vecs(&mut scratch.screen, &mut geometry.shaded.vertices);
+        });
     if let Some(i) = scratch
         .screen
         .par_iter()
