@@ -3,17 +3,20 @@
 //! For each fragment the stage does, in this order (seed 002, seed 003):
 //!
 //! 1. **coverage count**: the pixel's count in the coverage buffer goes up
-//!    by one, before any test, so double draws and gaps can be analysed;
-//! 2. **barycentrics** from the exact edge values: `alpha = E0 / area`,
-//!    `beta = E1 / area`, `gamma = E2 / area` with `area = E0 + E1 + E2`
-//!    (exact in integers, so nothing from the back-end but the pixel and its
-//!    edge values is used);
-//! 3. **depth**, linear in screen space: the plane through the three
+//!    by one, before any test, so double draws and gaps can be analysed (a
+//!    target made [`without_coverage`](RenderTarget::without_coverage)
+//!    skips this step and nothing else);
+//! 2. **depth**, linear in screen space: the plane through the three
 //!    snapped vertices, `z = z0 + beta (z1 - z0) + gamma (z2 - z0)`, set up
 //!    once per triangle as a [`DepthPlane`] and evaluated at the pixel centre
 //!    in `f32` in one fixed order (so a back-end that writes whole spans gets
 //!    the very same bits, and a constant depth stays exactly constant);
-//! 4. **depth test** against the depth buffer (`less` by default);
+//! 3. **depth test** against the depth buffer (`less` by default); a
+//!    fragment that fails costs nothing more;
+//! 4. **barycentrics** from the exact edge values: `alpha = E0 / area`,
+//!    `beta = E1 / area`, `gamma = E2 / area` with `area = E0 + E1 + E2`
+//!    (exact in integers, so nothing from the back-end but the pixel and its
+//!    edge values is used);
 //! 5. **varyings** (colour, UV, normal), perspective-correct by default:
 //!    interpolate `a / w` and `1 / w`, divide per fragment (seed 003); or
 //!    plain linear, to show the difference;
