@@ -119,7 +119,9 @@ pub(crate) fn emit(
 }
 
 /// Emits pixels `x0..=x1` of row `y` (inside the viewport, `x0 <= x1`) as
-/// one span, given the edge values `edges` at `x0`.
+/// one span, given the edge values `edges` at `x0`; a single pixel (most
+/// rows of a small triangle) as a plain fragment, which costs the stage
+/// less.
 #[inline]
 pub(crate) fn emit_span(
     sink: &mut dyn FragmentSink,
@@ -129,6 +131,10 @@ pub(crate) fn emit_span(
     x1: i64,
     edges: [i64; 3],
 ) {
+    if x0 == x1 {
+        emit(sink, triangle, x0, y, edges);
+        return;
+    }
     sink.triangle_span(&TriangleSpan {
         y: y as u32,
         x0: x0 as u32,
