@@ -416,6 +416,17 @@ impl TriangleSetup {
         self.edges.map(|e| e.eval(p))
     }
 
+    /// How the three edge values change from one pixel's sample to the
+    /// next: per pixel right, and per pixel down (the incremental
+    /// evaluation of seed 002).
+    #[inline]
+    pub fn pixel_steps(&self) -> ([i64; 3], [i64; 3]) {
+        (
+            self.edges.map(|e| e.a * SUBPIXEL_SCALE),
+            self.edges.map(|e| e.b * SUBPIXEL_SCALE),
+        )
+    }
+
     /// The three edge values at the sample point of pixel `(i, j)`.
     #[inline]
     pub fn edge_values_at_pixel(&self, i: i64, j: i64) -> [i64; 3] {

@@ -22,7 +22,6 @@
 
 use super::{emit_span, TriangleRasterizer, TriangleSelection};
 use crate::edge::{PixelRect, TriangleSetup};
-use crate::fixed::SUBPIXEL_SCALE;
 use crate::fragment::{FragmentSink, WorkCounters};
 
 /// Bounding box with edge functions stepped by additions.
@@ -68,8 +67,7 @@ pub(crate) fn step_over(
     sink: &mut dyn FragmentSink,
     work: &mut WorkCounters,
 ) {
-    let step_x = t.edges.map(|e| e.a * SUBPIXEL_SCALE);
-    let step_y = t.edges.map(|e| e.b * SUBPIXEL_SCALE);
+    let (step_x, step_y) = t.pixel_steps();
     let mut row = t.edge_values_at_pixel(r.x0, r.y0);
     for y in r.y0..=r.y1 {
         if test {

@@ -27,7 +27,6 @@ pub mod scanline;
 pub mod tiled;
 
 use crate::edge::{PixelRect, TriangleSetup};
-use crate::fixed::SUBPIXEL_SCALE;
 use crate::fragment::{FragmentSink, TriangleFragment, TriangleSpan, WorkCounters};
 
 /// A triangle rasterization algorithm.
@@ -141,6 +140,6 @@ pub(crate) fn emit_span(
         x1: x1 as u32,
         triangle: triangle.id,
         edges,
-        step: triangle.edges.map(|e| e.a * SUBPIXEL_SCALE),
+        step: triangle.pixel_steps().0,
     });
 }

@@ -45,7 +45,6 @@
 use super::incremental::{report_tested, run_in_row, step_over, Run};
 use super::{emit_span, TriangleRasterizer, TriangleSelection};
 use crate::edge::{PixelRect, TriangleSetup};
-use crate::fixed::SUBPIXEL_SCALE;
 use crate::fragment::{FragmentSink, WorkCounters};
 
 /// Block side in pixels.
@@ -73,14 +72,14 @@ pub enum BlockClass {
 /// Classifies the pixels of `r` against triangle `t` from the edge values
 /// at `r`'s four corner samples.
 pub fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
+    let (step_x, step_y) = t.pixel_steps();
     let top_left = t.edge_values_at_pixel(r.x0, r.y0);
-    let steps = [0, 1, 2].map(|k| (t.edges[k].a * SUBPIXEL_SCALE, t.edges[k].b * SUBPIXEL_SCALE));
-    classify_from_corner(t, top_left, steps, r.x1 - r.x0, r.y1 - r.y0)
+    classify_from_corner(t, top_left, step_x, step_y, r.x1 - r.x0, r.y1 - r.y0)
 }
 
 /// [`classify_block`] for a block `w + 1` by `h + 1` pixels whose top-left
-/// sample has edge values `top_left`; `steps[k]` is edge `k`'s change per
-/// pixel right and per pixel down.
+/// sample has edge values `top_left`; `step_x` and `step_y` are the edges'
+/// changes per pixel right and per pixel down.
 ///
 /// Of the four corners, the one where edge `k` is smallest is found from
 /// the signs of its steps alone (a step that lowers the value is taken),
@@ -89,13 +88,14 @@ pub fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
 fn classify_from_corner(
     t: &TriangleSetup,
     top_left: [i64; 3],
-    steps: [(i64, i64); 3],
+    step_x: [i64; 3],
+    step_y: [i64; 3],
     w: i64,
     h: i64,
 ) -> BlockClass {
     let mut all_inside = true;
     for k in 0..3 {
-        let (dx, dy) = (steps[k].0 * w, steps[k].1 * h);
+        let (dx, dy) = (step_x[k] * w, step_y[k] * h);
         let base = top_left[k] + t.bias[k];
         if base + dx.max(0) + dy.max(0) < 0 {
             return BlockClass::Outside;
@@ -136,11 +136,9 @@ impl TriangleRasterizer for Tiled {
                 step_over(t, r, true, sink, &mut work);
                 continue;
             }
-            let step_x = t.edges.map(|e| e.a * SUBPIXEL_SCALE);
-            let step_y = t.edges.map(|e| e.b * SUBPIXEL_SCALE);
+            let (step_x, step_y) = t.pixel_steps();
             let (bx0, by0) = (r.x0.div_euclid(BLOCK), r.y0.div_euclid(BLOCK));
             let (bx1, by1) = (r.x1.div_euclid(BLOCK), r.y1.div_euclid(BLOCK));
-            let steps = [0, 1, 2].map(|k| (step_x[k], step_y[k]));
             // Stretches pay only where one can be wholly inside or outside.
             let stretch = if r.x1 - r.x0 >= STRETCH * BLOCK {
                 STRETCH
@@ -153,31 +151,29 @@ impl TriangleRasterizer for Tiled {
                 let y0 = (by * BLOCK).max(r.y0);
                 let y1 = (by * BLOCK + BLOCK - 1).min(r.y1);
                 blocks.clear();
-                let classify = |x0: i64, x1: i64| {
+                // Blocks `b0..=b1` of the row: their pixels, as a rectangle,
+                // and its class.
+                let classify = |b0: i64, b1: i64| {
+                    let x0 = (b0 * BLOCK).max(r.x0);
+                    let x1 = (b1 * BLOCK + BLOCK - 1).min(r.x1);
                     let top_left = [0, 1, 2].map(|k| row[k] + step_x[k] * (x0 - r.x0));
-                    classify_from_corner(t, top_left, steps, x1 - x0, y1 - y0)
+                    let class = classify_from_corner(t, top_left, step_x, step_y, x1 - x0, y1 - y0);
+                    (PixelRect { x0, y0, x1, y1 }, class)
                 };
                 let mut bx = bx0;
                 while bx <= bx1 {
                     // A stretch of aligned blocks is classified as a whole
                     // first; only a straddling one is looked into.
                     let last = ((bx / stretch + 1) * stretch - 1).min(bx1);
-                    let x0 = (bx * BLOCK).max(r.x0);
-                    let x1 = (last * BLOCK + BLOCK - 1).min(r.x1);
                     work.spans += 1;
-                    let class = classify(x0, x1);
+                    let (stretch_rect, class) = classify(bx, last);
                     if class != BlockClass::Partial || last == bx {
-                        push_merged(&mut blocks, PixelRect { x0, y0, x1, y1 }, class);
+                        push_merged(&mut blocks, stretch_rect, class);
                     } else {
                         for b in bx..=last {
-                            let x0 = (b * BLOCK).max(r.x0);
-                            let x1 = (b * BLOCK + BLOCK - 1).min(r.x1);
                             work.spans += 1;
-                            push_merged(
-                                &mut blocks,
-                                PixelRect { x0, y0, x1, y1 },
-                                classify(x0, x1),
-                            );
+                            let (block, class) = classify(b, b);
+                            push_merged(&mut blocks, block, class);
                         }
                     }
                     bx = last + 1;
