@@ -624,11 +624,9 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
                 (*s, *v) = screen_vertex(shader, &clip, &viewport, vertex);
             }
         });
-    if let Some(i) = scratch
-        .screen
-        .par_iter()
-        .position_first(|s| s.outcode & REFUSED != 0)
-    {
+    // A plain scan: a parallel find checks a shared atomic per vertex,
+    // which cost the dragon 5 ms a frame in some builds.
+    if let Some(i) = scratch.screen.iter().position(|s| s.outcode & REFUSED != 0) {
         // Shade the first refused vertex again to say why.
         let out = shader.shade(&vertices[i]);
         Error::check_finite(out.position.to_array())?;
