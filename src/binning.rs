@@ -52,15 +52,15 @@ pub fn band_rows(height: u32, threads: usize) -> u32 {
 }
 
 /// The length of the chunks a list of `len` items is cut into to share it
-/// between rayon's threads: four chunks per thread to balance the load, of
-/// at least `min` items; with one thread, one chunk (nothing to balance, and
-/// no partial results to join).
-pub(crate) fn chunk_len(len: usize, min: usize) -> usize {
+/// between rayon's threads: `per_thread` chunks per thread to balance the
+/// load, of at least `min` items; with one thread, one chunk (nothing to
+/// balance, and no partial results to join).
+pub(crate) fn chunk_len(len: usize, per_thread: usize, min: usize) -> usize {
     let threads = rayon::current_num_threads();
     if threads == 1 {
         len.max(1)
     } else {
-        len.div_ceil(4 * threads).max(min)
+        len.div_ceil(per_thread * threads).max(min)
     }
 }
 
@@ -81,7 +81,7 @@ impl Bins {
         let band_rows = band_rows.max(1);
         let bands = height.div_ceil(band_rows) as usize;
         let viewport = PixelRect::of_target(width, height);
-        let chunk = chunk_len(setups.len(), MIN_CHUNK);
+        let chunk = chunk_len(setups.len(), 4, MIN_CHUNK);
         let chunks = setups
             .par_chunks(chunk)
             .enumerate()
