@@ -24,7 +24,7 @@
 
 use crate::edge::{PixelRect, TriangleSetup};
 use crate::fragment::WorkCounters;
-use crate::pipeline::Geometry;
+use crate::pipeline::{Geometry, TriangleRun};
 use crate::stage::{FragmentShader, FragmentStage, Interpolation};
 use crate::target::{DepthState, RenderTarget};
 use crate::triangle::{TriangleRasterizer, TriangleSelection};
@@ -64,28 +64,39 @@ pub(crate) fn chunk_len(len: usize, per_thread: usize, min: usize) -> usize {
     }
 }
 
-/// Triangles binned by band: `chunks[c][b]` holds, in id order, the
-/// indices of the triangles of chunk `c` whose bounds meet band `b`.
+/// Triangles binned by band, chunk by chunk of the draw's runs.
 #[derive(Clone, Debug, Default)]
-pub struct Bins {
+pub(crate) struct Bins {
     /// Rows per band.
     pub band_rows: u32,
-    /// Per chunk of the input, per band, the triangles meeting the band.
-    pub chunks: Vec<Vec<Vec<u32>>>,
+    /// In id order: a chunk of one run (the run's index), and per band the
+    /// indices in that run of the chunk's triangles meeting the band.
+    pub chunks: Vec<(usize, Vec<Vec<u32>>)>,
 }
 
 impl Bins {
-    /// Bins `setups` into bands of `band_rows` rows of a `width` x `height`
-    /// target, in parallel.
-    pub fn new(setups: &[TriangleSetup], width: u32, height: u32, band_rows: u32) -> Bins {
+    /// Bins the triangles of `runs` into bands of `band_rows` rows of a
+    /// `width` x `height` target, in parallel.
+    pub fn new(runs: &[TriangleRun<'_>], width: u32, height: u32, band_rows: u32) -> Bins {
         let band_rows = band_rows.max(1);
         let bands = height.div_ceil(band_rows) as usize;
         let viewport = PixelRect::of_target(width, height);
-        let chunk = chunk_len(setups.len(), 4, MIN_CHUNK);
-        let chunks = setups
-            .par_chunks(chunk)
+        let total = runs.iter().map(|r| r.setups.len()).sum();
+        let chunk = chunk_len(total, 4, MIN_CHUNK);
+        // (run, first index in the run, the chunk's set-ups)
+        let work: Vec<(usize, usize, &[TriangleSetup])> = runs
+            .iter()
             .enumerate()
-            .map(|(c, triangles)| {
+            .flat_map(|(r, run)| {
+                run.setups
+                    .chunks(chunk)
+                    .enumerate()
+                    .map(move |(c, setups)| (r, c * chunk, setups))
+            })
+            .collect();
+        let chunks = work
+            .into_par_iter()
+            .map(|(run, first, triangles)| {
                 let mut per_band: Vec<Vec<u32>> = vec![Vec::new(); bands];
                 for (i, t) in triangles.iter().enumerate() {
                     let r = t.bounds_within(viewport);
@@ -94,19 +105,13 @@ impl Bins {
                     }
                     let rows = i64::from(band_rows);
                     for band in &mut per_band[(r.y0 / rows) as usize..=(r.y1 / rows) as usize] {
-                        band.push((c * chunk + i) as u32);
+                        band.push((first + i) as u32);
                     }
                 }
-                per_band
+                (run, per_band)
             })
             .collect();
         Bins { band_rows, chunks }
-    }
-
-    /// The number of (triangle, band) pairs: triangles counted once per
-    /// band they meet.
-    pub fn binned(&self) -> usize {
-        self.chunks.iter().flatten().map(Vec::len).sum()
     }
 }
 
@@ -126,7 +131,8 @@ pub fn draw_binned(
         return crate::pipeline::draw(geometry, backend, shader, depth, interpolation, target);
     }
     let (width, height) = (target.width(), target.height());
-    let bins = Bins::new(&geometry.setups, width, height, band_rows(height, threads));
+    let runs = geometry.runs();
+    let bins = Bins::new(&runs, width, height, band_rows(height, threads));
     target
         .bands_mut(bins.band_rows)
         .into_par_iter()
@@ -138,9 +144,11 @@ pub fn draw_binned(
                 .with_depth(depth)
                 .with_interpolation(interpolation);
             let mut work = WorkCounters::default();
-            for chunk in &bins.chunks {
-                if !chunk[b].is_empty() {
-                    let selection = TriangleSelection::indexed(&geometry.setups, &chunk[b]);
+            for (run, per_band) in &bins.chunks {
+                if !per_band[b].is_empty() {
+                    let run = runs[*run];
+                    stage.use_triangles(run.triangles);
+                    let selection = TriangleSelection::indexed(run.setups, &per_band[b]);
                     work.add(&backend.rasterize_selection(selection, viewport, &mut stage));
                 }
             }

@@ -132,6 +132,16 @@ pub struct Frame {
     pub stats: FrameStats,
 }
 
+/// A geometry pass of the pipeline over a mesh's vertices and triangles.
+type ProcessFn = fn(
+    &mut Geometry,
+    &[MeshVertex],
+    &[[u32; 3]],
+    &Transform,
+    Viewport,
+    &PipelineOptions,
+) -> Result<()>;
+
 /// A mesh prepared for rendering from one view.
 pub struct MeshRenderer {
     settings: RenderSettings,
@@ -226,14 +236,16 @@ impl MeshRenderer {
     /// Runs the geometry stages (vertex shader, clipping, set-up).
     pub fn geometry(&self) -> Result<Geometry> {
         let mut geometry = Geometry::default();
-        self.geometry_into(&mut geometry)?;
+        self.geometry_into(&mut geometry, pipeline::process_triangles_into)?;
         Ok(geometry)
     }
 
-    /// [`geometry`](Self::geometry) into buffers used before, whose memory
-    /// is reused.
-    fn geometry_into(&self, geometry: &mut Geometry) -> Result<()> {
-        pipeline::process_triangles_into(
+    /// The geometry stages into `geometry` (buffers used before, whose
+    /// memory is reused) by `process`: [`pipeline::process_triangles_into`],
+    /// or its variant that leaves the triangles in runs for
+    /// [`crate::binning::draw_binned`].
+    fn geometry_into(&self, geometry: &mut Geometry, process: ProcessFn) -> Result<()> {
+        process(
             geometry,
             &self.vertices,
             &self.triangles,
@@ -275,7 +287,7 @@ impl MeshRenderer {
         let mut reused = self.geometry.try_lock().ok();
         let mut own = Geometry::default();
         let geometry = reused.as_deref_mut().unwrap_or(&mut own);
-        self.geometry_into(geometry)?;
+        self.geometry_into(geometry, pipeline::process_triangles_in_runs)?;
         let geometry = &*geometry;
         let lines = if self.edges.is_empty() {
             Vec::new()

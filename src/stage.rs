@@ -344,6 +344,12 @@ impl<'a> FragmentStage<'a> {
         self
     }
 
+    /// Switches to another run of triangles over the same vertices: ids
+    /// now index `triangles` (see [`crate::pipeline::Geometry`]).
+    pub(crate) fn use_triangles(&mut self, triangles: &'a [ShadedTriangle]) {
+        self.triangles = triangles;
+    }
+
     /// Vertex data of the line segments, indexed by line id.
     pub fn with_lines(mut self, lines: &'a [ShadedLine]) -> Self {
         self.lines = lines;

@@ -42,29 +42,35 @@ fn soup_geometry(soup: &[[FixedPoint; 3]], depths: &[f32]) -> Geometry {
     Geometry::of_screen_triangles(setups, &vertices)
 }
 
-/// Twelve bunnies, each shifted a little from the last (44k triangles, so
-/// several chunks of geometry work), seen from a camera inside them: many
-/// triangles meet the near plane, so clipping makes vertices of its own in
-/// every chunk. The geometry is the same on 1, 2 and 3 threads, and the
-/// same whether it is built fresh or into buffers used for another draw.
-#[test]
-fn clipped_geometry_is_the_same_on_any_number_of_threads_and_when_reused() {
+/// Twelve bunnies, the k-th moved by `offset(k)`: 44k triangles, so
+/// several chunks of geometry work on two threads or more.
+fn twelve_bunnies(offset: impl Fn(u32) -> Vec3) -> Mesh {
     let one = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
-    let (lo, hi) = one.bounds();
     let n = one.positions.len() as u32;
-    let bunny = Mesh::new(
+    Mesh::new(
         (0..12)
             .flat_map(|k| {
                 one.positions
                     .iter()
-                    .map(move |p| *p + Vec3::splat(k as f32 * 0.002))
+                    .map(|p| *p + offset(k))
+                    .collect::<Vec<_>>()
             })
             .collect(),
         (0..12)
             .flat_map(|k| one.triangles.iter().map(move |t| t.map(|i| i + k * n)))
             .collect(),
     )
-    .unwrap();
+    .unwrap()
+}
+
+/// Twelve bunnies seen from a camera inside them: many triangles meet the
+/// near plane, so clipping makes vertices of its own in every chunk. The
+/// geometry is the same on 1, 2 and 3 threads, and the same whether it is
+/// built fresh or into buffers used for another draw.
+#[test]
+fn clipped_geometry_is_the_same_on_any_number_of_threads_and_when_reused() {
+    let bunny = twelve_bunnies(|k| Vec3::splat(k as f32 * 0.002));
+    let (lo, hi) = bunny.bounds();
     // The near plane runs through the middle of the bunnies.
     let centre = (lo + hi) * 0.5;
     let distance = (hi - lo).length();
@@ -141,8 +147,45 @@ fn clipped_geometry_is_the_same_on_any_number_of_threads_and_when_reused() {
     }
 }
 
-/// The bunny (69k triangles: several geometry chunks and bins) is
-/// processed and drawn identically on 1, 2 and 3 threads by every back-end.
+/// Twelve bunnies side by side in a 4 x 3 grid, framed from so close (zoom
+/// 8) that the near plane cuts through every one of them. On several
+/// threads the renderer leaves the triangles in the chunks that assembled
+/// them, clipped ones included, and bins and draws them from there; every
+/// back-end's frame equals the single-threaded one, frame after frame.
+#[test]
+fn frames_drawn_from_assembly_chunks_equal_the_single_threaded_frame() {
+    let bunnies = twelve_bunnies(|k| Vec3::new((k % 4) as f32, (k / 4) as f32, 0.0) * 0.15);
+    let settings = RenderSettings {
+        width: 320,
+        height: 240,
+        zoom: 8.0,
+        elevation: 0.0,
+        shading: Shading::Gouraud,
+        ..RenderSettings::default()
+    };
+    let renderer = MeshRenderer::new(&bunnies, settings).unwrap();
+    let reference = pool(1).install(|| renderer.render(triangle_backends()[2]).unwrap());
+    let stats = reference.stats.geometry;
+    assert!(stats.clipped > 1000, "{stats:?}");
+    assert!(stats.triangles > 3000, "{stats:?}");
+    for threads in [2, 3] {
+        for b in triangle_backends().iter().skip(1) {
+            for frame in 0..2 {
+                let drawn = pool(threads).install(|| renderer.render(*b).unwrap());
+                assert!(
+                    drawn.target == reference.target,
+                    "{threads} threads, {}, frame {frame}",
+                    b.name()
+                );
+                assert_eq!(drawn.stats.geometry, stats);
+                assert_eq!(drawn.stats.work.fragments, reference.stats.work.fragments);
+            }
+        }
+    }
+}
+
+/// The bunny (3.7k triangles) is processed and drawn identically on 1, 2
+/// and 3 threads by every back-end.
 #[test]
 fn meshes_render_identically_on_any_number_of_threads() {
     let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();

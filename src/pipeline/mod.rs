@@ -208,6 +208,20 @@ pub struct Geometry {
     pub stats: GeometryStats,
     /// Buffers kept from one draw to the next.
     scratch: Scratch,
+    /// True when the triangles were left in the parts that assembled them
+    /// (see [`Geometry::runs`]), and `setups`, `shaded.triangles` and
+    /// `source` are empty.
+    in_parts: bool,
+}
+
+/// A run of set-up triangles and their stage data: the set-up with id `i`
+/// in the run belongs to `triangles[i]`. A draw is one run, or, when the
+/// pipeline left its triangles in the parts its tasks assembled, one run
+/// per part, in order.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct TriangleRun<'a> {
+    pub setups: &'a [TriangleSetup],
+    pub triangles: &'a [ShadedTriangle],
 }
 
 /// The working buffers of [`process_triangles_into`].
@@ -278,7 +292,51 @@ impl Geometry {
             },
             setups,
             scratch: Scratch::default(),
+            in_parts: false,
         }
+    }
+
+    /// The triangles in runs, in id order: one run when gathered, one per
+    /// part otherwise.
+    pub(crate) fn runs(&self) -> Vec<TriangleRun<'_>> {
+        if self.in_parts {
+            self.scratch
+                .parts
+                .iter()
+                .map(|p| TriangleRun {
+                    setups: &p.setups,
+                    triangles: &p.triangles,
+                })
+                .collect()
+        } else {
+            vec![TriangleRun {
+                setups: &self.setups,
+                triangles: &self.shaded.triangles,
+            }]
+        }
+    }
+
+    /// Leaves several parts where they are, for a draw that reads them as
+    /// runs: only their clip vertices are appended after the
+    /// `mesh_vertices` shaded ones, and the parts' references to them
+    /// renumbered. Saves the copy of [`gather`](Self::gather).
+    fn keep_in_parts(&mut self, parts: &mut [Part], mesh_vertices: usize) {
+        self.stats = GeometryStats::default();
+        self.setups.clear();
+        self.shaded.triangles.clear();
+        self.source.clear();
+        let n = mesh_vertices as u32;
+        for p in parts.iter_mut() {
+            self.stats.add(&p.stats);
+            if !p.clip_vertices.is_empty() {
+                let clip_start = self.shaded.vertices.len() as u32;
+                for t in &mut p.triangles {
+                    t.vertices = t.vertices.map(|v| index_in_draw(v, n, clip_start));
+                }
+                self.shaded.vertices.extend_from_slice(&p.clip_vertices);
+            }
+        }
+        self.in_parts = true;
     }
 
     /// Gathers the parts into this geometry, one after the other, with
@@ -287,6 +345,7 @@ impl Geometry {
     /// own range of the result, on rayon's threads. A single part is moved
     /// in without copying.
     fn gather(&mut self, parts: &mut [Part], mesh_vertices: usize) {
+        self.in_parts = false;
         self.stats = GeometryStats::default();
         for p in parts.iter() {
             self.stats.add(&p.stats);
@@ -343,19 +402,27 @@ impl Geometry {
                         ..*s
                     };
                 }
-                // Vertices made by clipping are numbered from `n` in the
-                // part, from `clip_start` in the draw.
                 for (d, t) in triangles.iter_mut().zip(&p.triangles) {
                     *d = ShadedTriangle {
-                        vertices: t
-                            .vertices
-                            .map(|v| if v < n { v } else { v - n + clip_start }),
+                        vertices: t.vertices.map(|v| index_in_draw(v, n, clip_start)),
                         ..*t
                     };
                 }
                 source.copy_from_slice(&p.source);
             },
         );
+    }
+}
+
+/// A part's vertex index `v` in the draw of `n` mesh vertices: those keep
+/// their index; the part's clip vertices, numbered from `n` in the part,
+/// start at `clip_start` in the draw.
+#[inline]
+fn index_in_draw(v: u32, n: u32, clip_start: u32) -> u32 {
+    if v < n {
+        v
+    } else {
+        v - n + clip_start
     }
 }
 
@@ -630,6 +697,39 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
     viewport: Viewport,
     options: &PipelineOptions,
 ) -> Result<()> {
+    process(
+        geometry, vertices, triangles, shader, viewport, options, true,
+    )
+}
+
+/// [`process_triangles_into`] for a draw that reads the triangles as
+/// [`Geometry::runs`] (what [`crate::binning::draw_binned`] does): on
+/// several threads they stay in the parts the tasks assembled, one run per
+/// part, instead of being copied into one array. The image drawn is the
+/// same.
+pub(crate) fn process_triangles_in_runs<V: Sync, S: VertexShader<V>>(
+    geometry: &mut Geometry,
+    vertices: &[V],
+    triangles: &[[u32; 3]],
+    shader: &S,
+    viewport: Viewport,
+    options: &PipelineOptions,
+) -> Result<()> {
+    process(
+        geometry, vertices, triangles, shader, viewport, options, false,
+    )
+}
+
+/// The pipeline's geometry stages; `gather` joins the parts into one run.
+fn process<V: Sync, S: VertexShader<V>>(
+    geometry: &mut Geometry,
+    vertices: &[V],
+    triangles: &[[u32; 3]],
+    shader: &S,
+    viewport: Viewport,
+    options: &PipelineOptions,
+    gather: bool,
+) -> Result<()> {
     Error::check_indices(triangles.iter().flatten(), vertices.len())?;
     let clip = ClipVolume::new(viewport.width, viewport.height);
     let mut scratch = std::mem::take(&mut geometry.scratch);
@@ -687,7 +787,11 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
         scratch.parts[0].clear();
     }
     let mesh_vertices = vertices.len();
-    geometry.gather(&mut scratch.parts, mesh_vertices);
+    if gather || scratch.parts.len() == 1 {
+        geometry.gather(&mut scratch.parts, mesh_vertices);
+    } else {
+        geometry.keep_in_parts(&mut scratch.parts, mesh_vertices);
+    }
     geometry.scratch = scratch;
     Ok(())
 }
@@ -745,5 +849,10 @@ pub fn draw(
         .with_triangles(&geometry.shaded)
         .with_depth(depth)
         .with_interpolation(interpolation);
-    backend.rasterize(&geometry.setups, viewport, &mut stage)
+    let mut work = WorkCounters::default();
+    for run in geometry.runs() {
+        stage.use_triangles(run.triangles);
+        work.add(&backend.rasterize(run.setups, viewport, &mut stage));
+    }
+    work
 }
