@@ -24,7 +24,7 @@
 
 use crate::edge::{PixelRect, TriangleSetup};
 use crate::fragment::WorkCounters;
-use crate::pipeline::{Geometry, TriangleRun};
+use crate::pipeline::{Geometry, TriangleRun, Viewport};
 use crate::stage::{FragmentShader, FragmentStage, Interpolation};
 use crate::target::{DepthState, RenderTarget};
 use crate::triangle::{TriangleRasterizer, TriangleSelection};
@@ -64,11 +64,19 @@ pub(crate) fn chunk_len(len: usize, per_thread: usize, min: usize) -> usize {
     }
 }
 
+/// Adds triangle `id`, whose pixels lie in `bounds` (not empty, inside the
+/// target), to the bins of the bands of `band_rows` rows that it meets.
+#[inline]
+pub(crate) fn bin(bins: &mut [Vec<u32>], band_rows: u32, bounds: PixelRect, id: u32) {
+    let rows = i64::from(band_rows);
+    for band in &mut bins[(bounds.y0 / rows) as usize..=(bounds.y1 / rows) as usize] {
+        band.push(id);
+    }
+}
+
 /// Triangles binned by band, chunk by chunk of the draw's runs.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Bins {
-    /// Rows per band.
-    pub band_rows: u32,
     /// In id order: a chunk of one run (the run's index), and per band the
     /// indices in that run of the chunk's triangles meeting the band.
     pub chunks: Vec<(usize, Vec<Vec<u32>>)>,
@@ -100,18 +108,14 @@ impl Bins {
                 let mut per_band: Vec<Vec<u32>> = vec![Vec::new(); bands];
                 for (i, t) in triangles.iter().enumerate() {
                     let r = t.bounds_within(viewport);
-                    if r.is_empty() {
-                        continue;
-                    }
-                    let rows = i64::from(band_rows);
-                    for band in &mut per_band[(r.y0 / rows) as usize..=(r.y1 / rows) as usize] {
-                        band.push((first + i) as u32);
+                    if !r.is_empty() {
+                        bin(&mut per_band, band_rows, r, (first + i) as u32);
                     }
                 }
                 (run, per_band)
             })
             .collect();
-        Bins { band_rows, chunks }
+        Bins { chunks }
     }
 }
 
@@ -132,9 +136,19 @@ pub fn draw_binned(
     }
     let (width, height) = (target.width(), target.height());
     let runs = geometry.runs();
-    let bins = Bins::new(&runs, width, height, band_rows(height, threads));
+    let band_rows = band_rows(height, threads);
+    // Per chunk in id order: its run, and per band its triangles there.
+    let computed: Bins;
+    let chunks: Vec<(usize, &[Vec<u32>])> =
+        match geometry.bins_of_parts(band_rows, Viewport { width, height }) {
+            Some(parts) => parts.into_iter().enumerate().collect(),
+            None => {
+                computed = Bins::new(&runs, width, height, band_rows);
+                computed.chunks.iter().map(|(r, b)| (*r, &b[..])).collect()
+            }
+        };
     target
-        .bands_mut(bins.band_rows)
+        .bands_mut(band_rows)
         .into_par_iter()
         .enumerate()
         .map(|(b, rows)| {
@@ -144,9 +158,9 @@ pub fn draw_binned(
                 .with_depth(depth)
                 .with_interpolation(interpolation);
             let mut work = WorkCounters::default();
-            for (run, per_band) in &bins.chunks {
+            for &(run, per_band) in &chunks {
                 if !per_band[b].is_empty() {
-                    let run = runs[*run];
+                    let run = runs[run];
                     stage.use_triangles(run.triangles);
                     let selection = TriangleSelection::indexed(run.setups, &per_band[b]);
                     work.add(&backend.rasterize_selection(selection, viewport, &mut stage));

