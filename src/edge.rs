@@ -352,6 +352,7 @@ pub struct TriangleSetup {
 
 impl TriangleSetup {
     /// Sets up a triangle; `None` when its snapped area is zero.
+    #[inline]
     pub fn new(id: u32, vertices: [FixedPoint; 3], rule: FillRule) -> Option<TriangleSetup> {
         let [v0, v1, v2] = vertices;
         let mut edges = [

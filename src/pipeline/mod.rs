@@ -372,6 +372,13 @@ impl Geometry {
             self.stats.add(&p.stats);
         }
         if let [part] = parts {
+            if std::env::var("RL_A").is_ok() {
+                eprintln!(
+                    "align setups {} tris {}",
+                    part.setups.as_ptr() as usize % 4096,
+                    part.triangles.as_ptr() as usize % 4096
+                );
+            }
             std::mem::swap(&mut self.setups, &mut part.setups);
             std::mem::swap(&mut self.shaded.triangles, &mut part.triangles);
             std::mem::swap(&mut self.source, &mut part.source);
@@ -776,19 +783,27 @@ fn process<V: Sync, S: VertexShader<V>>(
     scratch.screen.resize(n, ScreenPoint::default());
     geometry.shaded.vertices.truncate(n);
     geometry.shaded.vertices.resize(n, placeholder);
-    scratch
+    let refused = scratch
         .screen
         .par_chunks_mut(VERTEX_CHUNK)
         .zip(geometry.shaded.vertices.par_chunks_mut(VERTEX_CHUNK))
         .zip(vertices.par_chunks(VERTEX_CHUNK))
-        .for_each(|((screen, shaded), input)| {
+        .map(|((screen, shaded), input)| {
+            let mut outcodes = 0;
             for ((s, v), vertex) in screen.iter_mut().zip(shaded).zip(input) {
-                (*s, *v) = screen_vertex(shader, &clip, &viewport, vertex);
+                let (point, shaded) = screen_vertex(shader, &clip, &viewport, vertex);
+                outcodes |= point.outcode;
+                (*s, *v) = (point, shaded);
             }
-        });
-    // A plain scan: a parallel find checks a shared atomic per vertex,
-    // which cost the dragon 5 ms a frame in some builds.
-    if let Some(i) = scratch.screen.iter().position(|s| s.outcode & REFUSED != 0) {
+            outcodes & REFUSED != 0
+        })
+        .reduce(|| false, |a, b| a | b);
+    // Only a draw with a refused vertex looks for the first one (a scan of
+    // every vertex costs the dragon 0.5 ms a frame).
+    if let Some(i) = refused
+        .then(|| scratch.screen.iter().position(|s| s.outcode & REFUSED != 0))
+        .flatten()
+    {
         // Shade the first refused vertex again to say why.
         let out = shader.shade(&vertices[i]);
         Error::check_finite(out.position.to_array())?;
