@@ -11,6 +11,8 @@
 //!   back-end through the stage and the fast path, against the
 //!   `line_drawing` crate's Bresenham writing into a colour buffer.
 //!
+//! Every rasterlab figure is measured on one thread (a rayon pool of one,
+//! so the target clears too stay on one core) except `tiled-2-threads`.
 //! rasterlab draws into one reused target made
 //! `RenderTarget::without_coverage`: colour and depth, as the peers, without
 //! the per-pixel fragment count that the correctness tests read.
@@ -188,13 +190,14 @@ fn triangles(c: &mut Criterion) {
     }
     let mut target = RenderTarget::without_coverage(W, H).unwrap();
     let mut pixmap = tiny_skia::Pixmap::new(W, H).unwrap();
+    let one = pool(1);
     for work in &workloads {
         let mut group = c.benchmark_group(format!("triangles/{}", work.name));
         let pixels = work.run(triangle_backends()[1], &mut target);
         group.throughput(Throughput::Elements(pixels));
         for b in triangle_backends().iter().filter(|b| work.suits(**b)) {
             group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
-                bench.iter(|| work.run(*b, &mut target))
+                bench.iter(|| one.install(|| work.run(*b, &mut target)))
             });
         }
         group.bench_function(BenchmarkId::from_parameter("peer-tiny-skia"), |bench| {
@@ -228,6 +231,7 @@ fn lines(c: &mut Criterion) {
         LineWorkload::new("lines/long-10k", workload::long_lines(W, H, 10_000)),
     ];
     let mut target = RenderTarget::without_coverage(W, H).unwrap();
+    let one = pool(1);
     for work in &sets {
         let ints: Vec<(i32, i32, i32, i32)> = work
             .lines
@@ -247,11 +251,11 @@ fn lines(c: &mut Criterion) {
         group.throughput(Throughput::Elements(work.run_fast(&mut target)));
         for b in line_backends() {
             group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
-                bench.iter(|| work.run(*b, &mut target))
+                bench.iter(|| one.install(|| work.run(*b, &mut target)))
             });
         }
         group.bench_function(BenchmarkId::from_parameter("fast-bresenham"), |bench| {
-            bench.iter(|| work.run_fast(&mut target))
+            bench.iter(|| one.install(|| work.run_fast(&mut target)))
         });
         let mut buffer = vec![[0u8; 4]; (W * H) as usize];
         group.bench_function(BenchmarkId::from_parameter("peer-line_drawing"), |bench| {
