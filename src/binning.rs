@@ -7,6 +7,12 @@
 //! parallel with `rayon`, each by its own [`FragmentStage`] writing only its
 //! own rows, with the back-end's viewport narrowed to the band.
 //!
+//! A mesh rendered by [`MeshRenderer`](crate::render::MeshRenderer) on
+//! several threads comes binned already: the pipeline's tasks bin the
+//! triangles they keep as they set them up, and leave them in their own
+//! chunks (runs), which the bands read in order, without a copy into one
+//! array. Other geometry is binned here, in parallel chunks.
+//!
 //! Why the image is bit-identical to a single-threaded draw: a pixel lies in
 //! exactly one band, and that band receives its triangles in ascending id
 //! order (binning keeps the order: triangles are binned in chunks, and each
