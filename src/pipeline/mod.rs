@@ -208,13 +208,11 @@ pub struct Geometry {
     pub stats: GeometryStats,
     /// Buffers kept from one draw to the next.
     scratch: Scratch,
-    /// True when the triangles were left in the parts that assembled them
-    /// (see [`Geometry::runs`]), and `setups`, `shaded.triangles` and
-    /// `source` are empty.
-    in_parts: bool,
-    /// When the parts binned their triangles as they kept them: the rows
-    /// per band and the viewport.
-    parts_binned: Option<(u32, Viewport)>,
+    /// When the triangles were left in the parts that assembled them (see
+    /// [`Geometry::runs`]; `setups`, `shaded.triangles` and `source` are
+    /// then empty): the rows per band and the viewport of the bins the
+    /// parts filled as they kept their triangles.
+    in_parts: Option<(u32, Viewport)>,
 }
 
 /// A run of set-up triangles and their stage data: the set-up with id `i`
@@ -300,15 +298,14 @@ impl Geometry {
             },
             setups,
             scratch: Scratch::default(),
-            in_parts: false,
-            parts_binned: None,
+            in_parts: None,
         }
     }
 
     /// The triangles in runs, in id order: one run when gathered, one per
     /// part otherwise.
     pub(crate) fn runs(&self) -> Vec<TriangleRun<'_>> {
-        if self.in_parts {
+        if self.in_parts.is_some() {
             self.scratch
                 .parts
                 .iter()
@@ -333,15 +330,22 @@ impl Geometry {
         band_rows: u32,
         viewport: Viewport,
     ) -> Option<Vec<&[Vec<u32>]>> {
-        (self.in_parts && self.parts_binned == Some((band_rows, viewport)))
+        (self.in_parts == Some((band_rows, viewport)))
             .then(|| self.scratch.parts.iter().map(|p| &p.bins[..]).collect())
     }
 
     /// Leaves several parts where they are, for a draw that reads them as
     /// runs: only their clip vertices are appended after the
     /// `mesh_vertices` shaded ones, and the parts' references to them
-    /// renumbered. Saves the copy of [`gather`](Self::gather).
-    fn keep_in_parts(&mut self, parts: &mut [Part], mesh_vertices: usize) {
+    /// renumbered. Saves the copy of [`gather`](Self::gather). The parts
+    /// binned their triangles into bands of `band_rows` rows of `viewport`.
+    fn keep_in_parts(
+        &mut self,
+        parts: &mut [Part],
+        mesh_vertices: usize,
+        band_rows: u32,
+        viewport: Viewport,
+    ) {
         self.stats = GeometryStats::default();
         self.setups.clear();
         self.shaded.triangles.clear();
@@ -357,7 +361,7 @@ impl Geometry {
                 self.shaded.vertices.extend_from_slice(&p.clip_vertices);
             }
         }
-        self.in_parts = true;
+        self.in_parts = Some((band_rows, viewport));
     }
 
     /// Gathers the parts into this geometry, one after the other, with
@@ -366,19 +370,12 @@ impl Geometry {
     /// own range of the result, on rayon's threads. A single part is moved
     /// in without copying.
     fn gather(&mut self, parts: &mut [Part], mesh_vertices: usize) {
-        self.in_parts = false;
+        self.in_parts = None;
         self.stats = GeometryStats::default();
         for p in parts.iter() {
             self.stats.add(&p.stats);
         }
         if let [part] = parts {
-            if std::env::var("RL_A").is_ok() {
-                eprintln!(
-                    "align setups {} tris {}",
-                    part.setups.as_ptr() as usize % 4096,
-                    part.triangles.as_ptr() as usize % 4096
-                );
-            }
             std::mem::swap(&mut self.setups, &mut part.setups);
             std::mem::swap(&mut self.shaded.triangles, &mut part.triangles);
             std::mem::swap(&mut self.source, &mut part.source);
@@ -845,11 +842,9 @@ fn process<V: Sync, S: VertexShader<V>>(
     }
     let mesh_vertices = vertices.len();
     if in_parts {
-        geometry.keep_in_parts(&mut scratch.parts, mesh_vertices);
-        geometry.parts_binned = Some((band_rows, viewport));
+        geometry.keep_in_parts(&mut scratch.parts, mesh_vertices, band_rows, viewport);
     } else {
         geometry.gather(&mut scratch.parts, mesh_vertices);
-        geometry.parts_binned = None;
     }
     geometry.scratch = scratch;
     Ok(())
