@@ -334,6 +334,13 @@ impl Geometry {
             .then(|| self.scratch.parts.iter().map(|p| &p.bins[..]).collect())
     }
 
+    /// Empties the triangle arrays, keeping their memory.
+    fn clear_triangles(&mut self) {
+        self.setups.clear();
+        self.shaded.triangles.clear();
+        self.source.clear();
+    }
+
     /// Leaves several parts where they are, for a draw that reads them as
     /// runs: only their clip vertices are appended after the
     /// `mesh_vertices` shaded ones, and the parts' references to them
@@ -346,13 +353,9 @@ impl Geometry {
         band_rows: u32,
         viewport: Viewport,
     ) {
-        self.stats = GeometryStats::default();
-        self.setups.clear();
-        self.shaded.triangles.clear();
-        self.source.clear();
+        self.clear_triangles();
         let n = mesh_vertices as u32;
         for p in parts.iter_mut() {
-            self.stats.add(&p.stats);
             if !p.clip_vertices.is_empty() {
                 let clip_start = self.shaded.vertices.len() as u32;
                 for t in &mut p.triangles {
@@ -371,10 +374,6 @@ impl Geometry {
     /// in without copying.
     fn gather(&mut self, parts: &mut [Part], mesh_vertices: usize) {
         self.in_parts = None;
-        self.stats = GeometryStats::default();
-        for p in parts.iter() {
-            self.stats.add(&p.stats);
-        }
         if let [part] = parts {
             std::mem::swap(&mut self.setups, &mut part.setups);
             std::mem::swap(&mut self.shaded.triangles, &mut part.triangles);
@@ -388,9 +387,7 @@ impl Geometry {
             .find_map(|p| Some((*p.setups.first()?, *p.triangles.first()?)));
         let total = parts.iter().map(|p| p.setups.len()).sum();
         let Some((setup, triangle)) = filler else {
-            self.setups.clear();
-            self.shaded.triangles.clear();
-            self.source.clear();
+            self.clear_triangles();
             return;
         };
         // Sized without clearing: from one frame to the next the lengths
@@ -839,6 +836,10 @@ fn process<V: Sync, S: VertexShader<V>>(
         .for_each(|(c, (part, list))| input.process(list, c * chunk, part));
     if triangles.is_empty() {
         scratch.parts[0].clear(0, 0);
+    }
+    geometry.stats = GeometryStats::default();
+    for p in &scratch.parts {
+        geometry.stats.add(&p.stats);
     }
     let mesh_vertices = vertices.len();
     if in_parts {
