@@ -10,7 +10,7 @@
 //! workloads under criterion.
 
 use crate::backend::{line_backends, triangle_backends};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::pipeline::CullMode;
 use crate::render::{MeshRenderer, RenderSettings};
@@ -389,16 +389,10 @@ pub fn chart_svg(results: &[Measurement]) -> String {
 
 /// Writes `bench.json`, `bench.png` and `bench.svg` into `dir`.
 pub fn write_outputs(results: &[Measurement], dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, &e))?;
-    let json = dir.join("bench.json");
-    std::fs::write(&json, to_json(results)).map_err(|e| Error::io(&json, &e))?;
-    let svg = dir.join("bench.svg");
-    std::fs::write(&svg, chart_svg(results)).map_err(|e| Error::io(&svg, &e))?;
-    let png = dir.join("bench.png");
-    chart_png(results).save(&png).map_err(|e| Error::Io {
-        path: png.clone(),
-        message: e.to_string(),
-    })
+    crate::output::check_dir(dir)?;
+    crate::output::write_file(&dir.join("bench.json"), to_json(results).as_bytes())?;
+    crate::output::write_file(&dir.join("bench.svg"), chart_svg(results).as_bytes())?;
+    crate::output::write_png(&dir.join("bench.png"), &chart_png(results))
 }
 
 #[cfg(test)]

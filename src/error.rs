@@ -97,7 +97,7 @@ pub enum Error {
         /// What was wrong.
         message: String,
     },
-    /// Reading or writing a file failed.
+    /// Reading a file failed.
     #[error("{}: {message}", path.display())]
     Io {
         /// The file.
@@ -105,6 +105,24 @@ pub enum Error {
         /// The operating system's message.
         message: String,
     },
+    /// Writing an output (a file, a directory, standard output) failed.
+    #[error("cannot write {}: {message}", path.display())]
+    Write {
+        /// The file or directory (`<stdout>` for standard output).
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+        /// True when the reader went away (a closed pipe): the CLI stops
+        /// without a message, as `head` expects.
+        closed: bool,
+    },
+    /// The work asked for is beyond a bound; the message gives the estimate.
+    #[error("{0}")]
+    TooMuchWork(String),
+    /// Results that should agree do not (back-ends in the demo, a checked
+    /// rasterizer against the rules).
+    #[error("{0}")]
+    Mismatch(String),
     /// An argument had a value the operation cannot use.
     #[error("{0}")]
     InvalidArgument(String),
@@ -142,6 +160,27 @@ impl Error {
                 count,
             }),
             None => Ok(()),
+        }
+    }
+
+    /// Wraps an error met while writing `path`.
+    pub fn write(path: impl Into<PathBuf>, err: &std::io::Error) -> Self {
+        Error::Write {
+            path: path.into(),
+            message: err.to_string(),
+            closed: err.kind() == std::io::ErrorKind::BrokenPipe,
+        }
+    }
+
+    /// The exit status the command line gives this error (the README's
+    /// table): 1 a mismatch found, 2 bad input or arguments, 3 an output
+    /// that cannot be written, 4 work refused as too large.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Error::Mismatch(_) => 1,
+            Error::Write { .. } => 3,
+            Error::TooMuchWork(_) => 4,
+            _ => 2,
         }
     }
 

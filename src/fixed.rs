@@ -111,9 +111,15 @@ pub struct FixedPoint {
 impl FixedPoint {
     /// Snaps a point given in pixels.
     pub fn snap(x: f32, y: f32) -> Result<FixedPoint> {
+        Self::snap_f64(f64::from(x), f64::from(y))
+    }
+
+    /// [`FixedPoint::snap`] for a point read as `f64` (text input,
+    /// command-line arguments), so no precision is lost before snapping.
+    pub fn snap_f64(x: f64, y: f64) -> Result<FixedPoint> {
         Ok(FixedPoint {
-            x: Fixed::snap(x)?,
-            y: Fixed::snap(y)?,
+            x: Fixed::snap_f64(x)?,
+            y: Fixed::snap_f64(y)?,
         })
     }
 
@@ -135,8 +141,8 @@ impl FixedPoint {
 
     /// Snaps the centre of pixel `(x, y)`, that is the point
     /// `(x + 0.5, y + 0.5)`: how the course gives line endpoints.
-    pub fn snap_centre_of(x: f32, y: f32) -> Result<FixedPoint> {
-        FixedPoint::snap(x + 0.5, y + 0.5)
+    pub fn snap_centre_of(x: f64, y: f64) -> Result<FixedPoint> {
+        FixedPoint::snap_f64(x + 0.5, y + 0.5)
     }
 
     /// The point in pixels.

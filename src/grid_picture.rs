@@ -195,7 +195,7 @@ impl GridPicture {
     /// on a `width` x `height` grid: tested, emitted and untouched pixels.
     pub fn of_triangles(
         backend: &dyn TriangleRasterizer,
-        triangles: &[[(f32, f32); 3]],
+        triangles: &[[(f64, f64); 3]],
         rule: FillRule,
         width: u32,
         height: u32,
@@ -204,9 +204,9 @@ impl GridPicture {
             .iter()
             .map(|t| {
                 Ok([
-                    FixedPoint::snap(t[0].0, t[0].1)?,
-                    FixedPoint::snap(t[1].0, t[1].1)?,
-                    FixedPoint::snap(t[2].0, t[2].1)?,
+                    FixedPoint::snap_f64(t[0].0, t[0].1)?,
+                    FixedPoint::snap_f64(t[1].0, t[1].1)?,
+                    FixedPoint::snap_f64(t[2].0, t[2].1)?,
                 ])
             })
             .collect::<Result<Vec<_>>>()?;
@@ -240,30 +240,28 @@ impl GridPicture {
         Ok(picture)
     }
 
-    /// Lines between pixel centres (`[(x0, y0), (x1, y1)]` means from the
-    /// centre of pixel (x0, y0) to the centre of pixel (x1, y1), as in
-    /// `rasterlab explain`), drawn by a line back-end: the chosen pixels in
-    /// green (shaded by coverage for `wu`) under the ideal line.
+    /// Lines given by their snapped ends ([`LineEnds`](crate::trace::LineEnds):
+    /// pixel indices or screen coordinates, as `rasterlab explain` reads
+    /// them), drawn by a line back-end: the chosen pixels in green (shaded
+    /// by coverage for `wu`) under the ideal line.
     pub fn of_lines(
         backend: &dyn LineRasterizer,
-        lines: &[[(f32, f32); 2]],
+        lines: &[crate::trace::LineEnds],
         options: &LineOptions,
         width: u32,
         height: u32,
     ) -> Result<GridPicture> {
         check_grid(width, height)?;
         backend.check_options(options)?;
-        let setups = lines
+        let setups: Vec<LineSetup> = lines
             .iter()
             .enumerate()
-            .map(|(i, l)| {
-                Ok(LineSetup {
-                    id: i as u32,
-                    from: FixedPoint::snap_centre_of(l[0].0, l[0].1)?,
-                    to: FixedPoint::snap_centre_of(l[1].0, l[1].1)?,
-                })
+            .map(|(i, l)| LineSetup {
+                id: i as u32,
+                from: l.from,
+                to: l.to,
             })
-            .collect::<Result<Vec<_>>>()?;
+            .collect();
         let mut recorder = Recorder::new(width, height);
         let work = backend.rasterize(
             &setups,
@@ -485,19 +483,17 @@ impl GridPicture {
         Ok(img)
     }
 
+    /// The file types [`GridPicture::save`] writes.
+    pub const EXTENSIONS: [&'static str; 2] = ["svg", "png"];
+
     /// Writes the picture as SVG or PNG (24 pixels per cell), by the
     /// path's extension.
     pub fn save(&self, path: &Path) -> Result<()> {
-        match path.extension().and_then(|e| e.to_str()) {
-            Some("svg") => std::fs::write(path, self.to_svg()).map_err(|e| Error::io(path, &e)),
-            Some("png") => self
-                .to_png(24)?
-                .save(path)
-                .map_err(|e| Error::InvalidArgument(format!("{}: {e}", path.display()))),
-            _ => Err(Error::InvalidArgument(format!(
-                "{}: a picture is written as .svg or .png",
-                path.display()
-            ))),
+        crate::output::check_file(path, &Self::EXTENSIONS)?;
+        if crate::output::extension(path).as_deref() == Some("svg") {
+            crate::output::write_file(path, self.to_svg().as_bytes())
+        } else {
+            crate::output::write_png(path, &self.to_png(24)?)
         }
     }
 }

@@ -37,7 +37,8 @@
 //! * [`trace`]: step-by-step traces of the algorithms for teaching;
 //! * [`grid_picture`]: zoomed pictures of the pixel grid (tested, emitted)
 //!   and fill-rule heat maps;
-//! * [`report`]: the side-by-side HTML comparison of every back-end.
+//! * [`report`]: the side-by-side HTML comparison of every back-end;
+//! * [`output`]: output files checked before the work and written whole.
 //!
 //! ```
 //! use rasterlab::{backend, edge::FillRule, scene::Scene2D, shader::Flat};
@@ -65,6 +66,7 @@ pub mod grid_picture;
 pub mod input;
 pub mod line;
 pub mod mesh;
+pub mod output;
 pub mod pipeline;
 pub mod polygon;
 pub mod render;

@@ -477,9 +477,9 @@ window.addEventListener('load', () => {
     /// Writes `index.html` into `dir` (created if missing) and returns
     /// its path.
     pub fn write(&self, dir: &Path) -> Result<PathBuf> {
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, &e))?;
+        crate::output::check_dir(dir)?;
         let path = dir.join("index.html");
-        std::fs::write(&path, self.to_html()).map_err(|e| Error::io(&path, &e))?;
+        crate::output::write_file(&path, self.to_html().as_bytes())?;
         Ok(path)
     }
 }

@@ -77,7 +77,7 @@ impl Scene2D {
     /// assert_eq!(scene.vertices[0][0].depth, 0.5);
     /// assert!(Scene2D::with_depths(8, 8, &[0., 0., 4., 0., 0., 4., 1.5]).is_err());
     /// ```
-    pub fn with_depths(width: u32, height: u32, numbers: &[f32]) -> Result<Scene2D> {
+    pub fn with_depths(width: u32, height: u32, numbers: &[f64]) -> Result<Scene2D> {
         if !numbers.len().is_multiple_of(7) {
             return Err(Error::InvalidArgument(format!(
                 "triangles with a depth take 7 numbers each (x0 y0 x1 y1 x2 y2 z), not {}",
@@ -87,17 +87,17 @@ impl Scene2D {
         let mut triangles = Vec::new();
         let mut vertices = Vec::new();
         for (i, t) in numbers.chunks(7).enumerate() {
-            let z = t[6];
-            if !(0.0..=1.0).contains(&z) {
+            let z = t[6] as f32;
+            if !(0.0..=1.0).contains(&t[6]) {
                 return Err(Error::InvalidArgument(format!(
                     "triangle {}: depth {z} is outside [0, 1]",
                     i + 1
                 )));
             }
             triangles.push([
-                FixedPoint::snap(t[0], t[1])?,
-                FixedPoint::snap(t[2], t[3])?,
-                FixedPoint::snap(t[4], t[5])?,
+                FixedPoint::snap_f64(t[0], t[1])?,
+                FixedPoint::snap_f64(t[2], t[3])?,
+                FixedPoint::snap_f64(t[4], t[5])?,
             ]);
             vertices.push([ShadedVertex::flat(z, palette(i)); 3]);
         }

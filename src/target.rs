@@ -235,10 +235,7 @@ impl RenderTarget {
 
     /// Writes the colour buffer as a PNG file.
     pub fn save_png(&self, path: &Path) -> Result<()> {
-        self.to_image().save(path).map_err(|e| Error::Io {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })
+        crate::output::write_png(path, &self.to_image())
     }
 
     /// All rows of the buffers, borrowed as one [`TargetRows`].

@@ -13,13 +13,20 @@
 //! * [`depth_buffer_trace`]: seed 002's depth buffer, printed as the
 //!   slides' matrix after each triangle.
 //!
-//! Line endpoints are pixels: `0 0 7 3` means from the centre of pixel
-//! (0, 0) to the centre of pixel (7, 3), as in the course. Edge values are
-//! printed in square pixels (the fixed-point value divided by 256^2).
+//! Line endpoints are given as [`LineEnds`]: pixel indices, as in the
+//! course's hand-worked tables (`0 0 7 3` means from the centre of pixel
+//! (0, 0) to the centre of pixel (7, 3)), or screen coordinates, as in
+//! files and `rasterlab fragments` (`0.5 0.5 7.5 3.5` is the same line).
+//! The trace's first line says which. Every coordinate is read as `f64` and
+//! snapped as every other command snaps it. Edge values are printed in
+//! square pixels (the fixed-point value divided by 256^2).
 //!
 //! ```
-//! let text = rasterlab::trace::bresenham_trace(0.0, 0.0, 7.0, 3.0).unwrap();
+//! use rasterlab::trace::{bresenham_trace, LineEnds};
+//! let ends = LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap();
+//! let text = bresenham_trace(&ends);
 //! assert!(text.lines().nth(2).unwrap().contains("0.500"));
+//! assert_eq!(ends, LineEnds::screen([0.5, 0.5, 7.5, 3.5]).unwrap().snapped_only());
 //! ```
 
 use crate::edge::{FillRule, PixelRect, TriangleSetup};
@@ -35,8 +42,84 @@ use crate::triangle::scanline::{active_edges, row_range, row_span, sorted_by_y, 
 use crate::triangle::TriangleRasterizer;
 use std::fmt::Write;
 
+/// The most pixel lines a triangle trace prints, and the most depth-buffer
+/// cells the depth-buffer trace prints (about 5 MB of text): a trace is
+/// read by a person, and past this it would only fill the memory.
+pub const MAX_TRACE_LINES: u64 = 65_536;
+
+/// Refuses a trace that would print more than [`MAX_TRACE_LINES`] lines.
+fn check_trace_length(lines: u64, what: &str) -> Result<()> {
+    if lines > MAX_TRACE_LINES {
+        return Err(Error::TooMuchWork(format!(
+            "this trace would print {lines} {what} (at most {MAX_TRACE_LINES}): trace a smaller grid (--size) or triangle"
+        )));
+    }
+    Ok(())
+}
+
 /// Square pixels per fixed-point edge unit.
 const AREA_UNIT: f64 = (SUBPIXEL_SCALE * SUBPIXEL_SCALE) as f64;
+
+/// A line's two endpoints, snapped, and how they were given.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct LineEnds {
+    /// The snapped start.
+    pub from: FixedPoint,
+    /// The snapped end.
+    pub to: FixedPoint,
+    /// True when given as pixel indices (their centres), false for screen
+    /// coordinates.
+    pub pixel_indices: bool,
+}
+
+impl LineEnds {
+    /// From pixel `(x0, y0)` to pixel `(x1, y1)`: their centres, as in the
+    /// course's tables.
+    pub fn pixels([x0, y0, x1, y1]: [f64; 4]) -> Result<LineEnds> {
+        Ok(LineEnds {
+            from: FixedPoint::snap_centre_of(x0, y0)?,
+            to: FixedPoint::snap_centre_of(x1, y1)?,
+            pixel_indices: true,
+        })
+    }
+
+    /// From `(x0, y0)` to `(x1, y1)` in screen coordinates, as files and
+    /// `rasterlab fragments` read them.
+    pub fn screen([x0, y0, x1, y1]: [f64; 4]) -> Result<LineEnds> {
+        Ok(LineEnds {
+            from: FixedPoint::snap_f64(x0, y0)?,
+            to: FixedPoint::snap_f64(x1, y1)?,
+            pixel_indices: false,
+        })
+    }
+
+    /// The same snapped points, marked as given in pixel indices (for
+    /// comparing two ways of writing one line).
+    pub fn snapped_only(self) -> LineEnds {
+        LineEnds {
+            pixel_indices: true,
+            ..self
+        }
+    }
+
+    /// "from pixel (0, 0) to pixel (7, 3) (centres ...)" or "from (0.5,
+    /// 0.5) to ... in screen coordinates".
+    fn describe(&self) -> String {
+        let (fx, fy) = self.from.to_f64();
+        let (tx, ty) = self.to.to_f64();
+        if self.pixel_indices {
+            format!(
+                "from pixel ({}, {}) to pixel ({}, {}) (pixel indices: the line joins their centres)",
+                fx - 0.5,
+                fy - 0.5,
+                tx - 0.5,
+                ty - 0.5
+            )
+        } else {
+            format!("from ({fx}, {fy}) to ({tx}, {ty}) in screen coordinates")
+        }
+    }
+}
 
 fn frame_note(frame: &OctantFrame) -> String {
     let mut notes = Vec::new();
@@ -59,16 +142,14 @@ fn frame_note(frame: &OctantFrame) -> String {
     }
 }
 
-/// Seed 004's midpoint / Bresenham loop on the line between two pixels.
-pub fn bresenham_trace(x0: f32, y0: f32, x1: f32, y1: f32) -> Result<String> {
-    let frame = OctantFrame::new(
-        FixedPoint::snap_centre_of(x0, y0)?,
-        FixedPoint::snap_centre_of(x1, y1)?,
-    );
+/// Seed 004's midpoint / Bresenham loop on one line.
+pub fn bresenham_trace(ends: &LineEnds) -> String {
+    let frame = OctantFrame::new(ends.from, ends.to);
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "bresenham (midpoint) from pixel ({x0}, {y0}) to ({x1}, {y1}); {}",
+        "bresenham (midpoint) {}; {}",
+        ends.describe(),
         frame_note(&frame)
     );
     let _ = writeln!(
@@ -97,16 +178,13 @@ pub fn bresenham_trace(x0: f32, y0: f32, x1: f32, y1: f32) -> Result<String> {
         out,
         "d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame"
     );
-    Ok(out)
+    out
 }
 
 /// Direct evaluation (`y = m x + b`, rounded) or DDA (`y += m`, rounded)
-/// on the line between two pixels: each column's exact and rounded `y`.
-pub fn line_trace(backend: &str, x0: f32, y0: f32, x1: f32, y1: f32) -> Result<String> {
-    let frame = OctantFrame::new(
-        FixedPoint::snap_centre_of(x0, y0)?,
-        FixedPoint::snap_centre_of(x1, y1)?,
-    );
+/// on one line: each column's exact and rounded `y`.
+pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
+    let frame = OctantFrame::new(ends.from, ends.to);
     let scale = SUBPIXEL_SCALE as f64;
     let du = frame.du() as f64;
     let m = if du > 0.0 {
@@ -126,7 +204,8 @@ pub fn line_trace(backend: &str, x0: f32, y0: f32, x1: f32, y1: f32) -> Result<S
     };
     let _ = writeln!(
         out,
-        "{backend} from pixel ({x0}, {y0}) to ({x1}, {y1}), m = {m:.4}: {how}; {}",
+        "{backend} {}, m = {m:.4}: {how}; {}",
+        ends.describe(),
         frame_note(&frame)
     );
     let _ = writeln!(
@@ -165,7 +244,7 @@ pub fn line_trace(backend: &str, x0: f32, y0: f32, x1: f32, y1: f32) -> Result<S
 /// triangle given in screen pixels, on a `width` x `height` grid.
 pub fn triangle_trace(
     backend: &str,
-    vertices: [(f32, f32); 3],
+    vertices: [(f64, f64); 3],
     rule: FillRule,
     width: u32,
     height: u32,
@@ -188,6 +267,7 @@ pub fn triangle_trace(
             )))
         }
     };
+    check_trace_length(region.area(), "pixel lines")?;
     let _ = writeln!(
         out,
         "{backend}, {} rule: triangle {:?}, twice its area = {:.4} px^2, {}",
@@ -271,7 +351,7 @@ pub fn triangle_trace(
 /// active edge crosses it (exact x), the pixel bound that crossing gives
 /// under the fill rule, and the span filled.
 pub fn scanline_trace(
-    vertices: [(f32, f32); 3],
+    vertices: [(f64, f64); 3],
     rule: FillRule,
     width: u32,
     height: u32,
@@ -380,6 +460,11 @@ pub fn depth_buffer_trace(
     rule: FillRule,
 ) -> Result<String> {
     let mut target = RenderTarget::new(scene.width, scene.height)?;
+    let matrices = scene.triangles.len() as u64 + 1;
+    check_trace_length(
+        matrices * u64::from(scene.width) * u64::from(scene.height),
+        "depth-buffer cells",
+    )?;
     let depth = DepthState {
         test: DepthTest::Less,
         write: true,
@@ -425,10 +510,10 @@ fn print_matrix(out: &mut String, depth: &[f32], width: u32) {
     }
 }
 
-fn snapped_triangle(vertices: [(f32, f32); 3], rule: FillRule) -> Result<Option<TriangleSetup>> {
+fn snapped_triangle(vertices: [(f64, f64); 3], rule: FillRule) -> Result<Option<TriangleSetup>> {
     let points = vertices
         .iter()
-        .map(|&(x, y)| FixedPoint::snap(x, y))
+        .map(|&(x, y)| FixedPoint::snap_f64(x, y))
         .collect::<Result<Vec<_>>>()?;
     Ok(TriangleSetup::new(
         0,

@@ -108,7 +108,7 @@ proptest! {
     fn line_pictures_show_one_green_cell_per_pixel_chosen(
         x0 in 0u32..SIZE, y0 in 0u32..SIZE, x1 in 0u32..SIZE, y1 in 0u32..SIZE,
     ) {
-        let line = [(x0 as f32, y0 as f32), (x1 as f32, y1 as f32)];
+        let line = rasterlab::trace::LineEnds::pixels([x0, y0, x1, y1].map(f64::from)).unwrap();
         for backend in line_backends() {
             let picture = GridPicture::of_lines(*backend, &[line], &LineOptions::DEFAULT, SIZE, SIZE).unwrap();
             let mut list = FragmentList::default();

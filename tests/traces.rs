@@ -2,14 +2,14 @@
 
 use proptest::prelude::*;
 use rasterlab::edge::FillRule;
-use rasterlab::trace::{bresenham_trace, line_trace, scanline_trace, triangle_trace};
+use rasterlab::trace::{bresenham_trace, line_trace, scanline_trace, triangle_trace, LineEnds};
 
 /// Seed 004's midpoint loop on (0, 0) -> (7, 3): f(x, y) = -3 x + 7 y, so
 /// d starts at f(1, 1/2) = 0.5 and then adds -3 (keep y) or -3 + 7 (step).
 #[test]
 fn bresenham_0_0_7_3_matches_the_hand_worked_table() {
     let expected = "\
-bresenham (midpoint) from pixel (0, 0) to (7, 3); first octant: no symmetry needed
+bresenham (midpoint) from pixel (0, 0) to pixel (7, 3) (pixel indices: the line joins their centres); first octant: no symmetry needed
    x      y  pixel            d  choice
    0      0    0,0        0.500  d >= 0: midpoint on or above the line, keep y
    1      0    1,0       -2.500  d < 0: midpoint below the line, y = y + 1
@@ -21,7 +21,16 @@ bresenham (midpoint) from pixel (0, 0) to (7, 3); first octant: no symmetry need
    7      3    7,3        0.500  d >= 0: midpoint on or above the line, keep y
 d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame
 ";
-    assert_eq!(bresenham_trace(0.0, 0.0, 7.0, 3.0).unwrap(), expected);
+    let ends = LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap();
+    assert_eq!(bresenham_trace(&ends), expected);
+    // The same line in screen coordinates draws the same table, and its
+    // first line says how the endpoints were read.
+    let screen = bresenham_trace(&LineEnds::screen([0.5, 0.5, 7.5, 3.5]).unwrap());
+    assert_eq!(
+        screen.lines().next().unwrap(),
+        "bresenham (midpoint) from (0.5, 0.5) to (7.5, 3.5) in screen coordinates; first octant: no symmetry needed"
+    );
+    assert_eq!(screen.lines().skip(1).collect::<Vec<_>>(), expected.lines().skip(1).collect::<Vec<_>>());
 }
 
 /// y = 3/7 x: exact values k * 3/7 and their nearest rows, the same rows
@@ -29,7 +38,7 @@ d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, 
 #[test]
 fn direct_and_dda_round_the_exact_y() {
     for backend in ["direct", "dda"] {
-        let text = line_trace(backend, 0.0, 0.0, 7.0, 3.0).unwrap();
+        let text = line_trace(backend, &LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap()).unwrap();
         let rows: Vec<(String, String)> = text
             .lines()
             .skip(2)
@@ -131,7 +140,7 @@ proptest! {
     /// inside, on any triangle and fill rule.
     #[test]
     fn scanline_trace_fills_what_the_bbox_trace_finds_inside(
-        v in proptest::array::uniform6(-2.0f32..18.0),
+        v in proptest::array::uniform6(-2.0f64..18.0),
         rule in prop_oneof![
             Just(FillRule::TopLeft),
             Just(FillRule::BottomRight),

@@ -18,12 +18,28 @@ use rasterlab::report::{CompareInput, Report};
 use rasterlab::scene::{setup_triangles, Scene2D};
 use rasterlab::shader::Flat;
 use rasterlab::target::{DepthState, DepthTest, RenderTarget};
+use rasterlab::trace::LineEnds;
 use rasterlab::triangle::TriangleRasterizer;
 use rasterlab::{Error, Result};
 use std::io::Write;
 use std::path::Path;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
+
+/// Prints a line on standard output; a closed or full output is an
+/// [`Error::Write`], not a panic.
+macro_rules! say {
+    ($($arg:tt)*) => {
+        writeln!(std::io::stdout().lock(), $($arg)*).map_err(stdout_error)
+    };
+}
+
+/// Prints text on standard output, as [`say!`] without the newline.
+macro_rules! say_raw {
+    ($($arg:tt)*) => {
+        write!(std::io::stdout().lock(), $($arg)*).map_err(stdout_error)
+    };
+}
 
 /// A `WxH` size.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -59,7 +75,7 @@ pub fn backends() -> Result<()> {
 }
 
 fn stdout_error(e: std::io::Error) -> Error {
-    Error::io("<stdout>", &e)
+    Error::write("<stdout>", &e)
 }
 
 #[derive(Args, Debug)]
@@ -340,33 +356,33 @@ fn render_mesh(
     target.save_png(&args.out)?;
     let g = last.geometry;
     let s = renderer.settings();
-    println!(
+    say!(
         "{}: {} vertices, {} triangles (loaded in {:.0} ms)",
         path.display(),
         mesh.positions.len(),
         mesh.triangles.len(),
         load_time.as_secs_f64() * 1e3
-    );
-    println!(
+    )?;
+    say!(
         "pipeline: {} rejected, {} clipped, {} culled, {} degenerate, {} with no pixel centre, {} rasterized",
         g.rejected, g.clipped, g.culled, g.degenerate, g.empty_bounds, g.triangles
-    );
-    println!(
+    )?;
+    say!(
         "{} at {}x{}: {} samples tested, {} fragments",
         backend.name(),
         s.width,
         s.height,
         last.work.samples_tested,
         last.work.fragments
-    );
-    println!(
+    )?;
+    say!(
         "time per frame (median of {}): {:.2} ms = geometry {:.2} ms + raster {:.2} ms",
         args.mesh.frames,
         total.as_secs_f64() * 1e3,
         geometry.as_secs_f64() * 1e3,
         raster.as_secs_f64() * 1e3
-    );
-    println!("wrote {}", args.out.display());
+    )?;
+    say!("wrote {}", args.out.display())?;
     Ok(())
 }
 
@@ -384,19 +400,20 @@ const DEMO_MESHES: [(&str, &str); 2] = [
 ];
 
 pub fn demo(args: &DemoArgs) -> Result<()> {
-    std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, &e))?;
-    println!(
+    rasterlab::output::check_dir(&args.out)?;
+    say!(
         "{:<16} {:<12} {:>10} {:>10} {:>9}  identical to naive",
         "scene", "back-end", "tested", "fragments", "time"
-    );
+    )?;
     let mut all_identical = true;
     let mut report = |name: &str,
                       backend: &dyn TriangleRasterizer,
                       work: &WorkCounters,
                       time: Duration,
-                      identical: bool| {
+                      identical: bool|
+     -> Result<()> {
         all_identical &= identical;
-        println!(
+        say!(
             "{:<16} {:<12} {:>10} {:>10} {:>7.2}ms  {}",
             name,
             backend.name(),
@@ -404,7 +421,7 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
             work.fragments,
             time.as_secs_f64() * 1e3,
             if identical { "yes" } else { "NO" }
-        );
+        )
     };
     for name in Scene2D::BUILT_IN {
         let scene = Scene2D::built_in(name)?;
@@ -419,7 +436,7 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
                 &work,
                 time,
                 reference.as_ref().is_none_or(|r| *r == target),
-            );
+            )?;
             if reference.is_none() {
                 target.save_png(&args.out.join(format!("{name}.png")))?;
                 reference = Some(target);
@@ -450,7 +467,7 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
                 &frame.stats.work,
                 frame.stats.raster_time,
                 identical,
-            );
+            )?;
             if reference.is_none() {
                 frame
                     .target
@@ -459,15 +476,15 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
             }
         }
     }
-    println!(
+    say!(
         "pictures in {}/ (meshes: Stanford 3D Scanning Repository)",
         args.out.display()
-    );
+    )?;
     if all_identical {
-        println!("every back-end produced bit-identical colour, depth and coverage buffers");
+        say!("every back-end produced bit-identical colour, depth and coverage buffers")?;
         Ok(())
     } else {
-        Err(Error::InvalidArgument(
+        Err(Error::Mismatch(
             "back-ends disagree: see the table above".into(),
         ))
     }
@@ -475,31 +492,39 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
 
 #[derive(Args, Debug)]
 pub struct ExplainArgs {
-    /// What to trace: bresenham, direct, dda (a line: x0 y0 x1 y1, in
-    /// pixels); bbox, naive, scanline (a triangle: x0 y0 x1 y1 x2 y2, in
-    /// screen coordinates); depth-buffer (triangles of 7 numbers each,
-    /// x0 y0 x1 y1 x2 y2 z, or none for seed 002's example).
+    /// What to trace: bresenham, direct, dda (a line: x0 y0 x1 y1, pixel
+    /// indices unless --screen); bbox, naive, scanline (a triangle: x0 y0
+    /// x1 y1 x2 y2, in screen coordinates); depth-buffer (triangles of 7
+    /// numbers each, x0 y0 x1 y1 x2 y2 z, or none for the course's
+    /// depth-buffer example). Any other back-end: --picture only.
     #[arg(long)]
     backend: String,
     /// Fill rule for triangles.
     #[arg(long, default_value = "top-left")]
     rule: String,
-    /// Grid size, `WxH` (16x16 for one triangle, 14x9 for seed 002's
+    /// Grid size, `WxH` (16x16 for one triangle, 14x9 for the course's
     /// depth-buffer example).
     #[arg(long)]
     size: Option<Size>,
+    /// Read line endpoints as screen coordinates, as `rasterlab fragments`
+    /// and files do (`0.5 0.5 7.5 3.5`), instead of pixel indices whose
+    /// centres the line joins (`0 0 7 3`, the course's convention).
+    #[arg(long)]
+    screen: bool,
     /// Also write a zoomed grid picture of the same input (`.svg` or
     /// `.png`): the pixels tested and the fragments emitted.
     #[arg(long)]
     picture: Option<PathBuf>,
     /// The coordinates.
     #[arg(allow_negative_numbers = true)]
-    coordinates: Vec<f32>,
+    coordinates: Vec<f64>,
 }
 
 impl ExplainArgs {
-    fn size(&self, default: (u32, u32)) -> (u32, u32) {
-        self.size.map_or(default, |s| (s.width, s.height))
+    fn size(&self, default: (u32, u32)) -> Result<(u32, u32)> {
+        let (w, h) = self.size.map_or(default, |s| (s.width, s.height));
+        RenderTarget::check_size(w, h)?;
+        Ok((w, h))
     }
 
     fn want(&self, n: usize, what: &str) -> Result<()> {
@@ -514,27 +539,32 @@ impl ExplainArgs {
         }
     }
 
-    fn triangle(&self) -> Result<[(f32, f32); 3]> {
+    fn triangle(&self) -> Result<[(f64, f64); 3]> {
         self.want(6, "a triangle")?;
         let c = &self.coordinates;
         Ok([(c[0], c[1]), (c[2], c[3]), (c[4], c[5])])
     }
 
-    fn line(&self) -> Result<[f32; 4]> {
+    fn line(&self) -> Result<LineEnds> {
         self.want(4, "a line")?;
         let c = &self.coordinates;
-        Ok([c[0], c[1], c[2], c[3]])
+        let numbers = [c[0], c[1], c[2], c[3]];
+        if self.screen {
+            LineEnds::screen(numbers)
+        } else {
+            LineEnds::pixels(numbers)
+        }
     }
 
-    /// The depth-buffer input: seed 002's example, or triangles of seven
+    /// The depth-buffer input: the course's example, or triangles of seven
     /// numbers each.
     fn depth_scene(&self) -> Result<Scene2D> {
         if self.coordinates.is_empty() {
             let mut scene = Scene2D::depth_example(true);
-            (scene.width, scene.height) = self.size((scene.width, scene.height));
+            (scene.width, scene.height) = self.size((scene.width, scene.height))?;
             return Ok(scene);
         }
-        let (width, height) = self.size(EXPLAIN_GRID);
+        let (width, height) = self.size(EXPLAIN_GRID)?;
         Scene2D::with_depths(width, height, &self.coordinates)
     }
 }
@@ -546,30 +576,25 @@ const TRACES: &str = "bresenham, direct, dda, bbox, naive, scanline, depth-buffe
 
 pub fn explain(args: &ExplainArgs) -> Result<()> {
     let rule: FillRule = args.rule.parse()?;
-    let (width, height) = args.size(EXPLAIN_GRID);
+    if let Some(path) = &args.picture {
+        rasterlab::output::check_file(path, &GridPicture::EXTENSIONS)?;
+    }
+    let (width, height) = args.size(EXPLAIN_GRID)?;
     let text = match args.backend.as_str() {
-        "bresenham" => {
-            let [x0, y0, x1, y1] = args.line()?;
-            rasterlab::trace::bresenham_trace(x0, y0, x1, y1)?
-        }
-        "direct" | "dda" => {
-            let [x0, y0, x1, y1] = args.line()?;
-            rasterlab::trace::line_trace(&args.backend, x0, y0, x1, y1)?
-        }
+        "bresenham" => rasterlab::trace::bresenham_trace(&args.line()?),
+        "direct" | "dda" => rasterlab::trace::line_trace(&args.backend, &args.line()?)?,
         "bbox" | "naive" => {
             rasterlab::trace::triangle_trace(&args.backend, args.triangle()?, rule, width, height)?
         }
         "scanline" => rasterlab::trace::scanline_trace(args.triangle()?, rule, width, height)?,
         "depth-buffer" => {
             let scene = args.depth_scene()?;
+            let text =
+                rasterlab::trace::depth_buffer_trace(&scene, triangle_backend("bbox")?, rule)?;
             if let Some(path) = &args.picture {
                 GridPicture::depth_buffer(&scene, rule)?.save(path)?;
             }
-            print!(
-                "{}",
-                rasterlab::trace::depth_buffer_trace(&scene, triangle_backend("bbox")?, rule)?
-            );
-            return Ok(());
+            return say_raw!("{text}");
         }
         other if args.picture.is_none() => {
             backend(other)?;
@@ -585,21 +610,13 @@ pub fn explain(args: &ExplainArgs) -> Result<()> {
                 GridPicture::of_triangles(b, &[args.triangle()?], rule, width, height)?
             }
             Backend::Line(b) => {
-                let [x0, y0, x1, y1] = args.line()?;
-                GridPicture::of_lines(
-                    b,
-                    &[[(x0, y0), (x1, y1)]],
-                    &LineOptions::DEFAULT,
-                    width,
-                    height,
-                )?
+                GridPicture::of_lines(b, &[args.line()?], &LineOptions::DEFAULT, width, height)?
             }
         };
         picture.save(path)?;
         eprintln!("picture: {}", path.display());
     }
-    print!("{text}");
-    Ok(())
+    say_raw!("{text}")
 }
 
 #[derive(Args, Debug)]
@@ -651,9 +668,9 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     bar.finish_and_clear();
     let results = results?;
     if args.json {
-        println!("{}", benchmark::to_json(&results));
+        say!("{}", benchmark::to_json(&results))?;
     } else {
-        print!("{}", benchmark::table(&results));
+        say_raw!("{}", benchmark::table(&results))?;
     }
     benchmark::write_outputs(&results, &args.out)?;
     eprintln!(
@@ -694,12 +711,12 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
     };
     let report = Report::compare(&input, width, height, args.samples)?;
     let path = report.write(&args.out)?;
-    println!(
+    say!(
         "{:<12} {:>10} {:>10} {:>9} {:>10}  differing pixels vs {}",
         "back-end", "fragments", "tested", "tests/frag", "time", report.reference
-    );
+    )?;
     for run in &report.runs {
-        println!(
+        say!(
             "{:<12} {:>10} {:>10} {:>9.2} {:>8.3}ms  {}",
             run.name,
             run.work.fragments,
@@ -707,8 +724,8 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
             run.work.tests_per_fragment(),
             run.time.as_secs_f64() * 1e3,
             run.differing_pixels
-        );
+        )?;
     }
-    println!("report: {}", path.display());
+    say!("report: {}", path.display())?;
     Ok(())
 }

@@ -54,22 +54,25 @@ pub fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader went away (`| head`): stop quietly.
+        Err(e @ Error::Write { closed: true, .. }) => ExitCode::from(e.exit_code()),
         Err(e) => {
             eprintln!("rasterlab: error: {e}");
-            match e {
-                Error::Parse { .. } | Error::Io { .. } => ExitCode::from(2),
-                _ => ExitCode::from(1),
-            }
+            ExitCode::from(e.exit_code())
         }
     }
 }
 
-/// A pool of `threads` workers (at least one).
+/// More threads than this gain nothing on any machine rasterlab runs on
+/// and cost seconds to start.
+const MAX_THREADS: usize = 256;
+
+/// A pool of `threads` workers (1 to [`MAX_THREADS`]).
 fn thread_pool(threads: usize) -> Result<rayon::ThreadPool> {
-    if threads == 0 {
-        return Err(Error::InvalidArgument(
-            "--threads must be at least 1".to_string(),
-        ));
+    if !(1..=MAX_THREADS).contains(&threads) {
+        return Err(Error::InvalidArgument(format!(
+            "--threads must be between 1 and {MAX_THREADS}, not {threads}"
+        )));
     }
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

@@ -1,0 +1,147 @@
+//! Writing output files safely: checked before the work, written whole.
+//!
+//! Every file rasterlab writes (PNG and SVG pictures, reports, benchmark
+//! results) goes through [`write_file`]: the bytes go to a temporary file
+//! beside the destination, which is then renamed over it, so a failure
+//! never leaves a truncated or empty file behind. Commands call
+//! [`check_file`] or [`check_dir`] before they start, so a path that cannot
+//! be written is reported at once, not after minutes of work.
+//!
+//! ```
+//! use rasterlab::output::{check_file, write_file};
+//! let dir = std::env::temp_dir();
+//! let path = dir.join(format!("rasterlab-doc-{}.svg", std::process::id()));
+//! check_file(&path, &["svg"]).unwrap();
+//! write_file(&path, b"<svg/>").unwrap();
+//! assert_eq!(std::fs::read(&path).unwrap(), b"<svg/>");
+//! assert!(check_file(&dir.join("x.jpg"), &["svg", "png"]).is_err());
+//! # std::fs::remove_file(&path).unwrap();
+//! ```
+
+use crate::error::{Error, Result};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The file's extension, lower-cased (`"png"` for `A.PNG`).
+pub fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
+/// Checks, before any work, that `path` has one of `extensions` (compared
+/// without case) and that its folder exists and accepts a new file.
+pub fn check_file(path: &Path, extensions: &[&str]) -> Result<()> {
+    let ext = extension(path);
+    if !extensions.iter().any(|e| ext.as_deref() == Some(e)) {
+        return Err(Error::Write {
+            path: path.to_path_buf(),
+            message: format!("this file is written as .{}", extensions.join(" or .")),
+            closed: false,
+        });
+    }
+    if path.is_dir() {
+        return Err(Error::Write {
+            path: path.to_path_buf(),
+            message: "it is a directory".into(),
+            closed: false,
+        });
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    probe_dir(&parent)
+}
+
+/// Creates `dir` (and its parents) if needed and checks that it accepts a
+/// new file, before any work.
+pub fn check_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::write(dir, &e))?;
+    probe_dir(dir)
+}
+
+/// Creates and removes a temporary file in `dir`.
+fn probe_dir(dir: &Path) -> Result<()> {
+    if !dir.is_dir() {
+        return Err(Error::Write {
+            path: dir.to_path_buf(),
+            message: "no such directory".into(),
+            closed: false,
+        });
+    }
+    let probe = temporary_path(&dir.join("probe"));
+    std::fs::File::create(&probe).map_err(|e| Error::write(dir, &e))?;
+    std::fs::remove_file(&probe).map_err(|e| Error::write(dir, &e))
+}
+
+/// A hidden temporary name beside `path`.
+fn temporary_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// Writes `bytes` to `path` whole or not at all: a temporary file beside it,
+/// flushed, then renamed over `path`.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    let temporary = temporary_path(path);
+    let written = std::fs::File::create(&temporary).and_then(|mut f| {
+        f.write_all(bytes)?;
+        f.sync_all()
+    });
+    let result = written.and_then(|()| std::fs::rename(&temporary, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&temporary);
+        return Err(Error::write(path, &e));
+    }
+    Ok(())
+}
+
+/// Encodes an image as PNG and writes it with [`write_file`].
+pub fn write_png<P, C>(path: &Path, image: &image::ImageBuffer<P, C>) -> Result<()>
+where
+    P: image::PixelWithColorType,
+    [P::Subpixel]: image::EncodableLayout,
+    C: std::ops::Deref<Target = [P::Subpixel]>,
+{
+    let mut bytes = Vec::new();
+    image
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .map_err(|e| Error::Write {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+            closed: false,
+        })?;
+    write_file(path, &bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_write_leaves_no_file_behind() {
+        let dir = std::env::temp_dir().join(format!("rasterlab-output-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // A path inside a missing folder: the write fails and nothing is left.
+        let path = dir.join("missing").join("x.png");
+        assert!(matches!(
+            write_file(&path, b"data"),
+            Err(Error::Write { .. })
+        ));
+        assert!(!path.exists());
+        assert!(check_file(&path, &["png"]).is_err());
+        // Upper-case extensions are accepted.
+        check_file(&dir.join("X.PNG"), &["png"]).unwrap();
+        assert!(check_file(&dir.join("x.jpg"), &["png"]).is_err());
+        assert!(check_file(&dir, &["png"]).is_err());
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "probes removed");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
