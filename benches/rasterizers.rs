@@ -85,7 +85,7 @@ fn triangles(c: &mut Criterion) {
         for b in triangle_backends() {
             // The naive loop tests every pixel against every triangle:
             // 2 million x thousands of triangles is beyond a benchmark.
-            if b.name() == "naive" && work.len() > 2 {
+            if !b.affordable(work.len() as u64, 1, 2) {
                 continue;
             }
             group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {

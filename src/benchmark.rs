@@ -142,7 +142,12 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
         .collect::<Result<Vec<_>>>()?;
     let mesh_backends: Vec<_> = triangle_backends()
         .iter()
-        .filter(|b| b.name() != "naive")
+        // As for the triangle workloads: at most two tests per pixel.
+        .filter(|b| {
+            meshes
+                .iter()
+                .all(|(_, mesh)| b.affordable(mesh.triangles.len() as u64, 1, 2))
+        })
         .collect();
     let total = triangle_workloads
         .iter()

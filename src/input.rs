@@ -70,6 +70,8 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
     let mut segments = Vec::new();
     let mut lines = Vec::new();
     let mut polygon: Option<PolygonRings> = None;
+    // A UTF-8 byte-order mark, as some editors write, is not content.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (index, raw_line) in text.lines().enumerate() {
         let line_no = index + 1;
         let content = raw_line.split('#').next().unwrap_or("").trim();
@@ -117,10 +119,10 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
             }
             match (keyword, polygon.as_mut()) {
                 ("hole", None) => return Err(at("`hole` before any `polygon`".into())),
-                ("hole", Some((_, _, holes))) => holes.push(points),
+                ("hole", Some(rings)) => rings.push((line_no, points)),
                 _ => {
                     finish_polygon(polygon.take(), path, &mut triangles, &mut lines)?;
-                    polygon = Some((line_no, points, Vec::new()));
+                    polygon = Some(vec![(line_no, points)]);
                 }
             }
             continue;
@@ -151,8 +153,9 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
     })
 }
 
-/// A polygon being read: its line, outer ring and holes.
-type PolygonRings = (usize, Vec<FixedPoint>, Vec<Vec<FixedPoint>>);
+/// A polygon being read: its rings (the outer ring first, then the holes),
+/// each with its line.
+type PolygonRings = Vec<(usize, Vec<FixedPoint>)>;
 
 /// Triangulates a polygon read from the file and appends its triangles.
 fn finish_polygon(
@@ -161,20 +164,38 @@ fn finish_polygon(
     triangles: &mut Vec<[FixedPoint; 3]>,
     lines: &mut Vec<usize>,
 ) -> Result<()> {
-    let Some((line_no, outer, holes)) = polygon else {
+    let Some(rings) = polygon else {
         return Ok(());
     };
-    let pieces = Polygon::new(outer, holes)
-        .and_then(|p| p.triangulate())
+    let ring_lines: Vec<usize> = rings.iter().map(|r| r.0).collect();
+    let line_no = ring_lines[0];
+    let mut points = rings.into_iter().map(|r| r.1);
+    let outer = points.next().unwrap_or_default();
+    let pieces = Polygon::with_faulty_ring(outer, points.collect())
+        .map_err(|(ring, e)| e.at_line(path, ring_lines[ring]))?
+        .triangulate()
         .map_err(|e| e.at_line(path, line_no))?;
     lines.extend(std::iter::repeat_n(line_no, pieces.len()));
     triangles.extend(pieces);
     Ok(())
 }
 
-/// Reads and parses a triangle soup or line set file.
+/// Reads and parses a triangle soup or line set file; `-` reads standard
+/// input. A mesh file is refused with a message that says so.
 pub fn read_shapes(path: &Path) -> Result<Shapes> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, &e))?;
+    if crate::mesh::Mesh::is_mesh_path(path) {
+        return Err(Error::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            message: "this is a mesh; this command reads triangle soups, polygons and line sets (`render` and `compare` read meshes)".into(),
+        });
+    }
+    let text = if path.as_os_str() == "-" {
+        std::io::read_to_string(std::io::stdin().lock())
+    } else {
+        std::fs::read_to_string(path)
+    }
+    .map_err(|e| Error::io(path, &e))?;
     parse_shapes(&text, path)
 }
 

@@ -29,9 +29,25 @@ pub fn extension(path: &Path) -> Option<String> {
         .map(str::to_ascii_lowercase)
 }
 
+/// True for an existing path that is neither a file nor a directory: a
+/// device such as `/dev/null`, or a pipe. Such a path is written in place
+/// (renaming over it would replace the device).
+fn is_special(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
+}
+
 /// Checks, before any work, that `path` has one of `extensions` (compared
-/// without case) and that its folder exists and accepts a new file.
+/// without case) and that its folder exists and accepts a new file. A
+/// device or pipe (`/dev/null`, `/dev/stdout`) is accepted whatever its
+/// name, if it opens for writing.
 pub fn check_file(path: &Path, extensions: &[&str]) -> Result<()> {
+    if is_special(path) {
+        return std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .map(drop)
+            .map_err(|e| Error::write(path, &e));
+    }
     let ext = extension(path);
     if !extensions.iter().any(|e| ext.as_deref() == Some(e)) {
         return Err(Error::Write {
@@ -85,8 +101,15 @@ fn temporary_path(path: &Path) -> PathBuf {
 }
 
 /// Writes `bytes` to `path` whole or not at all: a temporary file beside it,
-/// flushed, then renamed over `path`.
+/// flushed, then renamed over `path`. A device or pipe is written in place.
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    if is_special(path) {
+        return std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .and_then(|mut f| f.write_all(bytes))
+            .map_err(|e| Error::write(path, &e));
+    }
     let temporary = temporary_path(path);
     let written = std::fs::File::create(&temporary).and_then(|mut f| {
         f.write_all(bytes)?;
@@ -141,7 +164,15 @@ mod tests {
         check_file(&dir.join("X.PNG"), &["png"]).unwrap();
         assert!(check_file(&dir.join("x.jpg"), &["png"]).is_err());
         assert!(check_file(&dir, &["png"]).is_err());
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "probes removed");
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            0,
+            "probes removed"
+        );
+        // A device is written in place, not replaced.
+        check_file(Path::new("/dev/null"), &["png"]).unwrap();
+        write_file(Path::new("/dev/null"), b"data").unwrap();
+        assert!(is_special(Path::new("/dev/null")));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

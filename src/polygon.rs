@@ -77,53 +77,100 @@ fn segments_touch(a: FixedPoint, b: FixedPoint, c: FixedPoint, d: FixedPoint) ->
 
 impl Polygon {
     /// Builds a polygon, checking that every ring has at least three
-    /// vertices and that no two edges of any rings touch, except
-    /// consecutive edges of one ring at their shared vertex.
+    /// vertices, that no two edges of any rings touch (except consecutive
+    /// edges of one ring at their shared vertex), that every hole lies
+    /// inside the outer ring and that no hole lies inside another.
     pub fn new(outer: Vec<FixedPoint>, holes: Vec<Vec<FixedPoint>>) -> Result<Polygon> {
+        Self::with_faulty_ring(outer, holes).map_err(|(_, e)| e)
+    }
+
+    /// [`Polygon::new`], saying which ring is at fault: 0 for the outer
+    /// ring, `k` for the `k`-th hole (so a reader can point at its line).
+    pub fn with_faulty_ring(
+        outer: Vec<FixedPoint>,
+        holes: Vec<Vec<FixedPoint>>,
+    ) -> std::result::Result<Polygon, (usize, Error)> {
         let polygon = Polygon { outer, holes };
-        let rings: Vec<&Vec<FixedPoint>> = std::iter::once(&polygon.outer)
-            .chain(polygon.holes.iter())
-            .collect();
-        if rings.iter().any(|r| r.len() < 3) {
-            return Err(Error::InvalidArgument(
+        let fault = |ring: usize, message: String| (ring, Error::InvalidArgument(message));
+        if let Some(r) = polygon.rings().position(|r| r.len() < 3) {
+            return Err(fault(
+                r,
                 "every polygon ring needs at least 3 vertices".into(),
             ));
         }
-        let edges: Vec<(usize, usize, FixedPoint, FixedPoint)> = rings
+        polygon.check_edges_apart().map_err(|(r, m)| fault(r, m))?;
+        // No two rings touch, so a ring lies wholly on one side of another:
+        // one vertex tells which.
+        for (k, hole) in polygon.holes.iter().enumerate() {
+            let outer_only = Polygon {
+                outer: polygon.outer.clone(),
+                holes: Vec::new(),
+            };
+            if outer_only.classify(hole[0]) != Side::Inside {
+                return Err(fault(
+                    k + 1,
+                    format!("hole {} lies outside its polygon", k + 1),
+                ));
+            }
+            for (j, other) in polygon.holes.iter().enumerate() {
+                let other_only = Polygon {
+                    outer: other.clone(),
+                    holes: Vec::new(),
+                };
+                if j != k && other_only.classify(hole[0]) == Side::Inside {
+                    return Err(fault(
+                        k + 1,
+                        format!("hole {} lies inside hole {}", k + 1, j + 1),
+                    ));
+                }
+            }
+        }
+        Ok(polygon)
+    }
+
+    /// Checks that no two edges touch, but consecutive edges of one ring at
+    /// their shared vertex. Edges are swept in order of their smallest x,
+    /// and only pairs whose x ranges overlap are tested exactly, so a
+    /// polygon of many short edges is checked in about `n log n`.
+    fn check_edges_apart(&self) -> std::result::Result<(), (usize, String)> {
+        let rings: Vec<&Vec<FixedPoint>> = self.rings().collect();
+        let mut edges: Vec<(usize, usize, FixedPoint, FixedPoint)> = rings
             .iter()
             .enumerate()
             .flat_map(|(r, ring)| {
                 (0..ring.len()).map(move |i| (r, i, ring[i], ring[(i + 1) % ring.len()]))
             })
             .collect();
+        if let Some(&(r, ..)) = edges.iter().find(|e| e.2 == e.3) {
+            return Err((r, "polygon has a repeated vertex".into()));
+        }
+        let min_x = |e: &(usize, usize, FixedPoint, FixedPoint)| e.2.x.min(e.3.x);
+        let max_x = |e: &(usize, usize, FixedPoint, FixedPoint)| e.2.x.max(e.3.x);
+        edges.sort_by_key(min_x);
         for (k, &(r1, i1, a, b)) in edges.iter().enumerate() {
-            if a == b {
-                return Err(Error::InvalidArgument(
-                    "polygon has a repeated vertex".into(),
-                ));
-            }
-            for &(r2, i2, c, d) in &edges[k + 1..] {
+            let right = max_x(&edges[k]);
+            for &(r2, i2, c, d) in edges[k + 1..].iter().take_while(|e| min_x(e) <= right) {
                 let n = rings[r1].len();
-                let adjacent = r1 == r2 && ((i1 + 1) % n == i2 || (i2 + 1) % n == i1);
-                let touch = if adjacent {
+                let (after, before) = (
+                    r1 == r2 && (i1 + 1) % n == i2,
+                    r1 == r2 && (i2 + 1) % n == i1,
+                );
+                let touch = if after || before {
                     // Consecutive edges share one vertex; they must not overlap.
-                    let (shared, p, q) = if (i1 + 1) % n == i2 {
-                        (b, a, d)
-                    } else {
-                        (a, b, c)
-                    };
+                    let (shared, p, q) = if after { (b, a, d) } else { (a, b, c) };
                     on_segment(shared, p, q) || on_segment(shared, q, p)
                 } else {
                     segments_touch(a, b, c, d)
                 };
                 if touch {
-                    return Err(Error::InvalidArgument(
+                    return Err((
+                        r1.max(r2),
                         "polygon is not simple: two edges touch or cross".into(),
                     ));
                 }
             }
         }
-        Ok(polygon)
+        Ok(())
     }
 
     fn rings(&self) -> impl Iterator<Item = &Vec<FixedPoint>> {

@@ -155,16 +155,31 @@ pub struct MeshRenderer {
     geometry: Mutex<Geometry>,
 }
 
+/// The largest zoom a camera accepts: beyond it the view is a fraction of
+/// a pixel of the mesh and the projection loses every digit.
+pub const MAX_ZOOM: f32 = 1e6;
+
 impl MeshRenderer {
     /// Frames `mesh` with a camera and prepares its vertices and shaders.
     ///
-    /// Errors: a zero-size or oversized target, a non-finite zoom.
+    /// Errors: a zero-size or oversized target, a non-finite angle, a zoom
+    /// that is not in `(0, MAX_ZOOM]`.
     pub fn new(mesh: &Mesh, settings: RenderSettings) -> Result<MeshRenderer> {
         RenderTarget::check_size(settings.width, settings.height)?;
-        Error::check_finite([settings.azimuth, settings.elevation, settings.zoom])?;
-        if settings.zoom <= 0.0 {
+        for (name, value) in [
+            ("azimuth", settings.azimuth),
+            ("elevation", settings.elevation),
+        ] {
+            if !value.is_finite() {
+                return Err(Error::InvalidArgument(format!(
+                    "{name} must be a finite angle in degrees, not {value}"
+                )));
+            }
+        }
+        // NaN fails this test too.
+        if !(settings.zoom > 0.0 && settings.zoom <= MAX_ZOOM) {
             return Err(Error::InvalidArgument(format!(
-                "zoom must be > 0, not {}",
+                "zoom must be > 0 and at most {MAX_ZOOM}, not {}",
                 settings.zoom
             )));
         }

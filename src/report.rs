@@ -58,9 +58,9 @@ const RULES: [FillRule; 5] = [
     FillRule::Exclusive,
 ];
 
-/// Largest number of pixel tests the naive loop may do in a report
-/// (pixels x triangles); above it `bbox` is the reference and `naive` is
-/// left out.
+/// Largest number of pixel tests a back-end whose work does not follow the
+/// triangles' size (the naive loop: pixels x triangles) may do in a report;
+/// above it `bbox` is the reference and `naive` is left out.
 pub const NAIVE_TEST_BUDGET: u64 = 50_000_000;
 
 /// Largest target (in pixels) that gets zoomed grid pictures.
@@ -156,18 +156,17 @@ fn pixel_differs(a: &RenderTarget, b: &RenderTarget, i: usize) -> bool {
         || a.coverage[i] != b.coverage[i]
 }
 
-/// The triangle back-ends a report runs: all of them, but the naive loop
-/// only while its pixels x triangles tests stay within
-/// [`NAIVE_TEST_BUDGET`].
+/// The triangle back-ends a report runs: all of them, but those whose work
+/// does not follow the triangles' size (the naive loop) only while it stays
+/// within [`NAIVE_TEST_BUDGET`] tests.
 fn triangle_backends_within_budget(
     pixels: u64,
     triangles: usize,
 ) -> impl Iterator<Item = &'static dyn TriangleRasterizer> {
-    let naive_fits = pixels * triangles as u64 <= NAIVE_TEST_BUDGET;
     triangle_backends()
         .iter()
         .copied()
-        .filter(move |b| naive_fits || b.name() != "naive")
+        .filter(move |b| b.affordable(triangles as u64, pixels, NAIVE_TEST_BUDGET))
 }
 
 /// The heat maps of `coverage_of(rule)` for every rule.
@@ -205,7 +204,29 @@ fn rule_pictures(
         .collect()
 }
 
+/// Memory a report holds per target pixel, about: each back-end's target
+/// (colour, depth, coverage), its difference image and the pictures
+/// encoded in the page.
+const REPORT_BYTES_PER_PIXEL: u64 = 256;
+
+/// The most memory a report may need, by [`REPORT_BYTES_PER_PIXEL`].
+pub const MAX_REPORT_BYTES: u64 = 4 << 30;
+
 impl Report {
+    /// Refuses, with an estimate, a report on a target so large that its
+    /// images would not fit in [`MAX_REPORT_BYTES`].
+    pub fn check_memory(width: u32, height: u32) -> Result<()> {
+        let bytes = u64::from(width) * u64::from(height) * REPORT_BYTES_PER_PIXEL;
+        if bytes > MAX_REPORT_BYTES {
+            return Err(Error::TooMuchWork(format!(
+                "a {width}x{height} report would hold about {:.1} GiB of images (at most {} GiB): give a smaller --size",
+                bytes as f64 / f64::from(1u32 << 30),
+                MAX_REPORT_BYTES >> 30
+            )));
+        }
+        Ok(())
+    }
+
     /// Runs every back-end of the input's kind on a `width` x `height`
     /// target, timing each as the median of `samples` runs.
     pub fn compare(
@@ -215,6 +236,7 @@ impl Report {
         samples: usize,
     ) -> Result<Report> {
         RenderTarget::check_size(width, height)?;
+        Self::check_memory(width, height)?;
         let pixels = u64::from(width) * u64::from(height);
         let small = width * height <= GRID_PICTURE_PIXELS;
         let mut runs = Vec::new();

@@ -63,11 +63,12 @@ impl TriangleWorkload {
         self.geometry.setups.len()
     }
 
-    /// Whether timing `backend` on this workload is sensible: the naive
-    /// loop tests every pixel against every triangle, so it only runs the
-    /// two-triangle fills.
+    /// Whether timing `backend` on this workload is sensible: a back-end
+    /// whose work does not follow the triangles' size (the naive loop tests
+    /// every pixel against every triangle) runs only where it tests each
+    /// pixel at most twice, the two-triangle fills.
     pub fn suits(&self, backend: &dyn TriangleRasterizer) -> bool {
-        backend.name() != "naive" || self.triangles() <= 2
+        backend.affordable(self.triangles() as u64, 1, 2)
     }
 
     /// Clears `target` and draws the workload with `backend`; returns the

@@ -30,7 +30,10 @@ d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, 
         screen.lines().next().unwrap(),
         "bresenham (midpoint) from (0.5, 0.5) to (7.5, 3.5) in screen coordinates; first octant: no symmetry needed"
     );
-    assert_eq!(screen.lines().skip(1).collect::<Vec<_>>(), expected.lines().skip(1).collect::<Vec<_>>());
+    assert_eq!(
+        screen.lines().skip(1).collect::<Vec<_>>(),
+        expected.lines().skip(1).collect::<Vec<_>>()
+    );
 }
 
 /// y = 3/7 x: exact values k * 3/7 and their nearest rows, the same rows

@@ -126,7 +126,7 @@ pub fn fragments(args: &FragmentsArgs) -> Result<()> {
     if let Backend::Line(b) = backend {
         b.check_options(&options)?;
     }
-    RenderTarget::new(args.size.width, args.size.height)?;
+    RenderTarget::check_size(args.size.width, args.size.height)?;
     let viewport = PixelRect::of_target(args.size.width, args.size.height);
     let shapes = read_shapes(&args.file)?;
     let mut list = FragmentList::default();
@@ -199,6 +199,10 @@ pub struct RenderArgs {
     /// Output PNG file.
     #[arg(long)]
     out: PathBuf,
+    /// Run even when the estimated work is beyond an hour's worth (the
+    /// naive loop on a large mesh).
+    #[arg(long)]
+    force: bool,
     #[command(flatten)]
     mesh: MeshArgs,
 }
@@ -272,6 +276,7 @@ impl MeshArgs {
 }
 
 pub fn render(args: &RenderArgs) -> Result<()> {
+    rasterlab::output::check_file(&args.out, &["png"])?;
     let backend = triangle_backend(&args.backend)?;
     let rule: FillRule = args.rule.parse()?;
     let depth = DepthState {
@@ -334,17 +339,29 @@ fn render_mesh(
     let mesh = Mesh::load(path)?;
     let load_time = start.elapsed();
     let renderer = MeshRenderer::new(&mesh, args.mesh.settings(args.size, rule, depth)?)?;
+    if !args.force {
+        let (width, height) = (renderer.settings().width, renderer.settings().height);
+        check_estimate(
+            backend,
+            mesh.triangles.len() as u64 * u64::from(args.mesh.frames),
+            u64::from(width) * u64::from(height),
+        )?;
+    }
     // One framebuffer, redrawn frame after frame as an application does;
     // coverage is not counted (nothing here reads it).
     let (width, height) = (renderer.settings().width, renderer.settings().height);
     let mut target = RenderTarget::without_coverage(width, height)?;
     let mut times: Vec<(Duration, Duration)> = Vec::with_capacity(args.mesh.frames as usize);
+    let bar = progress_bar(u64::from(args.mesh.frames), "frames");
     let mut last = renderer.render_into(backend, &mut target)?;
     times.push((last.geometry_time, last.raster_time));
+    bar.inc(1);
     for _ in 1..args.mesh.frames {
         last = renderer.render_into(backend, &mut target)?;
         times.push((last.geometry_time, last.raster_time));
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     let median = |f: &dyn Fn(&(Duration, Duration)) -> Duration| {
         let mut t: Vec<Duration> = times.iter().map(f).collect();
         t.sort();
@@ -386,6 +403,39 @@ fn render_mesh(
     Ok(())
 }
 
+/// Sample tests a back-end may be asked for without `--force`: about a
+/// minute of the naive loop.
+const TEST_BUDGET: u64 = 10_000_000_000;
+
+/// Sample tests per second the naive loop manages, for the estimate.
+const NAIVE_TESTS_PER_SECOND: f64 = 1e8;
+
+/// Refuses, with an estimate, a run whose tests do not follow the
+/// triangles' size and are beyond [`TEST_BUDGET`].
+fn check_estimate(backend: &dyn TriangleRasterizer, triangles: u64, pixels: u64) -> Result<()> {
+    match backend.tests_whatever_the_size(triangles, pixels) {
+        Some(tests) if tests > TEST_BUDGET => Err(Error::TooMuchWork(format!(
+            "`{}` would test about {tests:.2e} samples ({triangles} triangles x {pixels} pixels), \
+             roughly {:.0} minutes; choose a faster back-end (scanline, tiled) or give --force",
+            backend.name(),
+            tests as f64 / NAIVE_TESTS_PER_SECOND / 60.0
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// A progress bar on standard error for `total` steps; hidden when the run
+/// is short or standard error is not a terminal (indicatif's own check).
+fn progress_bar(total: u64, what: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(total);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} ({eta} left)")
+            .expect("a valid progress template"),
+    );
+    bar.set_message(what.to_string());
+    bar
+}
+
 #[derive(Args, Debug)]
 pub struct DemoArgs {
     /// Directory the pictures are written to.
@@ -403,7 +453,11 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
     rasterlab::output::check_dir(&args.out)?;
     say!(
         "{:<16} {:<12} {:>10} {:>10} {:>9}  identical to naive",
-        "scene", "back-end", "tested", "fragments", "time"
+        "scene",
+        "back-end",
+        "tested",
+        "fragments",
+        "time"
     )?;
     let mut all_identical = true;
     let mut report = |name: &str,
@@ -643,6 +697,8 @@ pub struct BenchArgs {
 
 pub fn bench(args: &BenchArgs) -> Result<()> {
     use rasterlab::benchmark::{self, BenchOptions};
+    check_samples(args.samples)?;
+    rasterlab::output::check_dir(&args.out)?;
     let meshes = if args.meshes.is_empty() {
         vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/dragon_vrip_res4.ply.gz")]
     } else {
@@ -655,11 +711,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         samples: args.samples,
         meshes,
     };
-    let bar = indicatif::ProgressBar::new(0);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}")
-            .expect("a valid progress template"),
-    );
+    let bar = progress_bar(0, "");
     let results = benchmark::run(&options, &mut |p| {
         bar.set_length(p.total as u64);
         bar.set_position(p.done as u64);
@@ -681,6 +733,20 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     Ok(())
 }
 
+/// Timed runs per measurement: at least one, at most [`MAX_SAMPLES`].
+fn check_samples(samples: usize) -> Result<()> {
+    if (1..=MAX_SAMPLES).contains(&samples) {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument(format!(
+            "--samples must be between 1 and {MAX_SAMPLES}, not {samples}"
+        )))
+    }
+}
+
+/// More timed runs than this add nothing to a median.
+const MAX_SAMPLES: usize = 1000;
+
 #[derive(Args, Debug)]
 pub struct CompareArgs {
     /// A triangle soup or polygon file, a line set file, or a mesh (.ply,
@@ -699,6 +765,9 @@ pub struct CompareArgs {
 
 pub fn compare(args: &CompareArgs) -> Result<()> {
     let (width, height) = (args.size.width, args.size.height);
+    check_samples(args.samples)?;
+    Report::check_memory(width, height)?;
+    rasterlab::output::check_dir(&args.out)?;
     let input = if Mesh::is_mesh_path(&args.input) {
         CompareInput::Mesh(Box::new(Mesh::load(&args.input)?))
     } else {
@@ -713,7 +782,12 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
     let path = report.write(&args.out)?;
     say!(
         "{:<12} {:>10} {:>10} {:>9} {:>10}  differing pixels vs {}",
-        "back-end", "fragments", "tested", "tests/frag", "time", report.reference
+        "back-end",
+        "fragments",
+        "tested",
+        "tests/frag",
+        "time",
+        report.reference
     )?;
     for run in &report.runs {
         say!(

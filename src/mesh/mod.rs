@@ -10,16 +10,38 @@
 //!
 //! Every loader reports a malformed file as [`Error::Parse`] naming the file
 //! and, where the format has lines, the line. Faces with more than three
-//! vertices are split into a fan. Missing normals are computed from the faces
+//! vertices are split into triangles by [`face::triangulate_face`] (a fan
+//! when convex, a constrained Delaunay triangulation when concave). Missing normals are computed from the faces
 //! (area-weighted, [`Mesh::compute_normals`]); missing texture coordinates can
 //! be generated ([`Mesh::planar_uvs`]).
 
+pub mod face;
 pub mod obj;
 pub mod ply;
 
 use crate::error::{Error, Result};
 use glam::{Vec2, Vec3, Vec4};
 use std::path::Path;
+
+/// The largest coordinate magnitude a mesh vertex may have: framing a mesh
+/// squares its coordinates, which past about 1e19 overflow `f32`.
+pub const MAX_COORDINATE: f32 = 1e15;
+
+/// Errors unless every coordinate of `p` is finite and at most
+/// [`MAX_COORDINATE`] in magnitude; the message names the coordinate.
+pub(crate) fn check_position(p: Vec3) -> std::result::Result<(), String> {
+    match p
+        .to_array()
+        .into_iter()
+        .find(|c| !c.is_finite() || c.abs() > MAX_COORDINATE)
+    {
+        Some(c) if !c.is_finite() => Err(format!("coordinate {c} is not a finite number")),
+        Some(c) => Err(format!(
+            "coordinate {c} is beyond the largest a mesh may use (|coordinate| <= {MAX_COORDINATE})"
+        )),
+        None => Ok(()),
+    }
+}
 
 /// An indexed triangle mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -78,7 +100,8 @@ impl Mesh {
         }
     }
 
-    /// Whether a path names a mesh file this module can load.
+    /// Whether a path names a mesh file this module can load (by its
+    /// extension, in any case).
     pub fn is_mesh_path(path: &Path) -> bool {
         MeshFormat::of(path).is_some()
     }
@@ -147,12 +170,19 @@ impl MeshFormat {
     }
 }
 
-/// Checks a mesh's data: at least one triangle, finite positions, indices in range.
+/// Checks a mesh's data: at least one triangle, finite positions within
+/// [`MAX_COORDINATE`], indices in range.
 fn validate(positions: &[Vec3], triangles: &[[u32; 3]]) -> Result<()> {
     if triangles.is_empty() {
         return Err(Error::Empty("mesh (no triangles)".into()));
     }
-    Error::check_finite(positions.iter().flat_map(|p| p.to_array()))?;
+    if let Some((i, message)) = positions
+        .iter()
+        .enumerate()
+        .find_map(|(i, &p)| check_position(p).err().map(|m| (i, m)))
+    {
+        return Err(Error::InvalidArgument(format!("vertex {i}: {message}")));
+    }
     Error::check_indices(triangles.iter().flatten(), positions.len())
 }
 
@@ -167,11 +197,4 @@ fn compute_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
         }
     }
     sum.into_iter().map(|n| n.normalize_or(Vec3::Z)).collect()
-}
-
-/// Splits a polygon face into a fan of triangles `(v0, v[i], v[i+1])`.
-pub(crate) fn fan(face: &[u32], out: &mut Vec<[u32; 3]>) {
-    for i in 1..face.len().saturating_sub(1) {
-        out.push([face[0], face[i], face[i + 1]]);
-    }
 }

@@ -3,14 +3,15 @@
 //! Faces refer to positions, texture coordinates and normals through
 //! separate 1-based (or negative, relative) indices, `f 1/1/1 2/2/2 3/3/3`;
 //! each distinct `position/uv/normal` triple becomes one mesh vertex.
-//! Polygons are split into fans; groups, objects, materials and smoothing
+//! Polygons are split into triangles ([`super::face`]: a fan when convex,
+//! a constrained Delaunay triangulation when concave); groups, objects, materials and smoothing
 //! statements are ignored.
 //!
 //! The reader is written here rather than taken from a crate because the
 //! OBJ crates report malformed input without a line number, and every error
 //! here names the file and the line (`file.obj:12: ...`).
 
-use super::{fan, Mesh};
+use super::{face::triangulate_face, Mesh};
 use crate::error::{Error, Result};
 use glam::{Vec2, Vec3, Vec4};
 use std::collections::HashMap;
@@ -39,9 +40,13 @@ pub fn parse(text: &str, path: &Path) -> Result<Mesh> {
     // Distinct (position, uv, normal) triples and their mesh vertex index.
     let mut corners: HashMap<(u32, Option<u32>, Option<u32>), u32> = HashMap::new();
     let mut corner_list: Vec<(u32, Option<u32>, Option<u32>)> = Vec::new();
+    // The position of each corner, by corner index.
+    let mut corner_positions: Vec<Vec3> = Vec::new();
     let mut triangles = Vec::new();
     let mut face = Vec::new();
 
+    // A UTF-8 byte-order mark, as some editors write, is not content.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
         let err = |message: String| Error::Parse {
@@ -58,7 +63,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Mesh> {
         match keyword {
             "v" => {
                 let v = floats(&args, 3, 7, "v").map_err(err)?;
-                positions.push(Vec3::new(v[0], v[1], v[2]));
+                let p = Vec3::new(v[0], v[1], v[2]);
+                super::check_position(p).map_err(err)?;
+                positions.push(p);
                 if v.len() >= 6 {
                     colors.push(Vec4::new(v[3], v[4], v[5], 1.0));
                 }
@@ -91,11 +98,12 @@ pub fn parse(text: &str, path: &Path) -> Result<Mesh> {
                     let next = corner_list.len() as u32;
                     let id = *corners.entry(key).or_insert_with(|| {
                         corner_list.push(key);
+                        corner_positions.push(positions[p as usize]);
                         next
                     });
                     face.push(id);
                 }
-                fan(&face, &mut triangles);
+                triangulate_face(&corner_positions, &face, &mut triangles).map_err(err)?;
             }
             "o" | "g" | "s" | "usemtl" | "mtllib" | "l" | "p" | "vp" => {}
             other => return Err(err(format!("unknown statement `{other}`"))),

@@ -13,7 +13,7 @@
 //! numbers, non-finite coordinates, faces with fewer than three vertices and
 //! indices out of range all name their line.
 
-use super::{fan, Mesh};
+use super::{face::triangulate_face, Mesh};
 use crate::error::{Error, Result};
 use glam::{Vec2, Vec3, Vec4};
 use ply_rs_bw::parser::{Parser, Reader};
@@ -22,7 +22,38 @@ use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
-/// Loads a PLY file (gzip-compressed when it starts with the gzip magic bytes).
+/// Reads what is left after the last element: nothing (or, for ASCII,
+/// white space). Reading to the end also makes a gzip decoder check every
+/// member's CRC and length.
+fn check_nothing_follows(mut rest: impl BufRead, ascii: bool) -> std::result::Result<(), String> {
+    let mut seen = 0usize;
+    loop {
+        let chunk = rest
+            .fill_buf()
+            .map_err(|e| format!("after the last element: {e}"))?;
+        if chunk.is_empty() {
+            return Ok(());
+        }
+        if !ascii || chunk.iter().any(|b| !b.is_ascii_whitespace()) {
+            return Err(
+                "data after the last element the header declares (more faces or vertices than its counts?)"
+                    .into(),
+            );
+        }
+        let n = chunk.len();
+        seen += n;
+        if seen > MAX_TRAILING_BYTES {
+            return Err(format!(
+                "more than {MAX_TRAILING_BYTES} bytes after the last element"
+            ));
+        }
+        rest.consume(n);
+    }
+}
+
+/// Loads a PLY file (gzip-compressed when it starts with the gzip magic
+/// bytes; every member of a multi-member file is read, and the CRC and
+/// length of each are checked, since the whole stream is read to its end).
 pub fn load(path: &Path) -> Result<Mesh> {
     let mut file = BufReader::new(File::open(path).map_err(|e| Error::io(path, &e))?);
     let gzip = file
@@ -30,13 +61,25 @@ pub fn load(path: &Path) -> Result<Mesh> {
         .map_err(|e| Error::io(path, &e))?
         .starts_with(&[0x1f, 0x8b]);
     if gzip {
-        read(BufReader::new(flate2::bufread::GzDecoder::new(file)), path)
+        read(
+            BufReader::new(flate2::bufread::MultiGzDecoder::new(file)),
+            path,
+        )
     } else {
         read(file, path)
     }
 }
 
+/// The most bytes read after the last element before the file is refused
+/// (white space only, for ASCII files): a bound on what a hostile file can
+/// make the loader read.
+const MAX_TRAILING_BYTES: usize = 1 << 20;
+
 /// Parses PLY data from a reader; `path` is used in error messages only.
+///
+/// The data must end with the last element the header declares (ASCII
+/// files may end with white space): extra faces or bytes are an error, not
+/// silently dropped.
 pub fn read<R: BufRead>(source: R, path: &Path) -> Result<Mesh> {
     let parse_error = |e: ply_rs_bw::parser::ParseError, ascii: bool| Error::Parse {
         path: path.to_path_buf(),
@@ -87,6 +130,8 @@ pub fn read<R: BufRead>(source: R, path: &Path) -> Result<Mesh> {
         }
         next_line += def.count;
     }
+    check_nothing_follows(reader.into_inner(), ascii)
+        .map_err(|message| located(next_line, message))?;
 
     let (vertices, vertex_line) =
         vertices.ok_or_else(|| located(1, "no `vertex` element in the header".into()))?;
@@ -96,12 +141,8 @@ pub fn read<R: BufRead>(source: R, path: &Path) -> Result<Mesh> {
     let mut positions = Vec::with_capacity(vertices.len());
     for (i, v) in vertices.iter().enumerate() {
         let p = Vec3::from_array(v.position);
-        if !p.is_finite() {
-            return Err(located(
-                vertex_line + i,
-                format!("vertex {i} has a coordinate that is not a finite number: {p}"),
-            ));
-        }
+        super::check_position(p)
+            .map_err(|m| located(vertex_line + i, format!("vertex {i}: {m}")))?;
         positions.push(p);
     }
     let mut triangles = Vec::with_capacity(faces.len());
@@ -128,7 +169,8 @@ pub fn read<R: BufRead>(source: R, path: &Path) -> Result<Mesh> {
                 ),
             ));
         }
-        fan(&f.indices, &mut triangles);
+        triangulate_face(&positions, &f.indices, &mut triangles)
+            .map_err(|m| located(line, format!("face {i}: {m}")))?;
     }
     let mut mesh =
         Mesh::new(positions, triangles).map_err(|e| located(face_line, e.to_string()))?;

@@ -44,6 +44,23 @@ pub trait TriangleRasterizer: Send + Sync {
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters;
 
+    /// A cost hint: the samples this back-end tests to draw `triangles`
+    /// triangles on a target of `pixels` pixels, when that does not depend
+    /// on the triangles' size (the naive loop: every pixel for every
+    /// triangle); `None` (the default) when its work follows the triangles'
+    /// area. Tools use it to leave out or refuse runs that would take hours.
+    fn tests_whatever_the_size(&self, triangles: u64, pixels: u64) -> Option<u64> {
+        let _ = (triangles, pixels);
+        None
+    }
+
+    /// Whether drawing `triangles` triangles on `pixels` pixels stays
+    /// within `budget` sample tests by [`Self::tests_whatever_the_size`].
+    fn affordable(&self, triangles: u64, pixels: u64, budget: u64) -> bool {
+        self.tests_whatever_the_size(triangles, pixels)
+            .is_none_or(|tests| tests <= budget)
+    }
+
     /// Emits every fragment of `triangles` whose pixel lies in `viewport`,
     /// and returns the work done.
     fn rasterize(

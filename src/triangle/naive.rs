@@ -31,6 +31,10 @@ impl TriangleRasterizer for Naive {
         "course pseudocode: every pixel of the target tested against every triangle"
     }
 
+    fn tests_whatever_the_size(&self, triangles: u64, pixels: u64) -> Option<u64> {
+        Some(triangles.saturating_mul(pixels))
+    }
+
     fn rasterize_selection(
         &self,
         triangles: TriangleSelection<'_>,
