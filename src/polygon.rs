@@ -226,40 +226,45 @@ impl Polygon {
                 cdt.add_constraint(from, to);
             }
         }
-        let mut triangles = Vec::new();
-        for face in cdt.inner_faces() {
-            let [a, b, c] = face.vertices().map(|v| {
-                let p = v.position();
-                FixedPoint::from_raw(p.x as i64, p.y as i64)
-            });
-            let v = [a?, b?, c?];
-            // The centroid lies strictly inside the face, hence never on the
-            // polygon's boundary: test 3 * centroid against the polygon
-            // scaled by 3, exactly.
-            if self.scaled_contains_centroid(v) {
-                triangles.push(v);
-            }
-        }
-        Ok(triangles)
-    }
-
-    fn scaled_contains_centroid(&self, v: [FixedPoint; 3]) -> bool {
-        let sum = |f: fn(FixedPoint) -> i128| v.iter().map(|&p| f(p)).sum::<i128>();
-        let (cx, cy) = (sum(|p| raw(p).0), sum(|p| raw(p).1));
-        let mut inside = false;
-        for ring in self.rings() {
-            for i in 0..ring.len() {
-                let (a, b) = (raw(ring[i]), raw(ring[(i + 1) % ring.len()]));
-                let (a, b) = ((3 * a.0, 3 * a.1), (3 * b.0, 3 * b.1));
-                if (a.1 > cy) != (b.1 > cy) {
-                    let o = ((b.0 - a.0) * (cy - a.1) - (b.1 - a.1) * (cx - a.0)).signum();
-                    if (b.1 > a.1 && o > 0) || (b.1 < a.1 && o < 0) {
-                        inside = !inside;
+        // Even-odd over the triangulation: walk from the hull inwards;
+        // crossing a constraint (a ring edge) toggles inside and outside.
+        // Rings do not touch, so this is the polygon's own even-odd rule.
+        let mut inside: Vec<Option<bool>> = vec![None; cdt.num_all_faces()];
+        let mut stack = Vec::new();
+        for hull_edge in cdt.convex_hull() {
+            for e in [hull_edge, hull_edge.rev()] {
+                if let Some(face) = e.face().as_inner() {
+                    if inside[face.fix().index()].is_none() {
+                        inside[face.fix().index()] = Some(e.is_constraint_edge());
+                        stack.push(face);
                     }
                 }
             }
         }
-        inside
+        while let Some(face) = stack.pop() {
+            let here = inside[face.fix().index()] == Some(true);
+            for e in face.adjacent_edges() {
+                if let Some(next) = e.rev().face().as_inner() {
+                    let slot = &mut inside[next.fix().index()];
+                    if slot.is_none() {
+                        *slot = Some(here != e.is_constraint_edge());
+                        stack.push(next);
+                    }
+                }
+            }
+        }
+        let mut triangles = Vec::new();
+        for face in cdt.inner_faces() {
+            if inside[face.fix().index()] != Some(true) {
+                continue;
+            }
+            let [a, b, c] = face.vertices().map(|v| {
+                let p = v.position();
+                FixedPoint::from_raw(p.x as i64, p.y as i64)
+            });
+            triangles.push([a?, b?, c?]);
+        }
+        Ok(triangles)
     }
 }
 
@@ -299,5 +304,38 @@ mod tests {
         assert!(Polygon::new(spike, vec![]).is_err());
         let repeated = vec![p(0., 0.), p(4., 0.), p(4., 0.), p(2., 3.)];
         assert!(Polygon::new(repeated, vec![]).is_err());
+    }
+
+    /// Every pair of edges tested, as the check did before it swept.
+    fn all_pairs_apart(ring: &[FixedPoint]) -> bool {
+        let n = ring.len();
+        let edge = |i: usize| (ring[i], ring[(i + 1) % n]);
+        (0..n).all(|i| edge(i).0 != edge(i).1)
+            && (0..n).all(|i| {
+                (i + 1..n).all(|j| {
+                    let ((a, b), (c, d)) = (edge(i), edge(j));
+                    if j == i + 1 {
+                        !(on_segment(b, a, d) || on_segment(b, d, a))
+                    } else if i == 0 && j == n - 1 {
+                        !(on_segment(a, b, c) || on_segment(a, c, b))
+                    } else {
+                        !segments_touch(a, b, c, d)
+                    }
+                })
+            })
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3000))]
+        /// The sweep accepts exactly the rings that testing every pair
+        /// accepts (small integer rings: many touches and crossings).
+        #[test]
+        fn the_sweep_agrees_with_testing_every_pair(
+            points in proptest::collection::vec((0i32..6, 0i32..6), 3..9)
+        ) {
+            let ring: Vec<FixedPoint> = points.iter().map(|&(x, y)| p(x as f32, y as f32)).collect();
+            let polygon = Polygon { outer: ring.clone(), holes: Vec::new() };
+            proptest::prop_assert_eq!(polygon.check_edges_apart().is_ok(), all_pairs_apart(&ring));
+        }
     }
 }
