@@ -207,7 +207,7 @@ fn rule_pictures(
 /// Memory a report holds per target pixel, about: each back-end's target
 /// (colour, depth, coverage), its difference image and the pictures
 /// encoded in the page.
-const REPORT_BYTES_PER_PIXEL: u64 = 256;
+pub const REPORT_BYTES_PER_PIXEL: u64 = 256;
 
 /// The most memory a report may need, by [`REPORT_BYTES_PER_PIXEL`].
 pub const MAX_REPORT_BYTES: u64 = 4 << 30;
