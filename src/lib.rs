@@ -38,7 +38,9 @@
 //! * [`grid_picture`]: zoomed pictures of the pixel grid (tested, emitted)
 //!   and fill-rule heat maps;
 //! * [`report`]: the side-by-side HTML comparison of every back-end;
-//! * [`output`]: output files checked before the work and written whole.
+//! * [`output`]: output files checked before the work and written whole;
+//! * [`check`]: check any rasterizer (a back-end, a closure, another
+//!   program) against the rules, with shrunk counterexamples.
 //!
 //! ```
 //! use rasterlab::{backend, edge::FillRule, scene::Scene2D, shader::Flat};
@@ -58,6 +60,7 @@
 pub mod backend;
 pub mod benchmark;
 pub mod binning;
+pub mod check;
 pub mod edge;
 pub mod error;
 pub mod fixed;

@@ -34,6 +34,9 @@ enum Command {
     Demo(commands::DemoArgs),
     /// Time every back-end on the same workloads: table, JSON and bar chart.
     Bench(commands::BenchArgs),
+    /// Check a rasterizer (another program, or a back-end) against the
+    /// rules on generated cases; a failure is shrunk to a counterexample.
+    Check(commands::CheckArgs),
 }
 
 /// Runs the command line; errors are printed to stderr.
@@ -47,6 +50,7 @@ pub fn main() -> ExitCode {
         Command::Explain(args) => commands::explain(args),
         Command::Compare(args) => commands::compare(args),
         Command::Bench(args) => commands::bench(args),
+        Command::Check(args) => commands::check(args),
     };
     let result = match cli.threads {
         None => run(),

@@ -1,0 +1,318 @@
+//! Check any rasterizer against the rules, with shrunk counterexamples.
+//!
+//! The same machinery proves rasterlab's own back-ends and checks anyone
+//! else's: a rasterizer written for an assignment in any language (through
+//! [`Program`], the `rasterlab check --exec` protocol), a published crate
+//! behind a small adapter, or a closure in a user's own `#[test]`.
+//!
+//! A check runs many [`Case`]s (a target size and some triangles or line
+//! segments, from the [`generate`] families: random soups, triangulated
+//! polygons with holes, fans and pinwheels around pixel centres, jittered
+//! quad grids, needles, huge and negative coordinates, half-subpixel ties,
+//! triangles of zero area after snapping, meshes). Each case is drawn by
+//! the rasterizer under test and judged by a [`Property`]:
+//!
+//! * [`Property::Exact`]: the fragments are exactly those of the rules
+//!   (1/256 snapping with ties to even, integer edge functions, pixel
+//!   centres at +0.5, the fill rule's tie-breaking), as the naive
+//!   reference draws them;
+//! * [`Property::Watertight`]: whatever consistent tie rule is used, every
+//!   pixel centre inside the union of the triangles is drawn exactly once,
+//!   nothing outside is drawn, a triangle draws only centres it touches,
+//!   and centres on the union's boundary at most once;
+//! * [`Property::Line`]: lines drawn by the midpoint rule or the diamond
+//!   exit rule exactly, or within Vulkan's tolerance of the diamond rule.
+//!
+//! Always: a fragment outside the target, or one pixel listed twice for
+//! one primitive, is a failure. A failing case is [`shrink`]ed (primitives
+//! dropped, vertices moved toward the pixel grid and toward each other,
+//! the target cut down) to a small counterexample, which
+//! [`Finding::ascii_grid`] and [`Finding::counterexample_text`] show.
+//!
+//! ```
+//! use rasterlab::backend::triangle_backend;
+//! use rasterlab::check::{check, CheckOptions, Property, Verdict};
+//! use rasterlab::edge::FillRule;
+//!
+//! let scanline = triangle_backend("scanline").unwrap();
+//! let options = CheckOptions { cases: 50, ..CheckOptions::new(Property::Exact(FillRule::TopLeft)) };
+//! let verdict = check(&options, &mut rasterlab::check::Builtin::triangles(scanline, FillRule::TopLeft)).unwrap();
+//! assert!(matches!(verdict, Verdict::Pass { cases: 50 }));
+//! ```
+
+pub mod generate;
+pub mod judge;
+pub mod program;
+mod report;
+pub mod shrink;
+
+pub use generate::Case;
+pub use judge::{Finding, Property};
+pub use program::Program;
+
+use crate::backend::{line_backend, triangle_backend};
+use crate::edge::{FillRule, PixelRect};
+use crate::fragment::FragmentList;
+use crate::line::{LineOptions, LineRasterizer, LineSetup};
+use crate::scene::setup_triangles;
+use crate::triangle::TriangleRasterizer;
+use std::fmt;
+
+/// One fragment a rasterizer reports: a pixel and the index of the
+/// primitive (triangle or line, 0-based, in input order) that covers it.
+/// Coordinates are `i64` so that output off the target can be judged.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Fragment {
+    /// Column.
+    pub x: i64,
+    /// Row.
+    pub y: i64,
+    /// The primitive's index.
+    pub id: u32,
+}
+
+/// Why a rasterizer under test could not be judged: it is broken in a way
+/// no property describes (the CLI exits 2).
+#[derive(Clone, Debug, PartialEq)]
+pub enum SubjectError {
+    /// The program could not be started.
+    Start(String),
+    /// It ran past the time limit and was stopped.
+    Timeout {
+        /// The limit, in seconds.
+        seconds: f64,
+    },
+    /// It exited with a failure status.
+    Failed {
+        /// The exit status as text.
+        status: String,
+        /// The start of its standard error.
+        stderr: String,
+    },
+    /// A line of its output is not `x y id`.
+    Malformed {
+        /// The 1-based output line.
+        line: usize,
+        /// The text of that line.
+        text: String,
+    },
+    /// It printed more than the output cap.
+    TooMuchOutput {
+        /// The cap, in bytes.
+        bytes: usize,
+    },
+}
+
+impl fmt::Display for SubjectError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SubjectError::Start(e) => write!(f, "the program could not be started: {e}"),
+            SubjectError::Timeout { seconds } => {
+                write!(f, "the program ran longer than {seconds} s and was stopped")
+            }
+            SubjectError::Failed { status, stderr } => {
+                write!(f, "the program failed ({status})")?;
+                if !stderr.is_empty() {
+                    write!(f, "; its standard error:\n{stderr}")?;
+                }
+                Ok(())
+            }
+            SubjectError::Malformed { line, text } => write!(
+                f,
+                "output line {line} is not `x y id` (whole numbers): `{text}`"
+            ),
+            SubjectError::TooMuchOutput { bytes } => {
+                write!(f, "the program printed more than {bytes} bytes")
+            }
+        }
+    }
+}
+
+/// A rasterizer under test: draws a case, returns its fragments.
+pub trait Subject {
+    /// The fragments drawn for `case`, in any order.
+    fn draw(&mut self, case: &Case) -> Result<Vec<Fragment>, SubjectError>;
+}
+
+/// Any closure from a case to fragments is a subject.
+impl<F> Subject for F
+where
+    F: FnMut(&Case) -> Result<Vec<Fragment>, SubjectError>,
+{
+    fn draw(&mut self, case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+        self(case)
+    }
+}
+
+/// A built-in back-end as a subject (triangles under a fill rule, or
+/// lines with the default options).
+pub enum Builtin {
+    /// A triangle back-end and the rule it draws with.
+    Triangles(&'static dyn TriangleRasterizer, FillRule),
+    /// A line back-end.
+    Lines(&'static dyn LineRasterizer),
+}
+
+impl Builtin {
+    /// A triangle back-end under `rule`.
+    pub fn triangles(backend: &'static dyn TriangleRasterizer, rule: FillRule) -> Builtin {
+        Builtin::Triangles(backend, rule)
+    }
+}
+
+impl Subject for Builtin {
+    fn draw(&mut self, case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+        Ok(match self {
+            Builtin::Triangles(b, rule) => triangle_fragments(*b, case, *rule),
+            Builtin::Lines(b) => line_fragments(*b, case),
+        })
+    }
+}
+
+/// The fragments `backend` draws for the case's triangles under `rule`.
+pub fn triangle_fragments(
+    backend: &dyn TriangleRasterizer,
+    case: &Case,
+    rule: FillRule,
+) -> Vec<Fragment> {
+    let mut list = FragmentList::default();
+    backend.rasterize(
+        &setup_triangles(&case.snapped_triangles(), rule),
+        PixelRect::of_target(case.width, case.height),
+        &mut list,
+    );
+    list.triangles
+        .iter()
+        .map(|f| Fragment {
+            x: i64::from(f.x),
+            y: i64::from(f.y),
+            id: f.triangle,
+        })
+        .collect()
+}
+
+/// The fragments `backend` draws for the case's lines (default options;
+/// Wu's zero-weight pixels left out).
+pub fn line_fragments(backend: &dyn LineRasterizer, case: &Case) -> Vec<Fragment> {
+    let mut list = FragmentList::default();
+    backend.rasterize(
+        &LineSetup::numbered(&case.snapped_lines()),
+        &LineOptions::DEFAULT,
+        PixelRect::of_target(case.width, case.height),
+        &mut list,
+    );
+    list.lines
+        .iter()
+        .filter(|f| f.coverage > 0.0)
+        .map(|f| Fragment {
+            x: i64::from(f.x),
+            y: i64::from(f.y),
+            id: f.line,
+        })
+        .collect()
+}
+
+/// What a check is asked to do.
+#[derive(Clone, Debug)]
+pub struct CheckOptions {
+    /// The property every case must satisfy.
+    pub property: Property,
+    /// How many cases to draw.
+    pub cases: u32,
+    /// The seed of the case generator: the same seed, the same cases.
+    pub seed: u64,
+    /// The most times the subject is run while shrinking a failure.
+    pub shrink_runs: u32,
+}
+
+impl CheckOptions {
+    /// 150 cases, seed 0, up to 150 shrinking runs.
+    pub fn new(property: Property) -> CheckOptions {
+        CheckOptions {
+            property,
+            cases: 150,
+            seed: 0,
+            shrink_runs: 150,
+        }
+    }
+}
+
+/// The outcome of a check.
+#[derive(Clone, Debug)]
+pub enum Verdict {
+    /// Every case held.
+    Pass {
+        /// Cases run.
+        cases: u32,
+    },
+    /// A case failed; the finding is about the shrunk case.
+    Fail {
+        /// The 0-based index of the first failing case.
+        case_index: u32,
+        /// The failing case as generated, before shrinking.
+        original: Case,
+        /// What is wrong with the shrunk case.
+        finding: Box<Finding>,
+    },
+}
+
+/// A subject that broke, with the (shrunk) case that broke it.
+#[derive(Clone, Debug)]
+pub struct Broken {
+    /// What went wrong.
+    pub error: SubjectError,
+    /// The smallest case found that triggers it.
+    pub case: Case,
+}
+
+/// Runs the check: `options.cases` generated cases, stopping at the first
+/// failure, which is shrunk. `progress` is called after each case.
+pub fn check_with_progress(
+    options: &CheckOptions,
+    subject: &mut dyn Subject,
+    progress: &mut dyn FnMut(u32),
+) -> Result<Verdict, Box<Broken>> {
+    let mut rng = fastrand::Rng::with_seed(options.seed);
+    for index in 0..options.cases {
+        let case = generate::case(options.property, index, &mut rng);
+        let drawn = subject.draw(&case).map_err(|error| {
+            let case = shrink::shrink_broken(&case, subject, options.shrink_runs);
+            Box::new(Broken { error, case })
+        })?;
+        progress(index + 1);
+        if judge::judge(options.property, &case, &drawn).is_some() {
+            let finding = shrink::shrink(options.property, &case, subject, options.shrink_runs);
+            return Ok(Verdict::Fail {
+                case_index: index,
+                original: case,
+                finding: Box::new(finding),
+            });
+        }
+    }
+    Ok(Verdict::Pass {
+        cases: options.cases,
+    })
+}
+
+/// [`check_with_progress`] without progress reports.
+pub fn check(options: &CheckOptions, subject: &mut dyn Subject) -> Result<Verdict, Box<Broken>> {
+    check_with_progress(options, subject, &mut |_| {})
+}
+
+/// The reference fragments of a case under a property: what an exact
+/// rasterizer draws (for [`Property::Watertight`], the top-left rule's
+/// answer, one of the many that pass).
+pub fn reference(property: Property, case: &Case) -> Vec<Fragment> {
+    match property {
+        Property::Exact(rule) => triangle_fragments(naive(), case, rule),
+        Property::Watertight => triangle_fragments(naive(), case, FillRule::TopLeft),
+        Property::Line(judge::LineConvention::Midpoint) => {
+            line_fragments(line_backend("bresenham").expect("built in"), case)
+        }
+        Property::Line(_) => line_fragments(line_backend("diamond").expect("built in"), case),
+    }
+}
+
+fn naive() -> &'static dyn TriangleRasterizer {
+    triangle_backend("naive").expect("built in")
+}

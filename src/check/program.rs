@@ -1,0 +1,194 @@
+//! A rasterizer in another program: the `rasterlab check --exec` protocol.
+//!
+//! For each case the program is started once, through `sh -c`, with the
+//! placeholders of its command line replaced: `{input}` (a file in the
+//! text format `rasterlab fragments` reads: `# size WxH`, then triangles
+//! `x0 y0 x1 y1 x2 y2` or lines `x0 y0 x1 y1`, one per line), `{width}`,
+//! `{height}` and `{rule}`. It prints one fragment per line, `x y id`
+//! (`id` the 0-based index of the primitive), in any order; a fourth
+//! number (a coverage weight) is allowed and ignored, and so are blank
+//! lines.
+//!
+//! The program is not trusted: it is stopped after a time limit, its
+//! output is read up to a cap, and a number too large for 64 bits is read
+//! as a pixel far off the target (a defect the check reports), not as a
+//! crash of the check.
+
+use super::generate::Case;
+use super::{Fragment, Subject, SubjectError};
+use std::io::Read;
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+use std::time::Duration;
+use wait_timeout::ChildExt;
+
+/// An outside program under test.
+#[derive(Clone, Debug)]
+pub struct Program {
+    /// The command line, with placeholders.
+    pub command: String,
+    /// The value of `{rule}`.
+    pub rule: String,
+    /// How long one case may run.
+    pub timeout: Duration,
+    /// The most bytes of output read.
+    pub output_cap: usize,
+    /// Where the input files are written.
+    pub dir: PathBuf,
+}
+
+impl Program {
+    /// A program with a 5 s limit and a 64 MiB output cap, writing its
+    /// inputs in a fresh folder under the system's temporary folder.
+    pub fn new(command: &str, rule: &str) -> Program {
+        Program {
+            command: command.to_string(),
+            rule: rule.to_string(),
+            timeout: Duration::from_secs(5),
+            output_cap: 64 << 20,
+            dir: std::env::temp_dir().join(format!("rasterlab-check-{}", std::process::id())),
+        }
+    }
+
+    /// The command line for one case, its input written to `input`.
+    fn command_line(&self, case: &Case, input: &str) -> String {
+        self.command
+            .replace("{input}", &shell_quote(input))
+            .replace("{width}", &case.width.to_string())
+            .replace("{height}", &case.height.to_string())
+            .replace("{rule}", &shell_quote(&self.rule))
+    }
+}
+
+/// Quotes a word for `sh`.
+fn shell_quote(word: &str) -> String {
+    format!("'{}'", word.replace('\'', r"'\''"))
+}
+
+impl Subject for Program {
+    fn draw(&mut self, case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+        std::fs::create_dir_all(&self.dir).map_err(|e| SubjectError::Start(e.to_string()))?;
+        let input = self.dir.join("input.txt");
+        std::fs::write(&input, case.to_text()).map_err(|e| SubjectError::Start(e.to_string()))?;
+        let line = self.command_line(case, &input.to_string_lossy());
+        let mut child = Command::new("sh")
+            .arg("-c")
+            .arg(&line)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .map_err(|e| SubjectError::Start(format!("{line}: {e}")))?;
+        let cap = self.output_cap;
+        let mut stdout = child.stdout.take().expect("piped");
+        let mut stderr = child.stderr.take().expect("piped");
+        // Read both streams on their own threads, each up to its cap, so a
+        // program that fills a pipe is not blocked and cannot fill memory.
+        let out_thread = std::thread::spawn(move || {
+            let mut buf = Vec::new();
+            let read = (&mut stdout).take(cap as u64 + 1).read_to_end(&mut buf);
+            // Drain the rest, so the program is not stuck on a full pipe.
+            let _ = std::io::copy(&mut stdout, &mut std::io::sink());
+            read.map(|_| buf)
+        });
+        let err_thread = std::thread::spawn(move || {
+            let mut buf = Vec::new();
+            let _ = (&mut stderr).take(4096).read_to_end(&mut buf);
+            let _ = std::io::copy(&mut stderr, &mut std::io::sink());
+            buf
+        });
+        let status = match child.wait_timeout(self.timeout) {
+            Ok(Some(status)) => status,
+            Ok(None) | Err(_) => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(SubjectError::Timeout {
+                    seconds: self.timeout.as_secs_f64(),
+                });
+            }
+        };
+        let out = out_thread
+            .join()
+            .ok()
+            .and_then(Result::ok)
+            .unwrap_or_default();
+        let err = err_thread.join().unwrap_or_default();
+        if !status.success() {
+            return Err(SubjectError::Failed {
+                status: status.to_string(),
+                stderr: String::from_utf8_lossy(&err).trim_end().to_string(),
+            });
+        }
+        if out.len() > cap {
+            return Err(SubjectError::TooMuchOutput { bytes: cap });
+        }
+        parse_fragments(&String::from_utf8_lossy(&out))
+    }
+}
+
+/// Reads `x y id` lines (a fourth number is allowed and ignored).
+pub fn parse_fragments(text: &str) -> Result<Vec<Fragment>, SubjectError> {
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if words.is_empty() {
+            continue;
+        }
+        let malformed = || SubjectError::Malformed {
+            line: i + 1,
+            text: line.chars().take(120).collect(),
+        };
+        if !(3..=4).contains(&words.len()) {
+            return Err(malformed());
+        }
+        let x = whole(words[0]).ok_or_else(malformed)?;
+        let y = whole(words[1]).ok_or_else(malformed)?;
+        let id = whole(words[2]).ok_or_else(malformed)?;
+        if words.len() == 4 && words[3].parse::<f64>().is_err() {
+            return Err(malformed());
+        }
+        out.push(Fragment {
+            x,
+            y,
+            // A negative or huge index names no primitive: judged as such.
+            id: u32::try_from(id).unwrap_or(u32::MAX),
+        });
+    }
+    Ok(out)
+}
+
+/// A whole number; one too large for `i64` saturates (a pixel far off the
+/// target).
+fn whole(word: &str) -> Option<i64> {
+    let digits = word.strip_prefix('-').unwrap_or(word);
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    Some(word.parse::<i64>().unwrap_or(if word.starts_with('-') {
+        i64::MIN
+    } else {
+        i64::MAX
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn output_lines_are_read_strictly_and_huge_numbers_saturate() {
+        let f = parse_fragments("1 2 0\n\n3 4 1 0.5\n").unwrap();
+        assert_eq!(f.len(), 2);
+        assert_eq!(f[1], Fragment { x: 3, y: 4, id: 1 });
+        let f = parse_fragments("99999999999999999999999 -5 7\n").unwrap();
+        assert_eq!((f[0].x, f[0].y), (i64::MAX, -5));
+        assert!(matches!(
+            parse_fragments("1 2\n"),
+            Err(SubjectError::Malformed { line: 1, .. })
+        ));
+        assert!(parse_fragments("1.5 2 0\n").is_err());
+        assert!(parse_fragments("a b c\n").is_err());
+        assert_eq!(parse_fragments("1 2 -1\n").unwrap()[0].id, u32::MAX);
+        assert_eq!(shell_quote("it's"), r"'it'\''s'");
+    }
+}
