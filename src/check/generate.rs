@@ -69,20 +69,33 @@ impl Case {
         self.lines.iter().map(|l| l.map(snap)).collect()
     }
 
-    /// The input file: `# size WxH`, then one primitive per line.
+    /// The input file: `# size WxH`, then one primitive per line (`-0`
+    /// written as `0`).
     pub fn to_text(&self) -> String {
-        let mut out = format!("# size {}x{}\n", self.width, self.height);
-        for t in &self.triangles {
+        let clean = self.without_negative_zeros();
+        let mut out = format!("# size {}x{}\n", clean.width, clean.height);
+        for t in &clean.triangles {
             let _ = writeln!(
                 out,
                 "{} {} {} {} {} {}",
                 t[0].0, t[0].1, t[1].0, t[1].1, t[2].0, t[2].1
             );
         }
-        for l in &self.lines {
+        for l in &clean.lines {
             let _ = writeln!(out, "{} {} {} {}", l[0].0, l[0].1, l[1].0, l[1].1);
         }
         out
+    }
+
+    /// The same case with every `-0.0` made `0.0` (adding zero does it).
+    fn without_negative_zeros(&self) -> Case {
+        let fix = |p: Point| (p.0 + 0.0, p.1 + 0.0);
+        Case {
+            width: self.width,
+            height: self.height,
+            triangles: self.triangles.iter().map(|t| t.map(fix)).collect(),
+            lines: self.lines.iter().map(|l| l.map(fix)).collect(),
+        }
     }
 
     /// Reads a case written by [`Case::to_text`] (a counterexample file),

@@ -411,13 +411,17 @@ fn diagnose(finding: &Finding) -> Option<String> {
                 a
             };
             Some(format!(
-                "{} at pixel ({}, {}) on the shared edge {}-{}: {} triangles {a} and {b} own it; under top-left only triangle {owner}, the one whose edge is a top or left edge there, does",
+                "{} at pixel ({}, {}) on the shared edge {}-{}: {}; under top-left only triangle {owner}, the one whose edge is a top or left edge there, does",
                 if doubled { "double draw" } else { "gap" },
                 pixel.x,
                 pixel.y,
                 px(from),
                 px(to),
-                if doubled { "both" } else { "neither of" },
+                if doubled {
+                    format!("both triangles {a} and {b} own it")
+                } else {
+                    format!("neither triangle {a} nor {b} owns it")
+                },
             ))
         }
         [(id, t, k), ..] => {
@@ -439,23 +443,44 @@ fn diagnose(finding: &Finding) -> Option<String> {
             ))
         }
         [] => {
-            let near = case.triangles.iter().enumerate().find_map(|(id, t)| {
-                let unsnapped_near = (0..3).any(|k| {
-                    let (a, b) = (t[k], t[(k + 1) % 3]);
-                    let (cx, cy) = (pixel.x as f64 + 0.5, pixel.y as f64 + 0.5);
-                    let len = (b.0 - a.0).hypot(b.1 - a.1);
-                    len > 0.0
-                        && (((b.0 - a.0) * (cy - a.1) - (b.1 - a.1) * (cx - a.0)) / len).abs()
-                            < 1.0 / 256.0
-                });
-                unsnapped_near.then_some(id)
-            });
-            near.map(|id| {
-                format!(
-                    "pixel ({}, {})'s centre is within 1/256 px of an edge of triangle {id} as given: snap the vertices to 1/256 px (ties to even) before testing",
+            let centre_px = (pixel.x as f64 + 0.5, pixel.y as f64 + 0.5);
+            // Signed distance from the centre to the line a-b, positive on
+            // the side of the triangle's third vertex.
+            let distance = |t: &[(f64, f64); 3], k: usize| {
+                let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                let cross = |p: (f64, f64)| (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0);
+                let len = (b.0 - a.0).hypot(b.1 - a.1);
+                (len > 0.0).then(|| cross(centre_px) / len * cross(c).signum())
+            };
+            let id = pixel.id as usize;
+            let snapped_area = snapped.get(id).map(|v| TriangleSetup::signed_area(*v));
+            if snapped_area == Some(0) {
+                return Some(format!(
+                    "triangle {id} has zero area once snapped to 1/256 px: it covers no pixel, yet pixel ({}, {}) is drawn for it",
                     pixel.x, pixel.y
-                )
-            })
+                ));
+            }
+            let t = case.triangles.get(id)?;
+            let (k, d) = (0..3)
+                .filter_map(|k| distance(t, k).map(|d| (k, d)))
+                .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let on_grid = t.iter().all(|p| (p.0 * 256.0).fract() == 0.0 && (p.1 * 256.0).fract() == 0.0);
+            if d.abs() < 1.0 / 256.0 && !on_grid {
+                Some(format!(
+                    "pixel ({}, {})'s centre is within 1/256 px of edge ({}, {})-({}, {}) of triangle {id} as given: snap the vertices to 1/256 px (ties to even) before testing",
+                    pixel.x, pixel.y, a.0, a.1, b.0, b.1
+                ))
+            } else {
+                Some(format!(
+                    "pixel ({}, {})'s centre is {:.5} px {} edge ({}, {})-({}, {}) of triangle {id}, its nearest edge: no tie rule decides it, and the exact edge function does; floating point or coarse fixed point errs this close",
+                    pixel.x,
+                    pixel.y,
+                    d.abs(),
+                    if d > 0.0 { "inside" } else { "outside" },
+                    a.0, a.1, b.0, b.1
+                ))
+            }
         }
     }
 }

@@ -276,7 +276,12 @@ pub fn check_with_progress(
     for index in 0..options.cases {
         let case = generate::case(options.property, index, &mut rng);
         let drawn = subject.draw(&case).map_err(|error| {
-            let case = shrink::shrink_broken(&case, subject, options.shrink_runs);
+            // A run that timed out or flooded its output costs seconds:
+            // such a case is reported as it is, not shrunk.
+            let case = match error {
+                SubjectError::Timeout { .. } | SubjectError::TooMuchOutput { .. } => case.clone(),
+                _ => shrink::shrink_broken(&case, subject, options.shrink_runs),
+            };
             Box::new(Broken { error, case })
         })?;
         progress(index + 1);

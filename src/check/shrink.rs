@@ -226,7 +226,7 @@ fn variants(case: &Case, focus: Option<(i64, i64)>) -> Vec<Case> {
         }
     }
     let limit = (GUARD_BAND - 1) as f64;
-    out.retain(|c| points(c).all(|p| p.0.abs() < limit && p.1.abs() < limit));
+    out.retain(|c| !c.is_empty() && points(c).all(|p| p.0.abs() < limit && p.1.abs() < limit));
     out
 }
 
