@@ -5,6 +5,7 @@
 //! cargo build --release --example peer_adapters
 //! rasterlab check --rule watertight --exec "target/release/examples/peer_adapters tiny-skia {input} {width} {height}"
 //! rasterlab check --rule watertight --exec "target/release/examples/peer_adapters euc {input} {width} {height}"
+//! rasterlab check --rule watertight --exec "target/release/examples/peer_adapters embedded-graphics {input} {width} {height}"
 //! ```
 //!
 //! Each adapter reads the input file (triangles `x0 y0 x1 y1 x2 y2` in
@@ -15,7 +16,10 @@
 //! * `tiny-skia`: a path of three points filled aliased (`anti_alias =
 //!   false`), non-zero winding;
 //! * `euc`: its triangle pipeline, the screen points mapped to its
-//!   normalised device coordinates (x right, y up), back faces drawn.
+//!   normalised device coordinates (x right, y up), back faces drawn;
+//! * `embedded-graphics`: a filled `Triangle`, whose vertices are whole
+//!   pixels: each coordinate is rounded down to the pixel it lies in (the
+//!   crate's points name pixels, as a display's do).
 
 use std::process::ExitCode;
 
@@ -107,6 +111,54 @@ fn euc_pixels(t: &Triangle, w: u32, h: u32) -> Vec<(u32, u32)> {
     covered(w, h, |i| color.as_ref()[i] != 0)
 }
 
+/// embedded-graphics draws into any `DrawTarget`: this one records pixels.
+struct Recorder {
+    w: u32,
+    h: u32,
+    set: Vec<bool>,
+}
+
+impl embedded_graphics::geometry::OriginDimensions for Recorder {
+    fn size(&self) -> embedded_graphics::geometry::Size {
+        embedded_graphics::geometry::Size::new(self.w, self.h)
+    }
+}
+
+impl embedded_graphics::draw_target::DrawTarget for Recorder {
+    type Color = embedded_graphics::pixelcolor::BinaryColor;
+    type Error = std::convert::Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = embedded_graphics::Pixel<Self::Color>>,
+    {
+        for embedded_graphics::Pixel(p, _) in pixels {
+            if (0..self.w as i32).contains(&p.x) && (0..self.h as i32).contains(&p.y) {
+                self.set[(p.y as u32 * self.w + p.x as u32) as usize] = true;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// embedded-graphics: the pixels a filled triangle covers.
+fn embedded_graphics_pixels(t: &Triangle, w: u32, h: u32) -> Vec<(u32, u32)> {
+    use embedded_graphics::prelude::*;
+    use embedded_graphics::primitives::{PrimitiveStyle, Triangle as EgTriangle};
+    let mut recorder = Recorder {
+        w,
+        h,
+        set: vec![false; (w * h) as usize],
+    };
+    let p = |(x, y): (f32, f32)| Point::new(x.floor() as i32, y.floor() as i32);
+    let _ = EgTriangle::new(p(t[0]), p(t[1]), p(t[2]))
+        .into_styled(PrimitiveStyle::with_fill(
+            embedded_graphics::pixelcolor::BinaryColor::On,
+        ))
+        .draw(&mut recorder);
+    covered(w, h, |i| recorder.set[i])
+}
+
 fn covered(w: u32, h: u32, is_set: impl Fn(usize) -> bool) -> Vec<(u32, u32)> {
     (0..h)
         .flat_map(|y| (0..w).map(move |x| (x, y)))
@@ -116,7 +168,7 @@ fn covered(w: u32, h: u32, is_set: impl Fn(usize) -> bool) -> Vec<(u32, u32)> {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
-    let usage = "usage: peer_adapters tiny-skia|euc INPUT WIDTH HEIGHT";
+    let usage = "usage: peer_adapters tiny-skia|euc|embedded-graphics INPUT WIDTH HEIGHT";
     let [_, crate_name, input, width, height] = args.as_slice() else {
         eprintln!("{usage}");
         return ExitCode::from(2);
@@ -128,6 +180,7 @@ fn main() -> ExitCode {
     let draw: fn(&Triangle, u32, u32) -> Vec<(u32, u32)> = match crate_name.as_str() {
         "tiny-skia" => tiny_skia_pixels,
         "euc" => euc_pixels,
+        "embedded-graphics" => embedded_graphics_pixels,
         _ => {
             eprintln!("{usage}");
             return ExitCode::from(2);

@@ -465,15 +465,22 @@ fn diagnose(finding: &Finding) -> Option<String> {
                 .filter_map(|k| distance(t, k).map(|d| (k, d)))
                 .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
             let (a, b) = (t[k], t[(k + 1) % 3]);
-            let on_grid = t.iter().all(|p| (p.0 * 256.0).fract() == 0.0 && (p.1 * 256.0).fract() == 0.0);
+            let on_grid = t
+                .iter()
+                .all(|p| (p.0 * 256.0).fract() == 0.0 && (p.1 * 256.0).fract() == 0.0);
             if d.abs() < 1.0 / 256.0 && !on_grid {
                 Some(format!(
                     "pixel ({}, {})'s centre is within 1/256 px of edge ({}, {})-({}, {}) of triangle {id} as given: snap the vertices to 1/256 px (ties to even) before testing",
                     pixel.x, pixel.y, a.0, a.1, b.0, b.1
                 ))
             } else {
+                let why = if d.abs() < 0.01 {
+                    "floating point or coarse fixed point errs this close"
+                } else {
+                    "the edges drawn are not the edges given (vertices moved, rounded to whole pixels?)"
+                };
                 Some(format!(
-                    "pixel ({}, {})'s centre is {:.5} px {} edge ({}, {})-({}, {}) of triangle {id}, its nearest edge: no tie rule decides it, and the exact edge function does; floating point or coarse fixed point errs this close",
+                    "pixel ({}, {})'s centre is {:.5} px {} edge ({}, {})-({}, {}) of triangle {id}, its nearest edge: no tie rule decides it, the exact edge function does; {why}",
                     pixel.x,
                     pixel.y,
                     d.abs(),

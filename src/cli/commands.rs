@@ -835,7 +835,7 @@ pub struct CheckArgs {
     /// Seconds a program may take on one case.
     #[arg(long, default_value_t = 5.0)]
     timeout: f64,
-    /// Directory for counterexample.txt and report.html.
+    /// Directory for counterexample.txt, counterexample.svg and report.html.
     #[arg(long, default_value = "check-output")]
     out: PathBuf,
     /// Print the verdict as JSON on standard output (for autograders).
@@ -950,6 +950,10 @@ pub fn check(args: &CheckArgs) -> Result<()> {
             )?;
             let report = args.out.join("report.html");
             rasterlab::output::write_file(&report, finding.to_html().as_bytes())?;
+            rasterlab::output::write_file(
+                &args.out.join("counterexample.svg"),
+                finding.to_svg().as_bytes(),
+            )?;
             if args.json {
                 let pixels = |v: &[check::Fragment]| -> Vec<[i64; 3]> {
                     v.iter().map(|f| [f.x, f.y, i64::from(f.id)]).collect()
