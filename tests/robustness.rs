@@ -619,7 +619,22 @@ fn no_hostile_argument_panics_any_subcommand() {
         ("explain", &["--backend", "--rule", "--size", "--picture"]),
         ("compare", &["--size", "--samples", "--out"]),
         ("bench", &["--set", "--size", "--samples", "--mesh"]),
+        (
+            "check",
+            &[
+                "--backend",
+                "--kind",
+                "--rule",
+                "--convention",
+                "--cases",
+                "--seed",
+                "--timeout",
+                "--exec",
+            ],
+        ),
     ];
+    let check_out = dir().join("check-hostile");
+    let check_out = s(&check_out);
     let polygon = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/polygon.txt");
     let mut runs = 0;
     for (command, options) in commands {
@@ -631,6 +646,7 @@ fn no_hostile_argument_panics_any_subcommand() {
                     "render" => vec![command, "--scene", "fan", "--out", "/dev/null/x.png"],
                     "explain" => vec![command, "--backend", "bbox", "0", "0", "4", "0", "0", "4"],
                     "compare" => vec![command, polygon, "--out", "/dev/null/r"],
+                    "check" => vec![command, "--cases", "2", "--out", check_out],
                     _ => vec![
                         command,
                         "--set",
@@ -657,5 +673,5 @@ fn no_hostile_argument_panics_any_subcommand() {
             }
         }
     }
-    assert_eq!(runs, 31 * hostile.len());
+    assert_eq!(runs, 39 * hostile.len());
 }
