@@ -805,11 +805,12 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
 }
 
 #[derive(Args, Debug)]
+#[command(group(clap::ArgGroup::new("subject").required(true).args(["exec", "backend"])))]
 pub struct CheckArgs {
     /// The program under test: a command line run once per case, with
     /// {input}, {width}, {height} and {rule} replaced; it prints `x y id`
     /// per fragment.
-    #[arg(long, conflicts_with = "backend", required_unless_present = "backend")]
+    #[arg(long)]
     exec: Option<String>,
     /// Check a built-in back-end instead (see `rasterlab backends`).
     #[arg(long)]
@@ -820,12 +821,14 @@ pub struct CheckArgs {
     kind: Option<String>,
     /// Triangles: the fill rule the answer must follow exactly, or
     /// `watertight` (no gaps, no double draws, under any consistent rule).
-    #[arg(long, default_value = "top-left")]
-    rule: String,
+    /// Default: top-left.
+    #[arg(long)]
+    rule: Option<String>,
     /// Lines: midpoint (exactly `bresenham`), diamond (exactly `diamond`)
-    /// or vulkan (Vulkan's tolerance of the diamond rule).
-    #[arg(long, default_value = "midpoint")]
-    convention: String,
+    /// or vulkan (Vulkan's tolerance of the diamond rule). Default:
+    /// midpoint.
+    #[arg(long)]
+    convention: Option<String>,
     /// How many cases.
     #[arg(long, default_value_t = 150)]
     cases: u32,
@@ -860,8 +863,18 @@ pub fn check(args: &CheckArgs) -> Result<()> {
             })
         }
     };
+    if kind == "lines" && args.rule.is_some() {
+        return Err(Error::InvalidArgument(
+            "--rule is for triangles; lines are judged by --convention".into(),
+        ));
+    }
+    if kind == "triangles" && args.convention.is_some() {
+        return Err(Error::InvalidArgument(
+            "--convention is for lines; triangles are judged by --rule".into(),
+        ));
+    }
     let property = if kind == "lines" {
-        Property::Line(match args.convention.as_str() {
+        Property::Line(match args.convention.as_deref().unwrap_or("midpoint") {
             "midpoint" => LineConvention::Midpoint,
             "diamond" => LineConvention::Diamond,
             "vulkan" => LineConvention::Vulkan,
@@ -873,10 +886,11 @@ pub fn check(args: &CheckArgs) -> Result<()> {
                 })
             }
         })
-    } else if args.rule == "watertight" {
-        Property::Watertight
     } else {
-        Property::Exact(args.rule.parse()?)
+        match args.rule.as_deref().unwrap_or("top-left") {
+            "watertight" => Property::Watertight,
+            rule => Property::Exact(rule.parse()?),
+        }
     };
     if !(1..=MAX_CHECK_CASES).contains(&args.cases) {
         return Err(Error::InvalidArgument(format!(
