@@ -39,6 +39,7 @@
 //!   and fill-rule heat maps;
 //! * [`report`]: the side-by-side HTML comparison of every back-end;
 //! * [`output`]: output files checked before the work and written whole;
+//! * [`lab`]: the interactive lab's requests, answers and server;
 //! * [`check`]: check any rasterizer (a back-end, a closure, another
 //!   program) against the rules, with shrunk counterexamples.
 //!
@@ -67,6 +68,7 @@ pub mod fixed;
 pub mod fragment;
 pub mod grid_picture;
 pub mod input;
+pub mod lab;
 pub mod line;
 pub mod mesh;
 pub mod output;

@@ -1036,3 +1036,35 @@ pub fn check(args: &CheckArgs) -> Result<()> {
         }
     }
 }
+
+#[derive(Args, Debug)]
+pub struct LabArgs {
+    /// Port on 127.0.0.1 (0: any free port).
+    #[arg(long, default_value_t = 7878)]
+    port: u16,
+    /// A rasterizer of your own to overlay, with the `rasterlab check`
+    /// protocol ({input}, {width}, {height}, {rule}; prints `x y id`).
+    #[arg(long)]
+    exec: Option<String>,
+}
+
+pub fn lab(args: &LabArgs) -> Result<()> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+    let server = tiny_http::Server::http(("127.0.0.1", args.port)).map_err(|e| {
+        Error::InvalidArgument(format!("cannot listen on 127.0.0.1:{}: {e}", args.port))
+    })?;
+    let port = server.server_addr().to_ip().map_or(args.port, |a| a.port());
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&stop);
+    ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))
+        .map_err(|e| Error::InvalidArgument(format!("cannot catch Ctrl-C: {e}")))?;
+    say!("rasterlab lab: http://127.0.0.1:{port}/ (Ctrl-C stops it)")?;
+    let program = args
+        .exec
+        .as_deref()
+        .map(|command| rasterlab::check::Program::new(command, "top-left"));
+    rasterlab::lab::server::serve(&server, program, &stop);
+    eprintln!("rasterlab lab: stopped");
+    Ok(())
+}

@@ -37,6 +37,9 @@ enum Command {
     /// Check a rasterizer (another program, or a back-end) against the
     /// rules on generated cases; a failure is shrunk to a counterexample.
     Check(commands::CheckArgs),
+    /// Serve the interactive lab on 127.0.0.1: drag vertices, watch every
+    /// back-end's pixels, traces, heat maps and depth buffer update.
+    Lab(commands::LabArgs),
 }
 
 /// Runs the command line; errors are printed to stderr.
@@ -51,6 +54,7 @@ pub fn main() -> ExitCode {
         Command::Compare(args) => commands::compare(args),
         Command::Bench(args) => commands::bench(args),
         Command::Check(args) => commands::check(args),
+        Command::Lab(args) => commands::lab(args),
     };
     let result = match cli.threads {
         None => run(),

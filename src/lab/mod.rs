@@ -1,0 +1,438 @@
+//! The interactive lab: what one update of the page asks, and what the
+//! real back-ends answer.
+//!
+//! `rasterlab lab` serves a page ([`PAGE`]) on the loopback address. Each
+//! time a student drags a vertex, the page sends the whole state as a
+//! [`LabRequest`] (JSON) and gets a [`LabResponse`]: for every chosen
+//! back-end, the pixels it tested (red) and the fragments it emitted
+//! (green), its trace as `rasterlab explain` prints it, the fill rule's
+//! heat map (gaps, double draws) when there are several triangles, the
+//! depth buffer for triangles that carry a depth, and, with `--exec`, the
+//! student's own rasterizer against the exact answer.
+//!
+//! Requests are input like any other: [`LabRequest::parse`] refuses a
+//! malformed, oversized or out-of-range request with a message (the server
+//! answers 400), and the work per request is bounded by [`MAX_GRID`] and
+//! [`MAX_PRIMITIVES`].
+//!
+//! ```
+//! use rasterlab::lab::{LabRequest, answer};
+//! let request = LabRequest::parse(r#"{"width": 8, "height": 8, "kind": "triangles",
+//!     "triangles": [[[0.5, 0.5], [6.5, 1.5], [2.5, 6.5]]], "backends": ["bbox", "scanline"]}"#).unwrap();
+//! let response = answer(&request, None).unwrap();
+//! assert_eq!(response.backends.len(), 2);
+//! assert_eq!(response.backends[0].fragments, response.backends[1].fragments);
+//! assert!(LabRequest::parse(r#"{"width": 100000, "height": 8, "kind": "triangles"}"#).is_err());
+//! ```
+
+use crate::backend::{backend, Backend};
+use crate::check::judge::{cover, Cover};
+use crate::check::{Case, Program, Subject};
+use crate::edge::{FillRule, TriangleSetup};
+use crate::error::{Error, Result};
+use crate::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
+use crate::grid_picture::{is_fragment_green, GridPicture, TESTED_OUTSIDE};
+use crate::line::LineOptions;
+use crate::scene::Scene2D;
+use crate::trace::{self, LineEnds};
+use serde::{Deserialize, Serialize};
+
+/// The page the lab serves: one HTML file, no build step, nothing fetched.
+pub const PAGE: &str = include_str!("page.html");
+
+pub mod server;
+
+/// The largest grid side a request may ask for.
+pub const MAX_GRID: u32 = 128;
+/// The most triangles or lines in one request.
+pub const MAX_PRIMITIVES: usize = 16;
+/// The largest request body, in bytes.
+pub const MAX_REQUEST_BYTES: usize = 64 * 1024;
+/// How far outside the grid a vertex may be dragged, in pixels.
+const MAX_OFFSET: f64 = 1024.0;
+
+/// One update: the grid, the primitives and what to show.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LabRequest {
+    /// Grid width in pixels.
+    pub width: u32,
+    /// Grid height in pixels.
+    pub height: u32,
+    /// `triangles` or `lines`.
+    pub kind: String,
+    /// Triangles, three `[x, y]` points each, in screen pixels.
+    #[serde(default)]
+    pub triangles: Vec<[[f64; 2]; 3]>,
+    /// A depth in `[0, 1]` per triangle, for the depth-buffer view (empty:
+    /// no depth view).
+    #[serde(default)]
+    pub depths: Vec<f64>,
+    /// Lines, two `[x, y]` points each, in screen pixels.
+    #[serde(default)]
+    pub lines: Vec<[[f64; 2]; 2]>,
+    /// Back-end names to run.
+    #[serde(default)]
+    pub backends: Vec<String>,
+    /// The fill rule for triangles (default top-left).
+    #[serde(default)]
+    pub rule: Option<String>,
+    /// The back-end whose trace to return (default: the first that has one).
+    #[serde(default)]
+    pub trace: Option<String>,
+    /// Run the `--exec` program on this input too.
+    #[serde(default)]
+    pub student: bool,
+}
+
+impl LabRequest {
+    /// Parses and checks a request: known names, a grid of 1 to
+    /// [`MAX_GRID`] on a side, at most [`MAX_PRIMITIVES`] primitives,
+    /// finite coordinates within 1024 px of the grid, depths in `[0, 1]`.
+    pub fn parse(text: &str) -> Result<LabRequest> {
+        if text.len() > MAX_REQUEST_BYTES {
+            return Err(Error::InvalidArgument(format!(
+                "the request is larger than {MAX_REQUEST_BYTES} bytes"
+            )));
+        }
+        let request: LabRequest = serde_json::from_str(text)
+            .map_err(|e| Error::InvalidArgument(format!("malformed request: {e}")))?;
+        request.check()?;
+        Ok(request)
+    }
+
+    fn check(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::InvalidArgument(m));
+        if !(1..=MAX_GRID).contains(&self.width) || !(1..=MAX_GRID).contains(&self.height) {
+            return bad(format!(
+                "the grid is {}x{}; each side must be 1 to {MAX_GRID}",
+                self.width, self.height
+            ));
+        }
+        if !matches!(self.kind.as_str(), "triangles" | "lines") {
+            return bad(format!(
+                "kind `{}` is neither triangles nor lines",
+                self.kind
+            ));
+        }
+        if self.triangles.len() > MAX_PRIMITIVES || self.lines.len() > MAX_PRIMITIVES {
+            return bad(format!("at most {MAX_PRIMITIVES} triangles or lines"));
+        }
+        if self.backends.len() > 16 {
+            return bad("at most 16 back-ends".into());
+        }
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        let points = self
+            .triangles
+            .iter()
+            .flatten()
+            .chain(self.lines.iter().flatten());
+        for p in points {
+            let ok =
+                |v: f64, side: f64| v.is_finite() && (-MAX_OFFSET..=side + MAX_OFFSET).contains(&v);
+            if !ok(p[0], w) || !ok(p[1], h) {
+                return bad(format!(
+                    "point ({:?}, {:?}) is not a finite number within {MAX_OFFSET} px of the grid",
+                    p[0], p[1]
+                ));
+            }
+        }
+        if !self.depths.is_empty() && self.depths.len() != self.triangles.len() {
+            return bad("give one depth per triangle, or none".into());
+        }
+        if let Some(z) = self.depths.iter().find(|z| !(0.0..=1.0).contains(*z)) {
+            return bad(format!("depth {z} is outside [0, 1]"));
+        }
+        for name in &self.backends {
+            backend(name)?;
+        }
+        if let Some(rule) = &self.rule {
+            rule.parse::<FillRule>()?;
+        }
+        Ok(())
+    }
+
+    fn rule(&self) -> FillRule {
+        self.rule
+            .as_deref()
+            .and_then(|r| r.parse().ok())
+            .unwrap_or(FillRule::TopLeft)
+    }
+
+    /// The request's primitives as a check [`Case`].
+    pub fn case(&self) -> Case {
+        let p = |q: [f64; 2]| (q[0], q[1]);
+        Case {
+            width: self.width,
+            height: self.height,
+            triangles: if self.kind == "triangles" {
+                self.triangles.iter().map(|t| t.map(p)).collect()
+            } else {
+                Vec::new()
+            },
+            lines: if self.kind == "lines" {
+                self.lines.iter().map(|l| l.map(p)).collect()
+            } else {
+                Vec::new()
+            },
+        }
+    }
+}
+
+/// What one back-end did.
+#[derive(Clone, Debug, Serialize)]
+pub struct BackendView {
+    /// Its name.
+    pub name: String,
+    /// Pixels it tested and rejected, `[x, y]`.
+    pub tested: Vec<[u32; 2]>,
+    /// Pixels it drew, `[x, y, weight in thousandths]` (1000 but for Wu).
+    pub fragments: Vec<[u32; 3]>,
+    /// Its caption: samples tested, fragments.
+    pub caption: String,
+}
+
+/// The student's program against the exact answer.
+#[derive(Clone, Debug, Serialize)]
+pub struct StudentView {
+    /// Pixels it drew that the answer has, `[x, y]`.
+    pub correct: Vec<[i64; 2]>,
+    /// Pixels it drew that the answer does not have (or twice).
+    pub extra: Vec<[i64; 2]>,
+    /// Pixels the answer has that it did not draw.
+    pub missing: Vec<[i64; 2]>,
+    /// An error running it, if any.
+    pub error: Option<String>,
+}
+
+/// The answer to one update.
+#[derive(Clone, Debug, Serialize)]
+pub struct LabResponse {
+    /// One view per requested back-end, in request order.
+    pub backends: Vec<BackendView>,
+    /// The trace of the chosen back-end, as `rasterlab explain` prints it
+    /// (empty when it has none for this input).
+    pub trace: String,
+    /// Whose trace it is.
+    pub trace_backend: String,
+    /// Under the rule, for several triangles: pixels inside the union
+    /// that no triangle draws, `[x, y]`.
+    pub gaps: Vec<[i64; 2]>,
+    /// Pixels drawn more than once, `[x, y, times]`.
+    pub doubles: Vec<[i64; 3]>,
+    /// The depth buffer after drawing, row by row, when depths were given.
+    pub depth: Vec<f32>,
+    /// The student's program, when asked for and available.
+    pub student: Option<StudentView>,
+}
+
+/// Back-ends with a step-by-step trace, in the order a trace is chosen.
+const TRACED: [&str; 6] = ["scanline", "bbox", "naive", "bresenham", "direct", "dda"];
+
+/// Answers one request with the real back-ends (and `program`, when the
+/// request asks for the student's view).
+pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<LabResponse> {
+    let rule = request.rule();
+    let case = request.case();
+    let (w, h) = (request.width, request.height);
+    let snapped = case.snapped_triangles();
+    let mut views = Vec::new();
+    for name in &request.backends {
+        let picture = match backend(name)? {
+            Backend::Triangle(b) if request.kind == "triangles" => {
+                GridPicture::of_snapped_triangles(b, &snapped, rule, w, h)?
+            }
+            Backend::Line(b) if request.kind == "lines" => {
+                let ends: Vec<LineEnds> = case
+                    .lines
+                    .iter()
+                    .map(|l| LineEnds::screen([l[0].0, l[0].1, l[1].0, l[1].1]))
+                    .collect::<Result<_>>()?;
+                GridPicture::of_lines(b, &ends, &LineOptions::DEFAULT, w, h)?
+            }
+            _ => continue,
+        };
+        views.push(view(name, &picture));
+    }
+    let trace_backend = request
+        .trace
+        .clone()
+        .filter(|t| TRACED.contains(&t.as_str()))
+        .or_else(|| {
+            request
+                .backends
+                .iter()
+                .find(|b| TRACED.contains(&b.as_str()))
+                .cloned()
+        })
+        .unwrap_or_default();
+    let trace = trace_text(request, &trace_backend, rule).unwrap_or_else(|e| e.to_string());
+    let (gaps, doubles) = if request.kind == "triangles" && snapped.len() > 1 {
+        heat_map(&snapped, rule, w, h)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let depth = if request.kind == "triangles" && !request.depths.is_empty() {
+        let numbers: Vec<f64> = request
+            .triangles
+            .iter()
+            .zip(&request.depths)
+            .flat_map(|(t, z)| [t[0][0], t[0][1], t[1][0], t[1][1], t[2][0], t[2][1], *z])
+            .collect();
+        let scene = Scene2D::with_depths(w, h, &numbers)?;
+        let (target, _) = scene.render(
+            crate::backend::triangle_backend("scanline")?,
+            rule,
+            &crate::shader::Flat,
+        )?;
+        target.depth
+    } else {
+        Vec::new()
+    };
+    let student = match (request.student, program) {
+        (true, Some(program)) => Some(student_view(request, rule, program)),
+        _ => None,
+    };
+    Ok(LabResponse {
+        backends: views,
+        trace,
+        trace_backend,
+        gaps,
+        doubles,
+        depth,
+        student,
+    })
+}
+
+/// The tested and drawn cells of a grid picture.
+fn view(name: &str, picture: &GridPicture) -> BackendView {
+    let mut tested = Vec::new();
+    let mut fragments = Vec::new();
+    for (i, &c) in picture.cells.iter().enumerate() {
+        let (x, y) = (i as u32 % picture.width, i as u32 / picture.width);
+        if c == TESTED_OUTSIDE {
+            tested.push([x, y]);
+        } else if is_fragment_green(c) {
+            // The green shade tells the weight (Wu); full green is 1.
+            let weight = (255.0 - f32::from(c[0])) / (255.0 - 70.0);
+            fragments.push([x, y, (weight.clamp(0.0, 1.0) * 1000.0).round() as u32]);
+        }
+    }
+    BackendView {
+        name: name.to_string(),
+        tested,
+        fragments,
+        caption: picture.caption.clone(),
+    }
+}
+
+/// The trace `rasterlab explain` prints for the first primitive.
+fn trace_text(request: &LabRequest, backend: &str, rule: FillRule) -> Result<String> {
+    let (w, h) = (request.width, request.height);
+    match backend {
+        "bresenham" | "direct" | "dda" => {
+            let Some(l) = request.lines.first().filter(|_| request.kind == "lines") else {
+                return Ok(String::new());
+            };
+            let ends = LineEnds::screen([l[0][0], l[0][1], l[1][0], l[1][1]])?;
+            if backend == "bresenham" {
+                Ok(trace::bresenham_trace(&ends))
+            } else {
+                trace::line_trace(backend, &ends)
+            }
+        }
+        "bbox" | "naive" | "scanline" => {
+            let Some(t) = request
+                .triangles
+                .first()
+                .filter(|_| request.kind == "triangles")
+            else {
+                return Ok(String::new());
+            };
+            let vertices = t.map(|p| (p[0], p[1]));
+            if backend == "scanline" {
+                trace::scanline_trace(vertices, rule, w, h)
+            } else {
+                trace::triangle_trace(backend, vertices, rule, w, h)
+            }
+        }
+        _ => Ok(String::new()),
+    }
+}
+
+/// Gaps and double draws of the triangles under `rule`.
+fn heat_map(
+    snapped: &[[FixedPoint; 3]],
+    rule: FillRule,
+    w: u32,
+    h: u32,
+) -> (Vec<[i64; 2]>, Vec<[i64; 3]>) {
+    let setups: Vec<TriangleSetup> = snapped
+        .iter()
+        .enumerate()
+        .filter_map(|(i, v)| TriangleSetup::new(i as u32, *v, rule))
+        .collect();
+    let mut gaps = Vec::new();
+    let mut doubles = Vec::new();
+    for y in 0..i64::from(h) {
+        for x in 0..i64::from(w) {
+            let p = (
+                x * SUBPIXEL_SCALE + HALF_PIXEL,
+                y * SUBPIXEL_SCALE + HALF_PIXEL,
+            );
+            let point = FixedPoint::from_raw(p.0, p.1).unwrap_or_default();
+            let drawn = setups.iter().filter(|t| t.covers(point)).count() as i64;
+            if drawn >= 2 {
+                doubles.push([x, y, drawn]);
+            } else if drawn == 0 && cover(&setups, p) == Cover::Inside {
+                gaps.push([x, y]);
+            }
+        }
+    }
+    (gaps, doubles)
+}
+
+/// The student's program on this input, against the exact answer.
+fn student_view(request: &LabRequest, rule: FillRule, program: &mut Program) -> StudentView {
+    let case = request.case();
+    let property = if request.kind == "lines" {
+        crate::check::Property::Line(crate::check::judge::LineConvention::Midpoint)
+    } else {
+        crate::check::Property::Exact(rule)
+    };
+    program.rule = rule.name().to_string();
+    let expected: std::collections::BTreeSet<(i64, i64)> = crate::check::reference(property, &case)
+        .iter()
+        .map(|f| (f.x, f.y))
+        .collect();
+    match program.draw(&case) {
+        Err(e) => StudentView {
+            correct: Vec::new(),
+            extra: Vec::new(),
+            missing: Vec::new(),
+            error: Some(e.to_string()),
+        },
+        Ok(drawn) => {
+            let mut seen = std::collections::BTreeSet::new();
+            let (mut correct, mut extra) = (Vec::new(), Vec::new());
+            for f in drawn {
+                if expected.contains(&(f.x, f.y)) && seen.insert((f.x, f.y)) {
+                    correct.push([f.x, f.y]);
+                } else {
+                    extra.push([f.x, f.y]);
+                }
+            }
+            let missing = expected
+                .iter()
+                .filter(|p| !seen.contains(p))
+                .map(|&(x, y)| [x, y])
+                .collect();
+            StudentView {
+                correct,
+                extra,
+                missing,
+                error: None,
+            }
+        }
+    }
+}
