@@ -96,6 +96,16 @@ pub struct BackendRun {
 }
 
 impl BackendRun {
+    /// Samples tested per fragment, to two decimals, or a dash when no
+    /// fragment was drawn (the ratio means nothing then).
+    pub fn tests_per_fragment_text(&self) -> String {
+        if self.work.fragments == 0 {
+            "—".to_string()
+        } else {
+            format!("{:.2}", self.work.tests_per_fragment())
+        }
+    }
+
     /// A run, not yet compared with the reference.
     fn new(
         name: &'static str,
@@ -139,6 +149,10 @@ pub struct Report {
     pub height: u32,
     /// The reference back-end's name.
     pub reference: &'static str,
+    /// Why it is the reference (and what was left out, if anything).
+    pub reference_note: String,
+    /// True for a line set: no fill rules apply.
+    pub lines: bool,
     /// One entry per back-end, the reference first.
     pub runs: Vec<BackendRun>,
     /// The input's fill-rule heat maps (triangles and meshes).
@@ -335,6 +349,25 @@ impl Report {
                 .filter(|&i| pixel_differs(&reference.target, &run.target, i))
                 .count();
         }
+        let triangles_in = match input {
+            CompareInput::Triangles(scene) => scene.triangles.len(),
+            CompareInput::Mesh(mesh) => mesh.triangles.len(),
+            CompareInput::Lines(_) => 0,
+        };
+        let reference_note = match input {
+            CompareInput::Lines(_) => format!(
+                "{}, the first line back-end; lines have no single exact answer, so the others' differences are their algorithms'",
+                reference.name
+            ),
+            _ if reference.name == "naive" => {
+                "naive, the course's loop over every pixel for every triangle".to_string()
+            }
+            _ => format!(
+                "{}: naive was left out, as its {triangles_in} triangles x {pixels} pixels = {} tests are beyond the report's budget of {NAIVE_TEST_BUDGET}",
+                reference.name,
+                triangles_in as u64 * pixels
+            ),
+        };
         let pinwheel = Scene2D::pinwheel();
         let bbox = triangle_backend("bbox")?;
         let pinwheel_rules = rule_pictures(pinwheel.width, pinwheel.height, |rule| {
@@ -345,6 +378,8 @@ impl Report {
             width,
             height,
             reference: runs[0].name,
+            reference_note,
+            lines: matches!(input, CompareInput::Lines(_)),
             runs,
             rules,
             pinwheel_rules,
@@ -391,13 +426,18 @@ td:first-child, th:first-child {{ text-align: left; }}
 .swatch {{ display: inline-block; width: 1em; height: 1em; vertical-align: middle; border: 1px solid #999; }}
 </style></head><body>
 <h1>rasterlab compare</h1>
-<p>Input: {input}, drawn on a {w} x {h} target with the top-left fill rule through the shared fragment stage. Reference: <b>{reference}</b>.</p>
+<p>Input: {input}, drawn on a {w} x {h} target {how} through the shared fragment stage. Reference: <b>{reference}</b>.</p>
 "#,
             input = escape(&self.input),
             cap = shown(self.width).max(240),
             w = self.width,
             h = self.height,
-            reference = self.reference,
+            how = if self.lines {
+                "by every line back-end"
+            } else {
+                "with the top-left fill rule"
+            },
+            reference = escape(&self.reference_note),
         );
 
         h.push_str("<h2>Work</h2>\n<table id=\"work\"><tr><th>back-end</th><th>fragments</th><th>samples tested</th><th>tests per fragment</th><th>rows / blocks</th><th>time (median)</th><th>pixels differing from the reference</th></tr>\n");
@@ -408,13 +448,15 @@ td:first-child, th:first-child {{ text-align: left; }}
             };
             let _ = writeln!(
                 h,
-                "<tr><td title=\"{}\">{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{}</td><td>{:.3} ms</td><td>{differ}</td></tr>",
+                "<tr><td title=\"{}\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.3} ms</td><td>{differ}</td></tr>",
                 escape(run.description),
                 run.name,
                 run.work.fragments,
                 run.work.samples_tested,
-                run.work.tests_per_fragment(),
-                run.work.spans,
+                run.tests_per_fragment_text(),
+                // Rows or blocks only mean something to the back-ends
+                // that hand spans to the stage.
+                if run.work.spans == 0 { "—".to_string() } else { run.work.spans.to_string() },
                 run.time.as_secs_f64() * 1e3
             );
         }
@@ -459,14 +501,16 @@ td:first-child, th:first-child {{ text-align: left; }}
             }
             h.push_str("</div>\n");
         }
-        h.push_str("<h2>Seed 004's edge-drawing problem</h2>\n<p>Eight triangles around one pixel centre, every shared edge through pixel centres. Drawing every edge (inclusive) draws them twice; drawing none (exclusive) leaves holes; the top-left, bottom-right and off-screen point rules give each edge pixel to exactly one triangle.</p>\n");
-        h.push_str(&legend);
-        rule_table(&mut h, "pinwheel", &self.pinwheel_rules);
-        h.push_str("<div class=\"row\">\n");
-        for r in &self.pinwheel_rules {
-            heat_figure(&mut h, r, 24);
+        if !self.lines {
+            h.push_str("<h2>Seed 004's edge-drawing problem</h2>\n<p>Eight triangles around one pixel centre, every shared edge through pixel centres. Drawing every edge (inclusive) draws them twice; drawing none (exclusive) leaves holes; the top-left, bottom-right and off-screen point rules give each edge pixel to exactly one triangle.</p>\n");
+            h.push_str(&legend);
+            rule_table(&mut h, "pinwheel", &self.pinwheel_rules);
+            h.push_str("<div class=\"row\">\n");
+            for r in &self.pinwheel_rules {
+                heat_figure(&mut h, r, 24);
+            }
+            h.push_str("</div>\n");
         }
-        h.push_str("</div>\n");
 
         if !self.grids.is_empty() {
             h.push_str("<h2>Pixels tested and emitted</h2>\n<p>Red: the back-end tested the pixel's centre and found it outside; green: a fragment; white: never looked at. Black: the true edges.</p>\n<div class=\"row\">\n");

@@ -226,6 +226,30 @@ impl RenderTarget {
         fill_in_parallel(&mut self.coverage, 0);
     }
 
+    /// Back to the state of a new target: colour black, depth 1.0,
+    /// coverage 0.
+    pub fn clear(&mut self) {
+        self.clear_color(Self::BLACK);
+        self.clear_depth_and_coverage();
+    }
+
+    /// The colour buffer enlarged `scale` times: each pixel a `scale` x
+    /// `scale` cell, with a one-pixel grey border from `scale >= 4` on, so
+    /// that a small scene shows its pixels. `scale` 1 is [`Self::to_image`].
+    pub fn to_image_scaled(&self, scale: u32) -> image::RgbaImage {
+        if scale <= 1 {
+            return self.to_image();
+        }
+        image::RgbaImage::from_fn(self.width * scale, self.height * scale, |x, y| {
+            let border = scale >= 4 && (x % scale == 0 || y % scale == 0);
+            if border {
+                image::Rgba([96, 96, 96, 255])
+            } else {
+                image::Rgba(self.color[self.index(x / scale, y / scale)])
+            }
+        })
+    }
+
     /// The colour buffer as an image.
     pub fn to_image(&self) -> image::RgbaImage {
         let bytes: Vec<u8> = self.color.iter().flatten().copied().collect();

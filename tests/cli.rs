@@ -439,7 +439,9 @@ fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
             out_dir.to_str().unwrap(),
         ]);
         let table = success_stdout(out);
-        assert_eq!(table.lines().count(), rows + 2, "{table}");
+        // The reference line, the header, a row per back-end, the report line.
+        assert_eq!(table.lines().count(), rows + 3, "{table}");
+        assert!(table.starts_with("reference: "), "{table}");
         let html = std::fs::read_to_string(out_dir.join("index.html")).unwrap();
         assert!(html.contains("<table id=\"work\">"));
         assert!(

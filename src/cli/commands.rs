@@ -179,11 +179,13 @@ fn kind_mismatch(file: &std::path::Path, name: &str, draws: &str, holds: &str) -
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// A mesh (.ply, .ply.gz, .obj) or a triangle soup file.
+    /// A mesh (.ply, .ply.gz, .obj), a triangle soup or a line set.
     input: Option<PathBuf>,
-    /// Triangle back-end name (see `rasterlab backends`).
-    #[arg(long, default_value = "scanline")]
-    backend: String,
+    /// Back-end name (see `rasterlab backends`): a triangle back-end
+    /// (default scanline), or a line back-end for a line set (default
+    /// bresenham).
+    #[arg(long)]
+    backend: Option<String>,
     /// Target size `WxH` (meshes: 640x480 by default; scenes: their own size).
     #[arg(long)]
     size: Option<Size>,
@@ -203,6 +205,11 @@ pub struct RenderArgs {
     /// naive loop on a large mesh).
     #[arg(long)]
     force: bool,
+    /// Triangle soups, line sets and scenes: enlarge the picture K times,
+    /// each pixel a K x K cell with a grey border (from K = 4), so small
+    /// scenes can be seen pixel by pixel.
+    #[arg(long, default_value_t = 1)]
+    scale: u32,
     #[command(flatten)]
     mesh: MeshArgs,
 }
@@ -210,33 +217,33 @@ pub struct RenderArgs {
 /// Options for rendering a mesh.
 #[derive(Args, Debug)]
 pub struct MeshArgs {
-    /// Shading: flat, gouraud, diffuse, normals, texture.
-    #[arg(long, default_value = "diffuse")]
-    shading: String,
-    /// Texture filter for --shading texture: nearest, bilinear.
-    #[arg(long, default_value = "bilinear")]
-    filter: String,
-    /// Varying interpolation: perspective (correct) or linear (to see the difference).
-    #[arg(long, default_value = "perspective")]
-    interpolation: String,
-    /// Back-face culling: none, back, front.
-    #[arg(long, default_value = "back")]
-    cull: String,
-    /// Winding of front faces as seen on screen: ccw, cw.
-    #[arg(long, default_value = "ccw")]
-    front_face: String,
+    /// Shading: flat, gouraud, diffuse (default), normals, texture.
+    #[arg(long)]
+    shading: Option<String>,
+    /// Texture filter for --shading texture: nearest, bilinear (default).
+    #[arg(long)]
+    filter: Option<String>,
+    /// Varying interpolation: perspective (correct, default) or linear (to see the difference).
+    #[arg(long)]
+    interpolation: Option<String>,
+    /// Back-face culling: none, back (default), front.
+    #[arg(long)]
+    cull: Option<String>,
+    /// Winding of front faces as seen on screen: ccw (default), cw.
+    #[arg(long)]
+    front_face: Option<String>,
     /// Draw the triangle edges over the surface with this line back-end (e.g. bresenham).
     #[arg(long)]
     wireframe: Option<String>,
-    /// Camera angle around the vertical axis, degrees.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-    azimuth: f32,
-    /// Camera angle above the horizon, degrees.
-    #[arg(long, default_value_t = 15.0, allow_negative_numbers = true)]
-    elevation: f32,
-    /// Zoom factor; 1 frames the whole mesh.
-    #[arg(long, default_value_t = 1.0)]
-    zoom: f32,
+    /// Camera angle around the vertical axis, degrees (default 0).
+    #[arg(long, allow_negative_numbers = true)]
+    azimuth: Option<f32>,
+    /// Camera angle above the horizon, degrees (default 15).
+    #[arg(long, allow_negative_numbers = true)]
+    elevation: Option<f32>,
+    /// Zoom factor; 1 (the default) frames the whole mesh.
+    #[arg(long)]
+    zoom: Option<f32>,
     /// Render the same view this many times and report the time per frame
     /// (the file is loaded once).
     #[arg(long, default_value_t = 1)]
@@ -244,6 +251,24 @@ pub struct MeshArgs {
 }
 
 impl MeshArgs {
+    /// The mesh-only options given on the command line.
+    fn given(&self) -> Vec<&'static str> {
+        [
+            ("--shading", self.shading.is_some()),
+            ("--filter", self.filter.is_some()),
+            ("--interpolation", self.interpolation.is_some()),
+            ("--cull", self.cull.is_some()),
+            ("--front-face", self.front_face.is_some()),
+            ("--wireframe", self.wireframe.is_some()),
+            ("--azimuth", self.azimuth.is_some()),
+            ("--elevation", self.elevation.is_some()),
+            ("--zoom", self.zoom.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(name, given)| given.then_some(name))
+        .collect()
+    }
+
     fn settings(
         &self,
         size: Option<Size>,
@@ -257,16 +282,20 @@ impl MeshArgs {
         Ok(RenderSettings {
             width: size.width,
             height: size.height,
-            azimuth: self.azimuth,
-            elevation: self.elevation,
-            zoom: self.zoom,
-            shading: self.shading.parse()?,
-            filter: self.filter.parse()?,
-            interpolation: self.interpolation.parse()?,
+            azimuth: self.azimuth.unwrap_or(0.0),
+            elevation: self.elevation.unwrap_or(15.0),
+            zoom: self.zoom.unwrap_or(1.0),
+            shading: self.shading.as_deref().unwrap_or("diffuse").parse()?,
+            filter: self.filter.as_deref().unwrap_or("bilinear").parse()?,
+            interpolation: self
+                .interpolation
+                .as_deref()
+                .unwrap_or("perspective")
+                .parse()?,
             pipeline: PipelineOptions {
                 rule,
-                cull: self.cull.parse()?,
-                front_face: self.front_face.parse()?,
+                cull: self.cull.as_deref().unwrap_or("back").parse()?,
+                front_face: self.front_face.as_deref().unwrap_or("ccw").parse()?,
             },
             depth,
             wireframe: self.wireframe.as_deref().map(line_backend).transpose()?,
@@ -277,52 +306,151 @@ impl MeshArgs {
 
 pub fn render(args: &RenderArgs) -> Result<()> {
     rasterlab::output::check_file(&args.out, &["png"])?;
-    let backend = triangle_backend(&args.backend)?;
     let rule: FillRule = args.rule.parse()?;
     let depth = DepthState {
         test: args.depth_test.parse::<DepthTest>()?,
         write: true,
     };
+    let named = |default: &str| backend(args.backend.as_deref().unwrap_or(default));
     if let Some(path) = args.input.as_deref().filter(|p| Mesh::is_mesh_path(p)) {
+        if args.scale != 1 {
+            return Err(Error::InvalidArgument(
+                "--scale is for triangle soups, line sets and scenes; a mesh is drawn at --size"
+                    .into(),
+            ));
+        }
+        let Backend::Triangle(backend) = named("scanline")? else {
+            return Err(Error::InvalidArgument(format!(
+                "{}: a mesh is drawn by a triangle back-end; draw its edges with --wireframe LINE-BACKEND",
+                path.display()
+            )));
+        };
         return render_mesh(path, backend, args, rule, depth);
     }
-    let scene = match (&args.scene, &args.input) {
-        (Some(name), _) => Scene2D::built_in(name)?,
+    let given = args.mesh.given();
+    if !given.is_empty() {
+        return Err(Error::InvalidArgument(format!(
+            "{} {} to meshes only; this input is {}",
+            given.join(", "),
+            if given.len() == 1 { "applies" } else { "apply" },
+            if args.scene.is_some() {
+                "a built-in 2D scene"
+            } else {
+                "a 2D file"
+            }
+        )));
+    }
+    if args.mesh.frames == 0 {
+        return Err(Error::InvalidArgument("--frames must be at least 1".into()));
+    }
+    let size = |default: Option<(u32, u32)>| -> Result<(u32, u32)> {
+        args.size
+            .map(|s| (s.width, s.height))
+            .or(default)
+            .ok_or_else(|| {
+                Error::InvalidArgument("--size is required when rendering a file".into())
+            })
+    };
+    let shapes = match (&args.scene, &args.input) {
+        (Some(name), _) => {
+            let scene = Scene2D::built_in(name)?;
+            let (w, h) = size(Some((scene.width, scene.height)))?;
+            Drawing::Triangles(Scene2D {
+                width: w,
+                height: h,
+                ..scene
+            })
+        }
         (None, Some(path)) => match read_shapes(path)? {
             Shapes::Triangles { triangles, .. } => {
-                let size = args.size.ok_or_else(|| {
-                    Error::InvalidArgument("--size is required when rendering a file".into())
-                })?;
-                Scene2D::from_triangles(size.width, size.height, triangles)
+                let (w, h) = size(None)?;
+                Drawing::Triangles(Scene2D::from_triangles(w, h, triangles))
             }
-            Shapes::Lines { .. } => {
-                return Err(Error::InvalidArgument(format!(
-                    "{}: holds line segments; render draws triangles",
-                    path.display()
-                )))
+            Shapes::Lines { segments, .. } => {
+                let (w, h) = size(None)?;
+                Drawing::Lines(
+                    w,
+                    h,
+                    rasterlab::workload::LineWorkload::new("input", LineSetup::numbered(&segments)),
+                )
             }
         },
         (None, None) => {
             return Err(Error::InvalidArgument(
-                "give a mesh or triangle soup file, or --scene NAME".into(),
+                "give a mesh, triangle soup or line set file, or --scene NAME".into(),
             ))
         }
     };
-    let (w, h) = args
-        .size
-        .map_or((scene.width, scene.height), |s| (s.width, s.height));
+    let (w, h) = match &shapes {
+        Drawing::Triangles(scene) => (scene.width, scene.height),
+        Drawing::Lines(w, h, _) => (*w, *h),
+    };
+    RenderTarget::check_size(w, h)?;
+    let scaled = |side: u32| u64::from(side) * u64::from(args.scale);
+    if args.scale == 0 || args.scale > 64 || scaled(w) > 16384 || scaled(h) > 16384 {
+        return Err(Error::InvalidArgument(format!(
+            "--scale must be 1 to 64 and the picture at most 16384 pixels a side ({w}x{h} x {} is {}x{})",
+            args.scale,
+            scaled(w),
+            scaled(h)
+        )));
+    }
     let mut target = RenderTarget::new(w, h)?;
-    let work = scene.draw(backend, rule, depth, &Flat, &mut target);
-    target.save_png(&args.out)?;
-    eprintln!(
-        "{}: {} triangles, {} samples tested, {} fragments -> {}",
-        backend.name(),
+    let mut times = Vec::with_capacity(args.mesh.frames as usize);
+    let mut work = WorkCounters::default();
+    let name;
+    for _ in 0..args.mesh.frames {
+        target.clear();
+        let start = Instant::now();
+        work = match &shapes {
+            Drawing::Triangles(scene) => {
+                let Backend::Triangle(b) = named("scanline")? else {
+                    return Err(Error::InvalidArgument(
+                        "triangles are drawn by a triangle back-end (see `rasterlab backends`)"
+                            .into(),
+                    ));
+                };
+                scene.draw(b, rule, depth, &Flat, &mut target)
+            }
+            Drawing::Lines(_, _, lines) => {
+                let Backend::Line(b) = named("bresenham")? else {
+                    return Err(Error::InvalidArgument(
+                        "a line set is drawn by a line back-end (see `rasterlab backends`)".into(),
+                    ));
+                };
+                lines.run(b, &mut target)
+            }
+        };
+        times.push(start.elapsed());
+    }
+    name = match (&shapes, args.backend.as_deref()) {
+        (_, Some(n)) => n.to_string(),
+        (Drawing::Triangles(_), None) => "scanline".into(),
+        (Drawing::Lines(..), None) => "bresenham".into(),
+    };
+    rasterlab::output::write_png(&args.out, &target.to_image_scaled(args.scale))?;
+    say!(
+        "{name}: {} primitives, {} samples tested, {} fragments -> {}",
         work.primitives,
         work.samples_tested,
         work.fragments,
         args.out.display()
-    );
+    )?;
+    if args.mesh.frames > 1 {
+        times.sort();
+        say!(
+            "time per frame (median of {}): {:.3} ms",
+            args.mesh.frames,
+            times[times.len() / 2].as_secs_f64() * 1e3
+        )?;
+    }
     Ok(())
+}
+
+/// What `render` draws when the input is not a mesh.
+enum Drawing {
+    Triangles(Scene2D),
+    Lines(u32, u32, rasterlab::workload::LineWorkload),
 }
 
 fn render_mesh(
@@ -780,6 +908,7 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
     };
     let report = Report::compare(&input, width, height, args.samples)?;
     let path = report.write(&args.out)?;
+    say!("reference: {}", report.reference_note)?;
     say!(
         "{:<12} {:>10} {:>10} {:>9} {:>10}  differing pixels vs {}",
         "back-end",
@@ -791,11 +920,11 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
     )?;
     for run in &report.runs {
         say!(
-            "{:<12} {:>10} {:>10} {:>9.2} {:>8.3}ms  {}",
+            "{:<12} {:>10} {:>10} {:>9} {:>8.3}ms  {}",
             run.name,
             run.work.fragments,
             run.work.samples_tested,
-            run.work.tests_per_fragment(),
+            run.tests_per_fragment_text(),
             run.time.as_secs_f64() * 1e3,
             run.differing_pixels
         )?;
