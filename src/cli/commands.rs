@@ -398,7 +398,6 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let mut target = RenderTarget::new(w, h)?;
     let mut times = Vec::with_capacity(args.mesh.frames as usize);
     let mut work = WorkCounters::default();
-    let name;
     for _ in 0..args.mesh.frames {
         target.clear();
         let start = Instant::now();
@@ -423,7 +422,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         };
         times.push(start.elapsed());
     }
-    name = match (&shapes, args.backend.as_deref()) {
+    let name = match (&shapes, args.backend.as_deref()) {
         (_, Some(n)) => n.to_string(),
         (Drawing::Triangles(_), None) => "scanline".into(),
         (Drawing::Lines(..), None) => "bresenham".into(),
