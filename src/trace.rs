@@ -10,6 +10,13 @@
 //!   why (which edge rejected it, or which tie rule decided);
 //! * [`scanline_trace`]: the vertices sorted by y, then each row's sample
 //!   line, where each active edge crosses it and the span filled;
+//! * [`incremental_trace`]: the edge values at the box's first sample,
+//!   the steps added per pixel and per row, every pixel the walk tests;
+//! * [`tiled_trace`]: every 8 x 8 block of the box and its class from the
+//!   corner test (trivial reject, trivial accept, partial);
+//! * [`wu_trace`]: each column's two pixels and their weights;
+//! * [`diamond_trace`]: the candidate pixels around the line and whether
+//!   the segment leaves each one's diamond;
 //! * [`depth_buffer_trace`]: seed 002's depth buffer, printed as the
 //!   slides' matrix after each triangle.
 //!
@@ -520,4 +527,291 @@ fn snapped_triangle(vertices: [(f64, f64); 3], rule: FillRule) -> Result<Option<
         [points[0], points[1], points[2]],
         rule,
     ))
+}
+
+/// The incremental (Pineda) walk on one triangle: the edge values at the
+/// first sample of the box, the steps added per pixel right and per row
+/// down, and every pixel the walk tests with its stepped edge values; a
+/// row's walk stops at the first outside pixel past its span.
+pub fn incremental_trace(
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    let grid = PixelRect::of_target(width, height);
+    let mut out = String::new();
+    let Some(t) = snapped_triangle(vertices, rule)? else {
+        let _ = writeln!(out, "the snapped triangle has zero area: nothing is tested");
+        return Ok(out);
+    };
+    let r = t.bounds_within(grid);
+    check_trace_length(r.area(), "pixel lines")?;
+    let (step_x, step_y) = t.pixel_steps();
+    let px = |v: [i64; 3]| v.map(|e| format!("{:+.4}", e as f64 / AREA_UNIT)).join(" ");
+    let _ = writeln!(
+        out,
+        "incremental, {} rule: bounding box x {}..={}, y {}..={}; E evaluated once, at pixel ({}, {}), then only added to",
+        rule.name(),
+        r.x0,
+        r.x1,
+        r.y0,
+        r.y1,
+        r.x0,
+        r.y0
+    );
+    if r.is_empty() {
+        let _ = writeln!(
+            out,
+            "no pixel centre of the grid is in the box: nothing is tested"
+        );
+        return Ok(out);
+    }
+    let _ = writeln!(
+        out,
+        "per pixel right E += ({})   per row down E += ({})",
+        px(step_x),
+        px(step_y)
+    );
+    let _ = writeln!(
+        out,
+        "{:>4} {:>4} {:>10} {:>10} {:>10}  verdict",
+        "x", "y", "E0", "E1", "E2"
+    );
+    let (mut tested, mut fragments) = (0u64, 0u64);
+    let mut row = t.edge_values_at_pixel(r.x0, r.y0);
+    for y in r.y0..=r.y1 {
+        let mut e = row;
+        let mut in_span = false;
+        for x in r.x0..=r.x1 {
+            tested += 1;
+            let inside = t.inside(e);
+            let verdict = if inside {
+                fragments += 1;
+                "inside"
+            } else if in_span {
+                "outside: past the span, the row stops (the triangle is convex)"
+            } else {
+                "outside"
+            };
+            let [a, b, c] = e.map(|v| v as f64 / AREA_UNIT);
+            let _ = writeln!(
+                out,
+                "{x:>4} {y:>4} {a:>10.4} {b:>10.4} {c:>10.4}  {verdict}"
+            );
+            if !inside && in_span {
+                break;
+            }
+            in_span |= inside;
+            for k in 0..3 {
+                e[k] += step_x[k];
+            }
+        }
+        for k in 0..3 {
+            row[k] += step_y[k];
+        }
+    }
+    let _ = writeln!(
+        out,
+        "{tested} pixels tested, {fragments} fragments; no multiplication after the first pixel"
+    );
+    Ok(out)
+}
+
+/// The tiled back-end's blocks on one triangle: every 8 x 8 block of the
+/// bounding box with its class from the corner test (outside: skipped;
+/// inside: filled untested; partial: each pixel tested).
+pub fn tiled_trace(
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    use crate::triangle::tiled::{classify_block, BlockClass, BLOCK};
+    let grid = PixelRect::of_target(width, height);
+    let mut out = String::new();
+    let Some(t) = snapped_triangle(vertices, rule)? else {
+        let _ = writeln!(
+            out,
+            "the snapped triangle has zero area: no block is visited"
+        );
+        return Ok(out);
+    };
+    let r = t.bounds_within(grid);
+    let _ = writeln!(
+        out,
+        "tiled, {} rule: the bounding box x {}..={}, y {}..={} in {BLOCK} x {BLOCK} blocks on the grid's block lines; each block classified from its corners",
+        rule.name(),
+        r.x0,
+        r.x1,
+        r.y0,
+        r.y1
+    );
+    if r.is_empty() {
+        return Ok(out);
+    }
+    if r.x1 - r.x0 < BLOCK && r.y1 - r.y0 < BLOCK {
+        let _ = writeln!(
+            out,
+            "the box fits in one block: the back-end skips the corner test and tests each of its {} pixels",
+            r.area()
+        );
+        return Ok(out);
+    }
+    check_trace_length(
+        ((r.x1 - r.x0) / BLOCK + 2) as u64 * ((r.y1 - r.y0) / BLOCK + 2) as u64,
+        "block lines",
+    )?;
+    let _ = writeln!(out, "{:>15} {:>15}  class", "columns", "rows");
+    let (mut counts, mut tested) = ([0u64; 3], 0u64);
+    let first = |v: i64| v.div_euclid(BLOCK) * BLOCK;
+    let mut by = first(r.y0);
+    while by <= r.y1 {
+        let mut bx = first(r.x0);
+        while bx <= r.x1 {
+            let block = PixelRect {
+                x0: bx.max(r.x0),
+                y0: by.max(r.y0),
+                x1: (bx + BLOCK - 1).min(r.x1),
+                y1: (by + BLOCK - 1).min(r.y1),
+            };
+            let class = classify_block(&t, block);
+            let what = match class {
+                BlockClass::Outside => {
+                    counts[0] += 1;
+                    "outside: trivial reject, no pixel tested"
+                }
+                BlockClass::Inside => {
+                    counts[1] += 1;
+                    "inside: trivial accept, every pixel drawn untested"
+                }
+                BlockClass::Partial => {
+                    counts[2] += 1;
+                    tested += block.area();
+                    "partial: an edge crosses it, each pixel tested"
+                }
+            };
+            let _ = writeln!(
+                out,
+                "{:>15} {:>15}  {what}",
+                format!("{}..={}", block.x0, block.x1),
+                format!("{}..={}", block.y0, block.y1)
+            );
+            bx += BLOCK;
+        }
+        by += BLOCK;
+    }
+    let _ = writeln!(
+        out,
+        "{} outside, {} inside, {} partial blocks; at most {tested} pixels tested (wide triangles are first cut into stretches of blocks, so the back-end may test fewer)",
+        counts[0], counts[1], counts[2]
+    );
+    Ok(out)
+}
+
+/// Xiaolin Wu's anti-aliased line: each column's exact height and the two
+/// pixels around it, with their weights `1 - frac(y)` and `frac(y)`.
+pub fn wu_trace(ends: &LineEnds) -> String {
+    use crate::line::{wu::Wu, LineOptions, LineSetup};
+    let frame = OctantFrame::new(ends.from, ends.to);
+    let line = LineSetup {
+        id: 0,
+        from: ends.from,
+        to: ends.to,
+    };
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "wu (anti-aliased) {}; {}",
+        ends.describe(),
+        frame_note(&frame)
+    );
+    let _ = writeln!(
+        out,
+        "{:>12}  {:>8}  {:>12}  {:>8}",
+        "pixel", "weight", "pixel", "weight"
+    );
+    let pixels = Wu::pixels(&line, &LineOptions::DEFAULT);
+    // Pixels come in columns of one or two (a weight of 0 is not drawn);
+    // a column's pixels share the major coordinate.
+    let major = |p: (i64, i64)| if frame.swap { p.1 } else { p.0 };
+    let mut i = 0;
+    while i < pixels.len() {
+        let (p, w) = pixels[i];
+        let pair = pixels.get(i + 1).filter(|q| major(q.0) == major(p));
+        match pair {
+            Some(&(q, v)) => {
+                let _ = writeln!(
+                    out,
+                    "{:>12}  {w:>8.4}  {:>12}  {v:>8.4}",
+                    format!("{},{}", p.0, p.1),
+                    format!("{},{}", q.0, q.1)
+                );
+                i += 2;
+            }
+            None => {
+                let _ = writeln!(out, "{:>12}  {w:>8.4}", format!("{},{}", p.0, p.1));
+                i += 1;
+            }
+        }
+    }
+    let _ = writeln!(
+        out,
+        "at each column the ideal line passes between two pixel centres; the nearer one gets more: 1 - frac(y) and frac(y)"
+    );
+    out
+}
+
+/// The diamond-exit rule: for each column (row, for steep lines) the three
+/// candidate pixels around the line, and whether the segment leaves each
+/// pixel's diamond (then the pixel is drawn).
+pub fn diamond_trace(ends: &LineEnds) -> Result<String> {
+    use crate::line::diamond::exits_diamond;
+    let (a, b) = (ends.from, ends.to);
+    let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
+    let x_major = dx.abs() >= dy.abs();
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "diamond exit rule {}; {}-major: a pixel is drawn when the segment leaves its diamond |x - cx| + |y - cy| < 1/2 (the end point's diamond is not)",
+        ends.describe(),
+        if x_major { "x" } else { "y" }
+    );
+    let (a_major, b_major, a_minor, b_minor) = if x_major {
+        (a.x.raw(), b.x.raw(), a.y.raw(), b.y.raw())
+    } else {
+        (a.y.raw(), b.y.raw(), a.x.raw(), b.x.raw())
+    };
+    let first = (a_major.min(b_major) - HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) - 1;
+    let last = (a_major.max(b_major) + HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) + 1;
+    check_trace_length(3 * (last - first + 1) as u64, "candidate lines")?;
+    let _ = writeln!(out, "{:>12}  verdict", "pixel");
+    let mut drawn = 0;
+    for i in first..=last {
+        let centre = i * SUBPIXEL_SCALE + HALF_PIXEL;
+        let d = b_major - a_major;
+        let minor = if d == 0 {
+            a_minor
+        } else {
+            a_minor + ((centre - a_major) as i128 * (b_minor - a_minor) as i128 / d as i128) as i64
+        };
+        let k = minor.div_euclid(SUBPIXEL_SCALE);
+        for row in [k - 1, k, k + 1] {
+            let (px, py) = if x_major { (i, row) } else { (row, i) };
+            let exits = exits_diamond(a, b, px, py);
+            drawn += usize::from(exits);
+            let _ = writeln!(
+                out,
+                "{:>12}  {}",
+                format!("{px},{py}"),
+                if exits {
+                    "exits its diamond: drawn"
+                } else {
+                    "does not exit its diamond"
+                }
+            );
+        }
+    }
+    let _ = writeln!(out, "{drawn} pixels drawn");
+    Ok(out)
 }

@@ -170,3 +170,116 @@ proptest! {
         }
     }
 }
+
+mod newer_traces {
+    use proptest::prelude::*;
+    use rasterlab::backend::{line_backend, triangle_backend};
+    use rasterlab::edge::{FillRule, PixelRect};
+    use rasterlab::fixed::FixedPoint;
+    use rasterlab::fragment::FragmentList;
+    use rasterlab::line::{LineOptions, LineSetup};
+    use rasterlab::scene::setup_triangles;
+    use rasterlab::trace::{diamond_trace, incremental_trace, tiled_trace, wu_trace, LineEnds};
+    use std::collections::HashSet;
+
+    fn fragments(name: &str, v: [(f64, f64); 3], size: u32) -> (HashSet<(i64, i64)>, u64) {
+        let t = v.map(|(x, y)| FixedPoint::snap_f64(x, y).unwrap());
+        let mut list = FragmentList::default();
+        let work = triangle_backend(name).unwrap().rasterize(
+            &setup_triangles(&[t], FillRule::TopLeft),
+            PixelRect::of_target(size, size),
+            &mut list,
+        );
+        (
+            list.triangles
+                .iter()
+                .map(|f| (i64::from(f.x), i64::from(f.y)))
+                .collect(),
+            work.samples_tested,
+        )
+    }
+
+    fn line(ends: &LineEnds, name: &str) -> Vec<(i64, i64)> {
+        let mut list = FragmentList::default();
+        line_backend(name).unwrap().rasterize(
+            &[LineSetup {
+                id: 0,
+                from: ends.from,
+                to: ends.to,
+            }],
+            &LineOptions::DEFAULT,
+            PixelRect::of_target(64, 64),
+            &mut list,
+        );
+        list.lines
+            .iter()
+            .filter(|f| f.coverage > 0.0)
+            .map(|f| (i64::from(f.x), i64::from(f.y)))
+            .collect()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        /// The incremental trace lists exactly the pixels the back-end tests
+        /// and draws; every inside or outside block of the tiled trace is
+        /// wholly drawn or wholly empty.
+        #[test]
+        fn the_triangle_traces_agree_with_their_back_ends(v in proptest::array::uniform6(-2.0f64..34.0)) {
+            let v = [(v[0], v[1]), (v[2], v[3]), (v[4], v[5])];
+            let (drawn, tested) = fragments("incremental", v, 32);
+            let text = incremental_trace(v, FillRule::TopLeft, 32, 32).unwrap();
+            let rows: Vec<Vec<&str>> = text.lines().skip(3).map(|l| l.split_whitespace().collect()).filter(|w: &Vec<&str>| w.len() >= 6 && w[0].parse::<i64>().is_ok() && w[1].parse::<i64>().is_ok()).collect();
+            let inside: HashSet<(i64, i64)> = rows.iter().filter(|w| w[5] == "inside").map(|w| (w[0].parse().unwrap(), w[1].parse().unwrap())).collect();
+            prop_assert_eq!(&inside, &drawn);
+            if !drawn.is_empty() {
+                prop_assert_eq!(rows.len() as u64, tested, "{}", text);
+            }
+            let tiled = tiled_trace(v, FillRule::TopLeft, 32, 32).unwrap();
+            for l in tiled.lines().skip(2) {
+                let w: Vec<&str> = l.split_whitespace().collect();
+                if w.len() < 3 || !w[0].contains("..=") { continue; }
+                let range = |s: &str| { let (a, b) = s.split_once("..=").unwrap(); (a.parse::<i64>().unwrap(), b.parse::<i64>().unwrap()) };
+                let ((x0, x1), (y0, y1)) = (range(w[0]), range(w[1]));
+                let count = (y0..=y1).flat_map(|y| (x0..=x1).map(move |x| (x, y))).filter(|p| drawn.contains(p)).count() as i64;
+                match w[2] {
+                    "inside:" => prop_assert_eq!(count, (x1 - x0 + 1) * (y1 - y0 + 1)),
+                    "outside:" => prop_assert_eq!(count, 0),
+                    _ => {}
+                }
+            }
+        }
+
+        /// The Wu trace lists Wu's pixels, and a column's two weights sum
+        /// to one; the diamond trace draws what the diamond back-end draws.
+        #[test]
+        fn the_line_traces_agree_with_their_back_ends(c in proptest::array::uniform4(0i32..40)) {
+            let ends = LineEnds::pixels(c.map(f64::from)).unwrap();
+            let text = wu_trace(&ends);
+            let mut listed = Vec::new();
+            for l in text.lines().skip(2) {
+                let w: Vec<&str> = l.split_whitespace().collect();
+                if !w.first().is_some_and(|p| p.contains(',')) { continue; }
+                let mut sum = 0.0;
+                for pair in w.chunks(2) {
+                    let (x, y) = pair[0].split_once(',').unwrap();
+                    listed.push((x.parse::<i64>().unwrap(), y.parse::<i64>().unwrap()));
+                    sum += pair[1].parse::<f64>().unwrap();
+                }
+                prop_assert!((sum - 1.0).abs() < 2e-4, "{}", l);
+            }
+            let mut wu = line(&ends, "wu");
+            listed.sort();
+            wu.sort();
+            prop_assert_eq!(listed, wu);
+            let text = diamond_trace(&ends).unwrap();
+            let mut drawn: Vec<(i64, i64)> = text.lines().filter(|l| l.ends_with(": drawn")).map(|l| {
+                let (x, y) = l.split_whitespace().next().unwrap().split_once(',').unwrap();
+                (x.parse().unwrap(), y.parse().unwrap())
+            }).collect();
+            let mut diamond = line(&ends, "diamond");
+            drawn.sort();
+            diamond.sort();
+            prop_assert_eq!(drawn, diamond);
+        }
+    }
+}

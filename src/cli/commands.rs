@@ -673,9 +673,10 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
 
 #[derive(Args, Debug)]
 pub struct ExplainArgs {
-    /// What to trace: bresenham, direct, dda (a line: x0 y0 x1 y1, pixel
-    /// indices unless --screen); bbox, naive, scanline (a triangle: x0 y0
-    /// x1 y1 x2 y2, in screen coordinates); depth-buffer (triangles of 7
+    /// What to trace: bresenham, direct, dda, wu, diamond (a line: x0 y0
+    /// x1 y1, pixel indices unless --screen); bbox, naive, scanline,
+    /// incremental, tiled (a triangle: x0 y0 x1 y1 x2 y2, in screen
+    /// coordinates); depth-buffer (triangles of 7
     /// numbers each, x0 y0 x1 y1 x2 y2 z, or none for the course's
     /// depth-buffer example). Any other back-end: --picture only.
     #[arg(long)]
@@ -753,7 +754,8 @@ impl ExplainArgs {
 /// The grid `explain` draws on unless `--size` says otherwise.
 const EXPLAIN_GRID: (u32, u32) = (16, 16);
 
-const TRACES: &str = "bresenham, direct, dda, bbox, naive, scanline, depth-buffer";
+const TRACES: &str =
+    "bresenham, direct, dda, wu, diamond, bbox, naive, scanline, incremental, tiled, depth-buffer";
 
 pub fn explain(args: &ExplainArgs) -> Result<()> {
     let rule: FillRule = args.rule.parse()?;
@@ -763,6 +765,12 @@ pub fn explain(args: &ExplainArgs) -> Result<()> {
     let (width, height) = args.size(EXPLAIN_GRID)?;
     let text = match args.backend.as_str() {
         "bresenham" => rasterlab::trace::bresenham_trace(&args.line()?),
+        "wu" => rasterlab::trace::wu_trace(&args.line()?),
+        "diamond" => rasterlab::trace::diamond_trace(&args.line()?)?,
+        "incremental" => {
+            rasterlab::trace::incremental_trace(args.triangle()?, rule, width, height)?
+        }
+        "tiled" => rasterlab::trace::tiled_trace(args.triangle()?, rule, width, height)?,
         "direct" | "dda" => rasterlab::trace::line_trace(&args.backend, &args.line()?)?,
         "bbox" | "naive" => {
             rasterlab::trace::triangle_trace(&args.backend, args.triangle()?, rule, width, height)?

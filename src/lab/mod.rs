@@ -227,7 +227,18 @@ pub struct LabResponse {
 }
 
 /// Back-ends with a step-by-step trace, in the order a trace is chosen.
-const TRACED: [&str; 6] = ["scanline", "bbox", "naive", "bresenham", "direct", "dda"];
+const TRACED: [&str; 10] = [
+    "scanline",
+    "bbox",
+    "naive",
+    "incremental",
+    "tiled",
+    "bresenham",
+    "direct",
+    "dda",
+    "wu",
+    "diamond",
+];
 
 /// Answers one request with the real back-ends (and `program`, when the
 /// request asks for the student's view).
@@ -330,18 +341,19 @@ fn view(name: &str, picture: &GridPicture) -> BackendView {
 fn trace_text(request: &LabRequest, backend: &str, rule: FillRule) -> Result<String> {
     let (w, h) = (request.width, request.height);
     match backend {
-        "bresenham" | "direct" | "dda" => {
+        "bresenham" | "direct" | "dda" | "wu" | "diamond" => {
             let Some(l) = request.lines.first().filter(|_| request.kind == "lines") else {
                 return Ok(String::new());
             };
             let ends = LineEnds::screen([l[0][0], l[0][1], l[1][0], l[1][1]])?;
-            if backend == "bresenham" {
-                Ok(trace::bresenham_trace(&ends))
-            } else {
-                trace::line_trace(backend, &ends)
+            match backend {
+                "bresenham" => Ok(trace::bresenham_trace(&ends)),
+                "wu" => Ok(trace::wu_trace(&ends)),
+                "diamond" => trace::diamond_trace(&ends),
+                _ => trace::line_trace(backend, &ends),
             }
         }
-        "bbox" | "naive" | "scanline" => {
+        "bbox" | "naive" | "scanline" | "incremental" | "tiled" => {
             let Some(t) = request
                 .triangles
                 .first()
@@ -350,10 +362,11 @@ fn trace_text(request: &LabRequest, backend: &str, rule: FillRule) -> Result<Str
                 return Ok(String::new());
             };
             let vertices = t.map(|p| (p[0], p[1]));
-            if backend == "scanline" {
-                trace::scanline_trace(vertices, rule, w, h)
-            } else {
-                trace::triangle_trace(backend, vertices, rule, w, h)
+            match backend {
+                "scanline" => trace::scanline_trace(vertices, rule, w, h),
+                "incremental" => trace::incremental_trace(vertices, rule, w, h),
+                "tiled" => trace::tiled_trace(vertices, rule, w, h),
+                _ => trace::triangle_trace(backend, vertices, rule, w, h),
             }
         }
         _ => Ok(String::new()),
