@@ -45,6 +45,7 @@ use crate::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::scene::{setup_triangles, Scene2D};
 use crate::shader::Flat;
 use crate::target::RenderTarget;
+use crate::triangle::tiled::BlockClass;
 use crate::triangle::TriangleRasterizer;
 use std::fmt::Write;
 use std::path::Path;
@@ -84,6 +85,9 @@ pub struct GridPicture {
     pub outlines: Vec<Vec<(f64, f64)>>,
     /// Open segments (ideal lines), in pixel coordinates.
     pub segments: Vec<[(f64, f64); 2]>,
+    /// Blocks a hierarchical back-end classified as a whole, with their
+    /// classes (`tiled`'s 8 x 8 blocks), drawn as framed rectangles.
+    pub blocks: Vec<(PixelRect, BlockClass)>,
     /// One line saying what the picture shows.
     pub caption: String,
 }
@@ -179,6 +183,7 @@ impl GridPicture {
             labels: Vec::new(),
             outlines: Vec::new(),
             segments: Vec::new(),
+            blocks: Vec::new(),
             caption,
         }
     }
@@ -223,11 +228,8 @@ impl GridPicture {
     ) -> Result<GridPicture> {
         check_grid(width, height)?;
         let mut recorder = Recorder::new(width, height);
-        let work = backend.rasterize(
-            &setup_triangles(triangles, rule),
-            PixelRect::of_target(width, height),
-            &mut recorder,
-        );
+        let setups = setup_triangles(triangles, rule);
+        let work = backend.rasterize(&setups, PixelRect::of_target(width, height), &mut recorder);
         let caption = format!(
             "{}, {} rule: {} pixels tested (red: outside), {} fragments (green)",
             backend.name(),
@@ -237,6 +239,10 @@ impl GridPicture {
         );
         let mut picture = Self::recorded(&recorder, width, height, caption);
         picture.outlines = outlines(triangles);
+        picture.blocks = setups
+            .iter()
+            .flat_map(|t| backend.blocks(t, PixelRect::of_target(width, height)))
+            .collect();
         Ok(picture)
     }
 
@@ -421,6 +427,21 @@ impl GridPicture {
                 points.join(" ")
             );
         }
+        for (r, class) in &self.blocks {
+            let (colour, letter) = block_style(*class);
+            let [cr, cg, cb] = colour;
+            let (x, y) = (r.x0 as f64 * s, r.y0 as f64 * s);
+            let _ = writeln!(
+                out,
+                r##"<rect class="block" x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#{cr:02x}{cg:02x}{cb:02x}" stroke-width="3" stroke-dasharray="6 3"/><text x="{}" y="{}" font-size="12" font-weight="bold" fill="#{cr:02x}{cg:02x}{cb:02x}">{letter}</text>"##,
+                x + 1.5,
+                y + 1.5,
+                (r.x1 - r.x0 + 1) as f64 * s - 3.0,
+                (r.y1 - r.y0 + 1) as f64 * s - 3.0,
+                x + 4.0,
+                y + 14.0
+            );
+        }
         for [(x0, y0), (x1, y1)] in &self.segments {
             let _ = writeln!(
                 out,
@@ -480,6 +501,21 @@ impl GridPicture {
         for &[a, b] in &self.segments {
             stroke(a, b, [29, 78, 216]);
         }
+        for (r, class) in &self.blocks {
+            let colour = block_style(*class).0;
+            // Just inside the block, so neighbouring frames do not overlap.
+            let inset = 2.0 / z;
+            let (x0, y0) = (r.x0 as f64 + inset, r.y0 as f64 + inset);
+            let (x1, y1) = ((r.x1 + 1) as f64 - inset, (r.y1 + 1) as f64 - inset);
+            for (a, b) in [
+                ((x0, y0), (x1, y0)),
+                ((x1, y0), (x1, y1)),
+                ((x1, y1), (x0, y1)),
+                ((x0, y1), (x0, y0)),
+            ] {
+                stroke(a, b, colour);
+            }
+        }
         Ok(img)
     }
 
@@ -495,6 +531,17 @@ impl GridPicture {
         } else {
             crate::output::write_png(path, &self.to_png(24)?)
         }
+    }
+}
+
+/// The frame colour and letter of a block class: inside (trivial accept)
+/// dark green `I`, outside (trivial reject) grey `O`, partial (tested pixel
+/// by pixel) orange `P`.
+fn block_style(class: BlockClass) -> ([u8; 3], char) {
+    match class {
+        BlockClass::Inside => ([20, 110, 40], 'I'),
+        BlockClass::Outside => ([120, 120, 120], 'O'),
+        BlockClass::Partial => ([220, 120, 0], 'P'),
     }
 }
 

@@ -627,7 +627,7 @@ pub fn tiled_trace(
     width: u32,
     height: u32,
 ) -> Result<String> {
-    use crate::triangle::tiled::{classify_block, BlockClass, BLOCK};
+    use crate::triangle::tiled::{BlockClass, BLOCK};
     let grid = PixelRect::of_target(width, height);
     let mut out = String::new();
     let Some(t) = snapped_triangle(vertices, rule)? else {
@@ -650,7 +650,8 @@ pub fn tiled_trace(
     if r.is_empty() {
         return Ok(out);
     }
-    if r.x1 - r.x0 < BLOCK && r.y1 - r.y0 < BLOCK {
+    let blocks = crate::triangle::tiled::blocks(&t, grid);
+    if blocks.is_empty() {
         let _ = writeln!(
             out,
             "the box fits in one block: the back-end skips the corner test and tests each of its {} pixels",
@@ -658,48 +659,31 @@ pub fn tiled_trace(
         );
         return Ok(out);
     }
-    check_trace_length(
-        ((r.x1 - r.x0) / BLOCK + 2) as u64 * ((r.y1 - r.y0) / BLOCK + 2) as u64,
-        "block lines",
-    )?;
+    check_trace_length(blocks.len() as u64, "block lines")?;
     let _ = writeln!(out, "{:>15} {:>15}  class", "columns", "rows");
     let (mut counts, mut tested) = ([0u64; 3], 0u64);
-    let first = |v: i64| v.div_euclid(BLOCK) * BLOCK;
-    let mut by = first(r.y0);
-    while by <= r.y1 {
-        let mut bx = first(r.x0);
-        while bx <= r.x1 {
-            let block = PixelRect {
-                x0: bx.max(r.x0),
-                y0: by.max(r.y0),
-                x1: (bx + BLOCK - 1).min(r.x1),
-                y1: (by + BLOCK - 1).min(r.y1),
-            };
-            let class = classify_block(&t, block);
-            let what = match class {
-                BlockClass::Outside => {
-                    counts[0] += 1;
-                    "outside: trivial reject, no pixel tested"
-                }
-                BlockClass::Inside => {
-                    counts[1] += 1;
-                    "inside: trivial accept, every pixel drawn untested"
-                }
-                BlockClass::Partial => {
-                    counts[2] += 1;
-                    tested += block.area();
-                    "partial: an edge crosses it, each pixel tested"
-                }
-            };
-            let _ = writeln!(
-                out,
-                "{:>15} {:>15}  {what}",
-                format!("{}..={}", block.x0, block.x1),
-                format!("{}..={}", block.y0, block.y1)
-            );
-            bx += BLOCK;
-        }
-        by += BLOCK;
+    for (block, class) in blocks {
+        let what = match class {
+            BlockClass::Outside => {
+                counts[0] += 1;
+                "outside: trivial reject, no pixel tested"
+            }
+            BlockClass::Inside => {
+                counts[1] += 1;
+                "inside: trivial accept, every pixel drawn untested"
+            }
+            BlockClass::Partial => {
+                counts[2] += 1;
+                tested += block.area();
+                "partial: an edge crosses it, each pixel tested"
+            }
+        };
+        let _ = writeln!(
+            out,
+            "{:>15} {:>15}  {what}",
+            format!("{}..={}", block.x0, block.x1),
+            format!("{}..={}", block.y0, block.y1)
+        );
     }
     let _ = writeln!(
         out,

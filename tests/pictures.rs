@@ -234,3 +234,31 @@ fn fill_rule_heat_maps_show_seed_004s_double_draws_and_gaps() {
         );
     }
 }
+
+/// `tiled`'s picture frames its 8 x 8 blocks with their classes: every
+/// pixel of an inside block is a fragment, none of an outside block, and
+/// back-ends that visit pixels one by one have no blocks.
+#[test]
+fn the_tiled_picture_frames_its_blocks_by_class() {
+    use rasterlab::triangle::tiled::BlockClass;
+    let triangle = [(1.0, 1.0), (60.0, 2.0), (3.0, 46.0)];
+    let tiled = rasterlab::backend::triangle_backend("tiled").unwrap();
+    let picture = GridPicture::of_triangles(tiled, &[triangle], FillRule::TopLeft, 64, 48).unwrap();
+    assert!(picture.blocks.len() >= 9, "{}", picture.blocks.len());
+    for (r, class) in &picture.blocks {
+        let green = (r.y0..=r.y1)
+            .flat_map(|y| (r.x0..=r.x1).map(move |x| (x, y)))
+            .filter(|&(x, y)| is_fragment_green(picture.cells[(y * 64 + x) as usize]))
+            .count() as u64;
+        match class {
+            BlockClass::Inside => assert_eq!(green, r.area()),
+            BlockClass::Outside => assert_eq!(green, 0),
+            BlockClass::Partial => {}
+        }
+    }
+    assert!(picture.blocks.iter().any(|b| b.1 == BlockClass::Inside));
+    assert!(picture.to_svg().contains("class=\"block\""));
+    let bbox = rasterlab::backend::triangle_backend("bbox").unwrap();
+    let picture = GridPicture::of_triangles(bbox, &[triangle], FillRule::TopLeft, 64, 48).unwrap();
+    assert!(picture.blocks.is_empty());
+}

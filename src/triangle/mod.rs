@@ -54,6 +54,19 @@ pub trait TriangleRasterizer: Send + Sync {
         None
     }
 
+    /// The blocks this back-end classifies as a whole for triangle `t`
+    /// (hierarchical back-ends such as `tiled`), with their classes, for
+    /// traces and grid pictures; empty (the default) for back-ends that
+    /// visit pixels one by one.
+    fn blocks(
+        &self,
+        t: &TriangleSetup,
+        viewport: PixelRect,
+    ) -> Vec<(PixelRect, tiled::BlockClass)> {
+        let _ = (t, viewport);
+        Vec::new()
+    }
+
     /// Whether drawing `triangles` triangles on `pixels` pixels stays
     /// within `budget` sample tests by [`Self::tests_whatever_the_size`].
     fn affordable(&self, triangles: u64, pixels: u64, budget: u64) -> bool {

@@ -69,6 +69,30 @@ pub enum BlockClass {
     Partial,
 }
 
+/// The blocks of `t`'s bounding box within `viewport` (on the grid's block
+/// lines, clipped to the box) with their classes, block by block, for
+/// traces and pictures; empty when the box fits in one block, which the
+/// back-end tests pixel by pixel.
+pub fn blocks(t: &TriangleSetup, viewport: PixelRect) -> Vec<(PixelRect, BlockClass)> {
+    let r = t.bounds_within(viewport);
+    if r.is_empty() || (r.x1 - r.x0 < BLOCK && r.y1 - r.y0 < BLOCK) {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for by in r.y0.div_euclid(BLOCK)..=r.y1.div_euclid(BLOCK) {
+        for bx in r.x0.div_euclid(BLOCK)..=r.x1.div_euclid(BLOCK) {
+            let block = PixelRect {
+                x0: (bx * BLOCK).max(r.x0),
+                y0: (by * BLOCK).max(r.y0),
+                x1: (bx * BLOCK + BLOCK - 1).min(r.x1),
+                y1: (by * BLOCK + BLOCK - 1).min(r.y1),
+            };
+            out.push((block, classify_block(t, block)));
+        }
+    }
+    out
+}
+
 /// Classifies the pixels of `r` against triangle `t` from the edge values
 /// at `r`'s four corner samples.
 pub fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
@@ -110,6 +134,10 @@ fn classify_from_corner(
 }
 
 impl TriangleRasterizer for Tiled {
+    fn blocks(&self, t: &TriangleSetup, viewport: PixelRect) -> Vec<(PixelRect, BlockClass)> {
+        blocks(t, viewport)
+    }
+
     fn name(&self) -> &'static str {
         "tiled"
     }
