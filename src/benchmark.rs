@@ -267,7 +267,8 @@ pub fn to_json(results: &[Measurement]) -> String {
 }
 
 /// One colour per back-end, in a fixed order.
-const PALETTE: [[u8; 3]; 8] = [
+/// One colour per back-end (up to eleven, distinct), in registry order.
+const PALETTE: [[u8; 3]; 11] = [
     [120, 120, 120],
     [230, 159, 0],
     [86, 180, 233],
@@ -275,7 +276,10 @@ const PALETTE: [[u8; 3]; 8] = [
     [213, 94, 0],
     [0, 114, 178],
     [204, 121, 167],
-    [240, 228, 66],
+    [190, 175, 20],
+    [110, 60, 160],
+    [160, 30, 60],
+    [40, 40, 40],
 ];
 
 /// The distinct values of `field` over the results, in first-seen order.
@@ -308,85 +312,103 @@ fn group<'a>(results: &'a [Measurement], workload: &str) -> (Vec<&'a Measurement
     (group, fastest)
 }
 
-/// A bar chart as an image: one group of bars per workload, one bar per
-/// back-end (colours as in [`chart_svg`]'s legend), bar height the speed
-/// relative to the fastest back-end on that workload.
+/// The font the PNG chart's text is drawn with (DejaVu Sans, bundled in
+/// `assets/fonts` with its licence), so the picture looks the same on any
+/// machine.
+const CHART_FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
+
+/// The chart as an image: [`chart_svg`] rendered by `resvg` with the
+/// bundled font, so the PNG has the same axis, labels and values.
 pub fn chart_png(results: &[Measurement]) -> image::RgbaImage {
-    let names = backend_names(results);
-    let workloads = workload_names(results);
-    let (bar, gap, plot_h) = (10u32, 14u32, 240u32);
-    let group_w = names.len() as u32 * bar + gap;
-    let width = (workloads.len() as u32 * group_w + gap).max(1);
-    let mut img =
-        image::RgbaImage::from_pixel(width, plot_h + 20, image::Rgba([255, 255, 255, 255]));
-    for (g, wl) in workloads.iter().enumerate() {
-        let (members, fastest) = group(results, wl);
-        for m in members {
-            let k = names.iter().position(|n| *n == m.backend).unwrap_or(0);
-            let height = if fastest > 0.0 {
-                ((m.gpixels_per_s / fastest) * f64::from(plot_h)).round() as u32
-            } else {
-                0
-            };
-            let [r, gr, b] = PALETTE[k % PALETTE.len()];
-            let x0 = gap + g as u32 * group_w + k as u32 * bar;
-            for y in plot_h + 10 - height..plot_h + 10 {
-                for x in x0..x0 + bar - 1 {
-                    img.put_pixel(x, y, image::Rgba([r, gr, b, 255]));
-                }
-            }
-        }
-    }
-    img
+    let svg = chart_svg(results);
+    let mut options = resvg::usvg::Options::default();
+    options.fontdb_mut().load_font_data(CHART_FONT.to_vec());
+    options.font_family = "DejaVu Sans".into();
+    let blank = || image::RgbaImage::from_pixel(1, 1, image::Rgba([255, 255, 255, 255]));
+    let Ok(tree) = resvg::usvg::Tree::from_str(&svg, &options) else {
+        return blank();
+    };
+    let size = tree.size().to_int_size();
+    let Some(mut pixmap) = resvg::tiny_skia::Pixmap::new(size.width(), size.height()) else {
+        return blank();
+    };
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
+    // The background is opaque white, so premultiplied and straight RGBA agree.
+    image::RgbaImage::from_raw(size.width(), size.height(), pixmap.take()).unwrap_or_else(blank)
 }
 
-/// The same chart as SVG, with workload labels, values and a legend.
+/// A horizontal bar chart: one group per workload, one labelled bar per
+/// back-end, bar length the speed relative to the fastest back-end on that
+/// workload (the axis at the bottom, 0 to 1), each bar's median time and
+/// throughput written beside it.
 pub fn chart_svg(results: &[Measurement]) -> String {
     let names = backend_names(results);
     let workloads = workload_names(results);
-    let (bar, gap, plot_h) = (14.0, 30.0, 240.0);
-    let group_w = names.len() as f64 * bar + gap;
-    let width = workloads.len() as f64 * group_w + gap;
-    let height = plot_h + 60.0 + 18.0 * names.len() as f64;
+    let (label_w, bar_w, value_w) = (110.0, 460.0, 230.0);
+    let (row, header, top) = (17.0, 24.0, 44.0);
+    let x0 = 10.0 + label_w;
+    let rows: usize = workloads.iter().map(|w| group(results, w).0.len()).sum();
+    let plot_h = workloads.len() as f64 * header + rows as f64 * row;
+    let width = x0 + bar_w + value_w;
+    let height = top + plot_h + 50.0;
     let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"10\" y=\"22\" font-size=\"14\" font-weight=\"bold\">rasterlab bench: speed relative to the fastest back-end on each workload</text>\n"
     );
-    for (g, wl) in workloads.iter().enumerate() {
+    // Vertical grid lines and the axis.
+    let axis_y = top + plot_h + 4.0;
+    for k in 0..=4 {
+        let f = f64::from(k) / 4.0;
+        let x = x0 + f * bar_w;
+        svg += &format!(
+            "<line x1=\"{x:.1}\" y1=\"{top}\" x2=\"{x:.1}\" y2=\"{axis_y:.1}\" stroke=\"#ddd\"/><text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{f}</text>\n",
+            axis_y + 14.0
+        );
+    }
+    svg += &format!(
+        "<line x1=\"{x0}\" y1=\"{axis_y:.1}\" x2=\"{:.1}\" y2=\"{axis_y:.1}\" stroke=\"#333\"/><text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">speed relative to the fastest (1 = fastest; median time and throughput beside each bar)</text>\n",
+        x0 + bar_w,
+        x0 + bar_w / 2.0,
+        axis_y + 32.0
+    );
+    let mut y = top;
+    for wl in &workloads {
         let (members, fastest) = group(results, wl);
-        let x_group = gap + g as f64 * group_w;
+        let prims = members.first().map_or(0, |m| m.primitives);
+        y += header;
+        svg += &format!(
+            "<text x=\"10\" y=\"{:.1}\" font-weight=\"bold\">{wl} ({prims} primitives)</text>\n",
+            y - 7.0
+        );
         for m in members {
             let k = names.iter().position(|n| *n == m.backend).unwrap_or(0);
             let [r, gr, b] = PALETTE[k % PALETTE.len()];
-            let hgt = if fastest > 0.0 {
-                m.gpixels_per_s / fastest * plot_h
+            let rel = if fastest > 0.0 {
+                m.gpixels_per_s / fastest
             } else {
                 0.0
             };
+            let w = (rel * bar_w).max(1.0);
             svg += &format!(
-                "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{hgt:.1}\" fill=\"rgb({r},{gr},{b})\"><title>{} {}: {:.3} Gpix/s, {:.3} ms</title></rect>\n",
-                x_group + k as f64 * bar,
-                10.0 + plot_h - hgt,
-                bar - 2.0,
+                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text><rect x=\"{x0}\" y=\"{:.1}\" width=\"{w:.1}\" height=\"{:.1}\" fill=\"rgb({r},{gr},{b})\"><title>{} {}: {:.3} ms</title></rect><text x=\"{:.1}\" y=\"{:.1}\">{:.3} ms, {:.3} Gpix/s</text>\n",
+                x0 - 6.0,
+                y + row - 5.0,
+                m.backend,
+                y + 2.0,
+                row - 4.0,
                 m.workload,
                 m.backend,
-                m.gpixels_per_s,
-                m.median_ms
+                m.median_ms,
+                x0 + w + 6.0,
+                y + row - 5.0,
+                m.median_ms,
+                m.gpixels_per_s
             );
+            y += row;
         }
-        svg += &format!(
-            "<text x=\"{:.1}\" y=\"{:.1}\">{wl}</text>\n",
-            x_group,
-            plot_h + 26.0
-        );
-    }
-    for (k, n) in names.iter().enumerate() {
-        let [r, gr, b] = PALETTE[k % PALETTE.len()];
-        let y = plot_h + 44.0 + 18.0 * k as f64;
-        svg += &format!(
-            "<rect x=\"{gap}\" y=\"{y:.1}\" width=\"12\" height=\"12\" fill=\"rgb({r},{gr},{b})\"/><text x=\"{:.1}\" y=\"{:.1}\">{n}</text>\n",
-            gap + 18.0,
-            y + 10.0
-        );
     }
     svg += "</svg>\n";
     svg
