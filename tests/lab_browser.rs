@@ -8,25 +8,14 @@
 //! Chromium is found as for the report's browser test; without one this
 //! test passes with a message unless `RASTERLAB_REQUIRE_BROWSER` is set.
 
+mod common;
+
+use common::chromium;
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
-use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn chromium() -> Option<PathBuf> {
-    if let Some(path) = std::env::var_os("RASTERLAB_CHROMIUM") {
-        return Some(PathBuf::from(path));
-    }
-    ["chromium", "chromium-browser"].iter().find_map(|name| {
-        std::env::var_os("PATH").and_then(|paths| {
-            std::env::split_paths(&paths)
-                .map(|dir| dir.join(name))
-                .find(|p| p.is_file())
-        })
-    })
-}
 
 /// A running `rasterlab lab`, stopped when dropped.
 struct Lab {

@@ -7,23 +7,13 @@
 //! `RASTERLAB_REQUIRE_BROWSER` is set (as `.ci/run` does, after installing
 //! Debian's `chromium`), in which case a missing browser is a failure.
 
+mod common;
+
+use common::chromium;
 use rasterlab::report::{CompareInput, Report};
 use rasterlab::scene::Scene2D;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-
-fn chromium() -> Option<PathBuf> {
-    if let Some(path) = std::env::var_os("RASTERLAB_CHROMIUM") {
-        return Some(PathBuf::from(path));
-    }
-    ["chromium", "chromium-browser"].iter().find_map(|name| {
-        std::env::var_os("PATH").and_then(|paths| {
-            std::env::split_paths(&paths)
-                .map(|dir| dir.join(name))
-                .find(|p| p.is_file())
-        })
-    })
-}
 
 /// Runs headless Chromium on `page` with extra arguments; returns stdout.
 fn run_chromium(browser: &Path, profile: &Path, page: &Path, extra: &[&str]) -> String {

@@ -121,3 +121,18 @@ pub fn coverage_counts(list: &FragmentList) -> Vec<u32> {
     }
     counts
 }
+
+/// Headless Chromium for the browser tests: `$RASTERLAB_CHROMIUM`, or
+/// `chromium` or `chromium-browser` on the `PATH`.
+pub fn chromium() -> Option<std::path::PathBuf> {
+    if let Some(path) = std::env::var_os("RASTERLAB_CHROMIUM") {
+        return Some(std::path::PathBuf::from(path));
+    }
+    ["chromium", "chromium-browser"].iter().find_map(|name| {
+        std::env::var_os("PATH").and_then(|paths| {
+            std::env::split_paths(&paths)
+                .map(|dir| dir.join(name))
+                .find(|p| p.is_file())
+        })
+    })
+}
