@@ -346,7 +346,7 @@ fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
             vec![
                 "explain",
                 "--backend",
-                "tiled",
+                "nonesuch",
                 "1",
                 "1",
                 "5",
@@ -354,7 +354,8 @@ fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
                 "1",
                 "5",
             ],
-            "no trace for `tiled`",
+            // Every back-end has a trace now (tiled's lists its blocks).
+            "unknown rasterizer back-end `nonesuch`",
         ),
         (
             vec![

@@ -785,13 +785,12 @@ pub fn explain(args: &ExplainArgs) -> Result<()> {
             }
             return say_raw!("{text}");
         }
-        other if args.picture.is_none() => {
+        other => {
             backend(other)?;
             return Err(Error::InvalidArgument(format!(
-                "no trace for `{other}` (traces: {TRACES}); give --picture FILE for its grid picture"
+                "no trace for `{other}` (traces: {TRACES})"
             )));
         }
-        _ => String::new(),
     };
     if let Some(path) = &args.picture {
         let picture = match backend(&args.backend)? {
