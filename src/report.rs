@@ -49,15 +49,6 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-/// The fill rules, in the order the report shows them.
-const RULES: [FillRule; 5] = [
-    FillRule::TopLeft,
-    FillRule::BottomRight,
-    FillRule::OffscreenPoint,
-    FillRule::Inclusive,
-    FillRule::Exclusive,
-];
-
 /// Largest number of pixel tests a back-end whose work does not follow the
 /// triangles' size (the naive loop: pixels x triangles) may do in a report;
 /// above it `bbox` is the reference and `naive` is left out.
@@ -189,12 +180,12 @@ fn rule_pictures(
     height: u32,
     mut coverage_of: impl FnMut(FillRule) -> Result<Vec<u16>>,
 ) -> Result<Vec<RulePicture>> {
-    let coverages = RULES
+    let coverages = FillRule::ALL
         .iter()
         .map(|&r| coverage_of(r))
         .collect::<Result<Vec<_>>>()?;
     let watertight = [coverages[0].as_slice(), coverages[1].as_slice()];
-    RULES
+    FillRule::ALL
         .iter()
         .zip(&coverages)
         .map(|(&rule, coverage)| {

@@ -258,11 +258,13 @@ pub fn triangle_trace(
 ) -> Result<String> {
     let grid = PixelRect::of_target(width, height);
     let mut out = String::new();
-    let Some(t) = snapped_triangle(vertices, rule)? else {
-        let _ = writeln!(
-            out,
-            "the snapped triangle has zero area: no pixel is tested, nothing is drawn"
-        );
+    let Some(t) = snapped_or_say(
+        vertices,
+        rule,
+        &mut out,
+        "no pixel is tested, nothing is drawn",
+    )?
+    else {
         return Ok(out);
     };
     let region = match backend {
@@ -365,11 +367,13 @@ pub fn scanline_trace(
 ) -> Result<String> {
     let viewport = PixelRect::of_target(width, height);
     let mut out = String::new();
-    let Some(t) = snapped_triangle(vertices, rule)? else {
-        let _ = writeln!(
-            out,
-            "the snapped triangle has zero area: no row is filled, nothing is drawn"
-        );
+    let Some(t) = snapped_or_say(
+        vertices,
+        rule,
+        &mut out,
+        "no row is filled, nothing is drawn",
+    )?
+    else {
         return Ok(out);
     };
     let order = sorted_by_y(&t);
@@ -517,16 +521,21 @@ fn print_matrix(out: &mut String, depth: &[f32], width: u32) {
     }
 }
 
-fn snapped_triangle(vertices: [(f64, f64); 3], rule: FillRule) -> Result<Option<TriangleSetup>> {
-    let points = vertices
-        .iter()
-        .map(|&(x, y)| FixedPoint::snap_f64(x, y))
-        .collect::<Result<Vec<_>>>()?;
-    Ok(TriangleSetup::new(
-        0,
-        [points[0], points[1], points[2]],
-        rule,
-    ))
+/// The triangle snapped and set up under `rule`, or, when it has zero
+/// area once snapped, `None` after writing "the snapped triangle has zero
+/// area: {nothing}" to the trace.
+fn snapped_or_say(
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    out: &mut String,
+    nothing: &str,
+) -> Result<Option<TriangleSetup>> {
+    let [a, b, c] = vertices.map(|(x, y)| FixedPoint::snap_f64(x, y));
+    let t = TriangleSetup::new(0, [a?, b?, c?], rule);
+    if t.is_none() {
+        let _ = writeln!(out, "the snapped triangle has zero area: {nothing}");
+    }
+    Ok(t)
 }
 
 /// The incremental (Pineda) walk on one triangle: the edge values at the
@@ -541,8 +550,7 @@ pub fn incremental_trace(
 ) -> Result<String> {
     let grid = PixelRect::of_target(width, height);
     let mut out = String::new();
-    let Some(t) = snapped_triangle(vertices, rule)? else {
-        let _ = writeln!(out, "the snapped triangle has zero area: nothing is tested");
+    let Some(t) = snapped_or_say(vertices, rule, &mut out, "nothing is tested")? else {
         return Ok(out);
     };
     let r = t.bounds_within(grid);
@@ -630,11 +638,7 @@ pub fn tiled_trace(
     use crate::triangle::tiled::{BlockClass, BLOCK};
     let grid = PixelRect::of_target(width, height);
     let mut out = String::new();
-    let Some(t) = snapped_triangle(vertices, rule)? else {
-        let _ = writeln!(
-            out,
-            "the snapped triangle has zero area: no block is visited"
-        );
+    let Some(t) = snapped_or_say(vertices, rule, &mut out, "no block is visited")? else {
         return Ok(out);
     };
     let r = t.bounds_within(grid);

@@ -12,14 +12,6 @@ use rasterlab::check::{
 use rasterlab::edge::FillRule;
 use std::process::{Command, Output};
 
-const RULES: [FillRule; 5] = [
-    FillRule::TopLeft,
-    FillRule::BottomRight,
-    FillRule::OffscreenPoint,
-    FillRule::Inclusive,
-    FillRule::Exclusive,
-];
-
 fn options(property: Property, cases: u32, seed: u64) -> CheckOptions {
     CheckOptions {
         cases,
@@ -41,7 +33,7 @@ fn passes(verdict: Verdict) -> bool {
 #[test]
 fn every_triangle_back_end_passes_the_exact_check_under_every_rule() {
     for b in triangle_backends() {
-        for rule in RULES {
+        for rule in FillRule::ALL {
             for seed in 0..3 {
                 let verdict = check(
                     &options(Property::Exact(rule), 200, seed),
