@@ -159,7 +159,7 @@ pub fn fragments(args: &FragmentsArgs) -> Result<()> {
     for f in &list.triangles {
         writeln!(out, "{} {} {}", f.x, f.y, f.triangle).map_err(stdout_error)?;
     }
-    let weighted = matches!(backend, Backend::Line(b) if b.name() == "wu");
+    let weighted = matches!(backend, Backend::Line(b) if b.anti_aliased());
     for f in &list.lines {
         if weighted {
             writeln!(out, "{} {} {} {:.4}", f.x, f.y, f.line, f.coverage).map_err(stdout_error)?;

@@ -150,6 +150,11 @@ pub trait LineRasterizer: Send + Sync {
     fn name(&self) -> &'static str;
     /// One-line description.
     fn description(&self) -> &'static str;
+    /// True for an anti-aliased back-end, whose fragments carry a coverage
+    /// weight below 1 (`rasterlab fragments` prints it as a fourth column).
+    fn anti_aliased(&self) -> bool {
+        false
+    }
     /// Errors when the back-end cannot honour `options`.
     fn check_options(&self, options: &LineOptions) -> Result<()> {
         let _ = options;

@@ -58,6 +58,10 @@ impl Wu {
 }
 
 impl LineRasterizer for Wu {
+    fn anti_aliased(&self) -> bool {
+        true
+    }
+
     fn name(&self) -> &'static str {
         "wu"
     }
