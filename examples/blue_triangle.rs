@@ -1,4 +1,4 @@
-//! Seed 000's blue triangle through the course's five steps:
+//! The course chapter's blue triangle through the course's five steps:
 //!
 //! 1. vertex specification: the C array `float vertices[] = {-1,0,0, 0,-1,0, -1,-1,0}`;
 //! 2. the vertex shader: here the identity (the positions are already in

@@ -1,4 +1,4 @@
-//! Seed 004's midpoint / Bresenham algorithm, step by step, on the line from
+//! The line-drawing slides' midpoint / Bresenham algorithm, step by step, on the line from
 //! pixel (0, 0) to pixel (7, 3): each column's decision variable
 //! `d = f(x + 1, y + 0.5)` and the choice it makes.
 //!

@@ -1,4 +1,4 @@
-//! Seed 002's depth-buffer example: a blue triangle at depth 0.5 and a red
+//! The rasterization slides' depth-buffer example: a blue triangle at depth 0.5 and a red
 //! one at depth 0.8 on a 14 x 9 grid, drawn in both orders. The depth
 //! buffer starts at 1.0 and keeps a fragment only if `f.z < depthBuffer`,
 //! so both orders give the same picture.

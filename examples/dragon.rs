@@ -1,5 +1,5 @@
 //! The Stanford dragon (the bundled quarter-resolution scan, `dragon_vrip_res4`)
-//! rendered by the 3D pipeline, as in seed 003: camera, vertex shader,
+//! rendered by the 3D pipeline, as in the software-rasterizer article: camera, vertex shader,
 //! clipping, perspective divide, back-face culling, viewport, a
 //! rasterizer back-end, the depth test and diffuse shading. Every triangle
 //! back-end renders it; the buffers are compared bit for bit and the

@@ -1,4 +1,4 @@
-//! Seed 004's line algorithms side by side on one line, from pixel (1, 1)
+//! The line-drawing slides' line algorithms side by side on one line, from pixel (1, 1)
 //! to pixel (13, 6): direct evaluation of y = m x + b, the incremental
 //! DDA, midpoint / Bresenham, Wu's anti-aliased line and the
 //! Direct3D / Vulkan diamond-exit rule. Each prints the pixels it chose,

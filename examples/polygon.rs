@@ -1,5 +1,5 @@
 //! A polygon with a hole, triangulated by `spade` (constrained Delaunay),
-//! then drawn by every triangle back-end: seed 004's "more general polygons
+//! then drawn by every triangle back-end: the line-drawing slides' "more general polygons
 //! can be broken down into triangles". The triangles share their edges
 //! exactly, and under the top-left rule every pixel inside is drawn once:
 //! no gaps, no double draws. Under the inclusive rule the shared edges'

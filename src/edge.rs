@@ -3,7 +3,7 @@
 //! # The edge function
 //!
 //! For an edge from `A` to `B` and a sample `P`, the course's *implicit line
-//! equation* (seed 000) is
+//! equation* (the course chapter) is
 //!
 //! ```text
 //! line(A, B, P) = (B.y - A.y) * P.x + (A.x - B.x) * P.y + B.x * A.y - A.x * B.y
@@ -11,7 +11,7 @@
 //!
 //! It is zero on the line through `A` and `B`, positive on one side and
 //! negative on the other, and equals twice the signed area of the triangle
-//! `(A, B, P)` (seed 002's "edge side function"). Evaluated on snapped
+//! `(A, B, P)` (the rasterization slides' "edge side function"). Evaluated on snapped
 //! coordinates (see [`crate::fixed`]) it is an exact `i64`.
 //!
 //! # Triangle set-up
@@ -21,7 +21,7 @@
 //! `E0 = line(v1, v2, P)`, `E1 = line(v2, v0, P)`, `E2 = line(v0, v1, P)`.
 //! Then the barycentric coordinates are `alpha = E0 / area`,
 //! `beta = E1 / area`, `gamma = E2 / area` with `area = E0(v0) = E1(v1) =
-//! E2(v2)`, twice the signed area (seed 000's `line(B,C,P) / line(B,C,A)`).
+//! E2(v2)`, twice the signed area (the course chapter's `line(B,C,P) / line(B,C,A)`).
 //! Triangles of either winding are accepted: when the area is negative, all
 //! three edge functions and the area are negated, which leaves the
 //! barycentrics unchanged and makes "inside" mean `E >= 0` on every edge.
@@ -40,7 +40,7 @@
 //! use rasterlab::edge::{FillRule, TriangleSetup};
 //! use rasterlab::fixed::FixedPoint;
 //!
-//! // rules.md's known answer: the 5x5 square split along its diagonal.
+//! // the rules' known answer: the 5x5 square split along its diagonal.
 //! let p = |x: f32, y: f32| FixedPoint::snap(x, y).unwrap();
 //! let upper = TriangleSetup::new(0, [p(0., 0.), p(5., 0.), p(5., 5.)], FillRule::TopLeft).unwrap();
 //! let lower = TriangleSetup::new(1, [p(0., 5.), p(0., 0.), p(5., 5.)], FillRule::TopLeft).unwrap();
@@ -159,12 +159,12 @@ pub enum FillRule {
     TopLeft,
     /// The mirror image: bottom and right edges own their ties. Watertight.
     BottomRight,
-    /// Seed 004's robust strategy: an edge belongs to the triangle lying on
+    /// The line-drawing slides' robust strategy: an edge belongs to the triangle lying on
     /// the same side of it as a chosen off-screen point
     /// ([`OFFSCREEN_POINT`]); when the edge's line runs through that point,
     /// a secondary point ([`SECONDARY_OFFSCREEN_POINT`]) decides. Watertight.
     OffscreenPoint,
-    /// Every edge owns its ties (`E >= 0`, seed 000's `0 <= alpha <= 1`):
+    /// Every edge owns its ties (`E >= 0`, the course chapter's `0 <= alpha <= 1`):
     /// shared edges are drawn twice.
     Inclusive,
     /// No edge owns its ties (`E > 0`): shared edges are drawn by neither
@@ -346,7 +346,7 @@ pub struct TriangleSetup {
     /// The fill rule the biases were computed for.
     pub rule: FillRule,
     /// The pixels whose sample points lie in the triangle's bounding box
-    /// (seed 002's AABBox), not yet clipped to any target.
+    /// (the rasterization slides' AABBox), not yet clipped to any target.
     pub bounds: PixelRect,
 }
 
@@ -419,7 +419,7 @@ impl TriangleSetup {
 
     /// How the three edge values change from one pixel's sample to the
     /// next: per pixel right, and per pixel down (the incremental
-    /// evaluation of seed 002).
+    /// evaluation of the rasterization slides).
     #[inline]
     pub fn pixel_steps(&self) -> ([i64; 3], [i64; 3]) {
         (

@@ -15,7 +15,7 @@
 //! pipeline clips against it first, so it never produces them).
 //!
 //! Pixel `(i, j)` has its sample point at its centre `(i + 0.5, j + 0.5)`,
-//! which is `256 i + 128` in fixed point (seed 002 writes the same centre in
+//! which is `256 i + 128` in fixed point (the rasterization slides write the same centre in
 //! normalised device coordinates as `x = (i + 0.5) / w * 2 - 1`).
 //!
 //! ```

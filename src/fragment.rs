@@ -1,6 +1,6 @@
 //! Fragments and the sink every back-end writes them into.
 //!
-//! A **fragment** is a candidate pixel (seed 002): a back-end decides only
+//! A **fragment** is a candidate pixel (the rasterization slides): a back-end decides only
 //! *which* pixels a primitive covers, and hands each one to a
 //! [`FragmentSink`]. Triangle fragments carry the exact integer edge values
 //! at the pixel's sample point, so whatever receives them (the shared

@@ -1,4 +1,4 @@
-//! Zoomed pictures of the pixel grid, as in seed 002's slides.
+//! Zoomed pictures of the pixel grid, as in the rasterization slides.
 //!
 //! Each pixel is drawn as a large cell with its centre marked (the sample
 //! point every test is made at), and over the grid the **true** geometry:
@@ -52,9 +52,9 @@ use std::path::Path;
 
 /// A cell no back-end looked at.
 pub const UNTESTED: [u8; 3] = [255, 255, 255];
-/// A cell whose inside test failed (seed 002's red).
+/// A cell whose inside test failed (the rasterization slides' red).
 pub const TESTED_OUTSIDE: [u8; 3] = [235, 110, 100];
-/// A cell that became a fragment (seed 002's green).
+/// A cell that became a fragment (the rasterization slides' green).
 pub const INSIDE: [u8; 3] = [70, 180, 90];
 /// Heat map: covered as often as a watertight rule covers it.
 pub const AS_REFERENCE: [u8; 3] = [200, 225, 205];
@@ -288,7 +288,7 @@ impl GridPicture {
         Ok(picture)
     }
 
-    /// Seed 002's depth buffer after the whole scene: each cell in the
+    /// The rasterization slides' depth buffer after the whole scene: each cell in the
     /// colour it was drawn, labelled with its depth (1.0 where nothing
     /// was drawn).
     pub fn depth_buffer(scene: &Scene2D, rule: FillRule) -> Result<GridPicture> {

@@ -46,7 +46,7 @@
 //! ```
 //! use rasterlab::{backend, edge::FillRule, scene::Scene2D, shader::Flat};
 //!
-//! // Seed 002's depth-buffer example, drawn by every triangle back-end.
+//! // The rasterization slides' depth-buffer example, drawn by every triangle back-end.
 //! let scene = Scene2D::depth_example(true);
 //! let reference = scene.render(backend::triangle_backends()[0], FillRule::TopLeft, &Flat).unwrap().0;
 //! for b in backend::triangle_backends() {

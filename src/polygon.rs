@@ -1,6 +1,6 @@
 //! Simple polygons (with holes) and their constrained Delaunay triangulation.
 //!
-//! Seed 004: "more general polygons can be broken down into triangles and
+//! The line-drawing slides: "more general polygons can be broken down into triangles and
 //! are therefore also covered". A [`Polygon`] is an outer ring and any
 //! number of hole rings of snapped points. [`Polygon::triangulate`] hands
 //! them to `spade`'s constrained Delaunay triangulation, with every ring

@@ -37,7 +37,7 @@ pub enum Shading {
     Flat,
     /// Lit per vertex, colours interpolated (Gouraud).
     Gouraud,
-    /// Lit per fragment with the interpolated normal (diffuse, seed 003).
+    /// Lit per fragment with the interpolated normal (diffuse, the software-rasterizer article).
     #[default]
     Diffuse,
     /// The interpolated normal as a colour.

@@ -148,7 +148,7 @@ pub struct Report {
     pub runs: Vec<BackendRun>,
     /// The input's fill-rule heat maps (triangles and meshes).
     pub rules: Vec<RulePicture>,
-    /// Seed 004's edge-drawing problem: the pinwheel's heat maps.
+    /// The line-drawing slides' edge-drawing problem: the pinwheel's heat maps.
     pub pinwheel_rules: Vec<RulePicture>,
     /// Zoomed grid pictures per back-end (small targets only).
     pub grids: Vec<(&'static str, GridPicture)>,
@@ -493,7 +493,7 @@ td:first-child, th:first-child {{ text-align: left; }}
             h.push_str("</div>\n");
         }
         if !self.lines {
-            h.push_str("<h2>Seed 004's edge-drawing problem</h2>\n<p>Eight triangles around one pixel centre, every shared edge through pixel centres. Drawing every edge (inclusive) draws them twice; drawing none (exclusive) leaves holes; the top-left, bottom-right and off-screen point rules give each edge pixel to exactly one triangle.</p>\n");
+            h.push_str("<h2>The line-drawing slides' edge-drawing problem</h2>\n<p>Eight triangles around one pixel centre, every shared edge through pixel centres. Drawing every edge (inclusive) draws them twice; drawing none (exclusive) leaves holes; the top-left, bottom-right and off-screen point rules give each edge pixel to exactly one triangle.</p>\n");
             h.push_str(&legend);
             rule_table(&mut h, "pinwheel", &self.pinwheel_rules);
             h.push_str("<div class=\"row\">\n");

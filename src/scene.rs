@@ -1,8 +1,8 @@
 //! Small 2D scenes in screen pixels, and helpers to draw them.
 //!
 //! A [`Scene2D`] is a list of snapped triangles with a depth and colour per
-//! vertex. The built-in scenes are the course's examples: seed 002's
-//! depth-buffer example, rules.md's split square, a pinwheel of triangles
+//! vertex. The built-in scenes are the course's examples: the rasterization slides'
+//! depth-buffer example, the rules' split square, a pinwheel of triangles
 //! around one pixel centre and a fan.
 
 use crate::edge::{FillRule, PixelRect, TriangleSetup};
@@ -27,9 +27,9 @@ pub struct Scene2D {
     pub vertices: Vec<[ShadedVertex; 3]>,
 }
 
-/// The blue of seed 000's triangle and seed 002's first triangle.
+/// The blue of the course chapter's triangle and the rasterization slides' first triangle.
 pub const BLUE: Vec4 = Vec4::new(0.0, 0.25, 1.0, 1.0);
-/// The red of seed 002's second triangle.
+/// The red of the rasterization slides' second triangle.
 pub const RED: Vec4 = Vec4::new(0.9, 0.1, 0.1, 1.0);
 
 /// A palette for colouring triangles by index.
@@ -109,7 +109,7 @@ impl Scene2D {
         })
     }
 
-    /// Seed 002's depth-buffer example on its 14 x 9 grid: a blue triangle
+    /// The rasterization slides' depth-buffer example on its 14 x 9 grid: a blue triangle
     /// at depth 0.5 and a red one at depth 0.8, drawn in that order
     /// (`blue_first`) or the other.
     pub fn depth_example(blue_first: bool) -> Scene2D {
@@ -132,7 +132,7 @@ impl Scene2D {
         }
     }
 
-    /// rules.md's known answer: a 5 x 5 square split along its diagonal
+    /// the rules' known answer: a 5 x 5 square split along its diagonal
     /// into triangles covering 15 and 10 pixels.
     pub fn split_square() -> Scene2D {
         Scene2D::from_triangles(

@@ -1,9 +1,9 @@
 //! Built-in fragment shaders.
 //!
-//! A fragment shader calculates the colour of a fragment (seed 000, step 5).
+//! A fragment shader calculates the colour of a fragment (the course chapter, step 5).
 //! [`Flat`] colours the whole primitive with its first (provoking)
 //! vertex's colour; [`Gouraud`] interpolates the vertex colours with the
-//! barycentric coordinates (seed 004: `c = alpha c_a + beta c_b + gamma c_c`).
+//! barycentric coordinates (the line-drawing slides: `c = alpha c_a + beta c_b + gamma c_c`).
 //! [`Diffuse`] lights each fragment with its interpolated normal (seed
 //! 003), [`Textured`] samples a [`Texture`] at the interpolated UV (nearest
 //! or bilinear), and [`NormalColors`] shows the normals themselves.
@@ -36,7 +36,7 @@ impl FragmentShader for Gouraud {
     }
 }
 
-/// A fixed colour for everything (seed 000's blue triangle, wireframes).
+/// A fixed colour for everything (the course chapter's blue triangle, wireframes).
 #[derive(Copy, Clone, Debug)]
 pub struct Constant(pub Vec4);
 
@@ -52,7 +52,7 @@ impl FragmentShader for Constant {
 
 /// Diffuse (Lambert) lighting per fragment: the interpolated colour times
 /// `ambient + diffuse * max(0, n . l)`, with the interpolated normal
-/// re-normalised (seed 003's diffuse shading).
+/// re-normalised (the software-rasterizer article's diffuse shading).
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Diffuse(pub DirectionalLight);
 

@@ -1,6 +1,6 @@
 //! The shared fragment stage: every back-end's fragments end here.
 //!
-//! For each fragment the stage does, in this order (seed 002, seed 003):
+//! For each fragment the stage does, in this order (the rasterization slides, the software-rasterizer article):
 //!
 //! 1. **coverage count**: the pixel's count in the coverage buffer goes up
 //!    by one, before any test, so double draws and gaps can be analysed (a
@@ -18,7 +18,7 @@
 //!    (exact in integers, so nothing from the back-end but the pixel and its
 //!    edge values is used);
 //! 5. **varyings** (colour, UV, normal), perspective-correct by default:
-//!    interpolate `a / w` and `1 / w`, divide per fragment (seed 003); or
+//!    interpolate `a / w` and `1 / w`, divide per fragment (the software-rasterizer article); or
 //!    plain linear, to show the difference;
 //! 6. the **fragment shader** computes the colour;
 //! 7. **colour write** (blended by the fragment's coverage for anti-aliased
@@ -271,7 +271,7 @@ pub struct FragmentInput {
     pub primitive: u32,
 }
 
-/// Computes a fragment's colour (seed 000, step 5).
+/// Computes a fragment's colour (the course chapter, step 5).
 pub trait FragmentShader: Sync {
     /// The fragment's linear RGBA colour; components are clamped to `[0, 1]`.
     fn shade(&self, input: &FragmentInput) -> Vec4;

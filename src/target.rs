@@ -1,8 +1,8 @@
 //! The render target: colour buffer, depth buffer and coverage-count buffer.
 //!
-//! The **colour buffer** holds one RGBA8 colour per pixel (seed 000). The
+//! The **colour buffer** holds one RGBA8 colour per pixel (the course chapter). The
 //! **depth buffer** holds one `f32` per pixel and starts at `1.0`, the far
-//! plane (seed 002, seed 003). The **coverage buffer** counts every
+//! plane (the rasterization slides, the software-rasterizer article). The **coverage buffer** counts every
 //! fragment that reached a pixel, before the depth test: it is how
 //! rasterlab shows double-drawn pixels (count 2) and gaps (count 0) on
 //! shared edges.
@@ -23,7 +23,7 @@ pub const MAX_TARGET_SIDE: u32 = 16_384;
 pub enum DepthTest {
     /// Never passes.
     Never,
-    /// `z < stored` (the default; seed 002's test).
+    /// `z < stored` (the default; the rasterization slides' test).
     #[default]
     Less,
     /// `z == stored`.
@@ -114,7 +114,7 @@ pub struct DepthState {
 }
 
 impl DepthState {
-    /// `less` with writes on: seed 002's depth buffer.
+    /// `less` with writes on: the rasterization slides' depth buffer.
     pub const DEFAULT: DepthState = DepthState {
         test: DepthTest::Less,
         write: true,

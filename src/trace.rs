@@ -1,7 +1,7 @@
 //! Step-by-step traces of one algorithm on one small input, in the
 //! course's terms, as plain-text tables (what `rasterlab explain` prints).
 //!
-//! * [`bresenham_trace`]: seed 004's midpoint loop, each column's `x`, `y`,
+//! * [`bresenham_trace`]: the line-drawing slides' midpoint loop, each column's `x`, `y`,
 //!   decision variable `d = f(x + 1, y + 1/2)` and the choice it makes;
 //! * [`line_trace`] for `direct` and `dda`: each column's exact `y` and
 //!   the row it rounds to;
@@ -17,7 +17,7 @@
 //! * [`wu_trace`]: each column's two pixels and their weights;
 //! * [`diamond_trace`]: the candidate pixels around the line and whether
 //!   the segment leaves each one's diamond;
-//! * [`depth_buffer_trace`]: seed 002's depth buffer, printed as the
+//! * [`depth_buffer_trace`]: the rasterization slides' depth buffer, printed as the
 //!   slides' matrix after each triangle.
 //!
 //! Line endpoints are given as [`LineEnds`]: pixel indices, as in the
@@ -149,7 +149,7 @@ fn frame_note(frame: &OctantFrame) -> String {
     }
 }
 
-/// Seed 004's midpoint / Bresenham loop on one line.
+/// The line-drawing slides' midpoint / Bresenham loop on one line.
 pub fn bresenham_trace(ends: &LineEnds) -> String {
     let frame = OctantFrame::new(ends.from, ends.to);
     let mut out = String::new();
@@ -461,7 +461,7 @@ pub fn scanline_trace(
     Ok(out)
 }
 
-/// Seed 002's depth-buffer loop on a scene: each triangle in turn drawn by
+/// The rasterization slides' depth-buffer loop on a scene: each triangle in turn drawn by
 /// `backend` through the shared stage (`if f.z < depthBuffer[f.xy]: draw
 /// f, depthBuffer[f.xy] = f.z`), and the depth buffer printed after each,
 /// as the slides' matrix.

@@ -1,4 +1,4 @@
-//! Known answers, checked exactly: rules.md's 15/10 split, each fill rule's
+//! Known answers, checked exactly: the rules' 15/10 split, each fill rule's
 //! pattern on a triangle with pixel centres on all three edges, and seed
 //! 002's depth-buffer example.
 
@@ -135,7 +135,7 @@ fn a_horizontal_shared_edge_goes_to_the_triangle_below_it() {
     }
 }
 
-/// Seed 002's worked example, as written on the slides.
+/// The rasterization slides' worked example, as written on the slides.
 const DEPTH_AFTER_BOTH: [&str; 9] = [
     "1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0 1.0",
     "1.0 1.0 1.0 1.0 0.8 0.8 0.8 1.0 1.0 1.0 1.0 1.0 1.0 1.0",

@@ -20,7 +20,7 @@ use rasterlab::workload::LineWorkload;
 use std::collections::BTreeSet;
 
 type Pixels = Vec<(i64, i64)>;
-/// A seed 004 algorithm's pixel function.
+/// An algorithm of the line-drawing slides: its pixel function.
 type PixelsOf = fn(&LineSetup, &LineOptions) -> Pixels;
 /// An octant case: start, end, grid size, expected pattern.
 type OctantCase = ((f32, f32), (f32, f32), (i64, i64), &'static [&'static str]);
@@ -37,7 +37,7 @@ fn seg(a: FixedPoint, b: FixedPoint) -> LineSetup {
     }
 }
 
-/// The three seed 004 aliased algorithms, by name.
+/// The three aliased algorithms of the line-drawing slides, by name.
 fn aliased() -> [(&'static str, PixelsOf); 3] {
     [
         ("direct", Direct::pixels),
@@ -530,7 +530,7 @@ fn the_cli_prints_line_fragments_and_wu_weights() {
     let dir = std::env::temp_dir().join(format!("rasterlab-lines-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("lines.txt");
-    std::fs::write(&file, "# seed 004\n0.5 0.5 7.5 3.5\n").unwrap();
+    std::fs::write(&file, "# the line-drawing slides\n0.5 0.5 7.5 3.5\n").unwrap();
     let run = |args: &[&str]| {
         std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
             .args(args)

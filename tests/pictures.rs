@@ -167,7 +167,7 @@ fn the_bounding_box_picture_is_a_red_frame_around_the_fragments() {
     assert!(svg.contains("bbox, top-left rule: 20 pixels tested"));
 }
 
-/// Seed 002's depth buffer as a picture: every cell labelled with its
+/// The rasterization slides' depth buffer as a picture: every cell labelled with its
 /// depth, as on the slides.
 #[test]
 fn the_depth_buffer_picture_labels_every_cell() {
@@ -180,7 +180,7 @@ fn the_depth_buffer_picture_labels_every_cell() {
     assert_eq!(p.to_svg().matches(">0.5</text>").count(), 19);
 }
 
-/// Seed 004's edge-drawing problem on the pinwheel (a 9 x 9 square of
+/// The line-drawing slides' edge-drawing problem on the pinwheel (a 9 x 9 square of
 /// pixel centres, eight triangles around the hub (4, 4), every edge through
 /// pixel centres). Top-left covers the 8 x 8 block away from the square's
 /// right and bottom sides, bottom-right the block away from its left and

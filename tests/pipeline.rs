@@ -48,7 +48,7 @@ fn ascii(target: &RenderTarget) -> Vec<String> {
         .collect()
 }
 
-/// Seed 000's vertex array, `-1,0,0, 0,-1,0, -1,-1,0`, taken unchanged by
+/// The course chapter's vertex array, `-1,0,0, 0,-1,0, -1,-1,0`, taken unchanged by
 /// the vertex shader (positions are clip space, w = 1), lands on the
 /// screen at (0, 4), (4, 8), (0, 8) of an 8x8 target. Its diagonal is a
 /// right edge, so pixel centres on it belong to the neighbour: six pixels.

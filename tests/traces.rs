@@ -4,7 +4,7 @@ use proptest::prelude::*;
 use rasterlab::edge::FillRule;
 use rasterlab::trace::{bresenham_trace, line_trace, scanline_trace, triangle_trace, LineEnds};
 
-/// Seed 004's midpoint loop on (0, 0) -> (7, 3): f(x, y) = -3 x + 7 y, so
+/// The line-drawing slides' midpoint loop on (0, 0) -> (7, 3): f(x, y) = -3 x + 7 y, so
 /// d starts at f(1, 1/2) = 0.5 and then adds -3 (keep y) or -3 + 7 (step).
 #[test]
 fn bresenham_0_0_7_3_matches_the_hand_worked_table() {

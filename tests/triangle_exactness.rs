@@ -1,6 +1,6 @@
 //! Every triangle back-end emits exactly the fragments of the `naive`
 //! reference, under every fill rule, on random triangles, random meshes
-//! (spade triangulations of random polygons) and rules.md's adversarial cases.
+//! (spade triangulations of random polygons) and the rules' adversarial cases.
 
 mod common;
 
@@ -57,7 +57,7 @@ fn every_backend_matches_naive_on_the_adversarial_cases() {
     }
 }
 
-/// rules.md's "adversarial cases worth generating", by name.
+/// the rules' "adversarial cases worth generating", by name.
 pub fn adversarial_cases() -> Vec<(&'static str, Vec<[FixedPoint; 3]>)> {
     let s = 1.0 / 256.0;
     let c = (20.5f32, 20.5f32);

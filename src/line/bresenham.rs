@@ -1,4 +1,4 @@
-//! `bresenham`: the midpoint / Bresenham algorithm (seed 004).
+//! `bresenham`: the midpoint / Bresenham algorithm (the line-drawing slides).
 //!
 //! From pixel `(x, y)` the next pixel to the right is either `(x + 1, y)` or
 //! `(x + 1, y + 1)`. The choice is made by evaluating the implicit line

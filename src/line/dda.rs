@@ -1,4 +1,4 @@
-//! `dda`: the incremental version of direct drawing (seed 004).
+//! `dda`: the incremental version of direct drawing (the line-drawing slides).
 //!
 //! ```text
 //! y = y0

@@ -1,4 +1,4 @@
-//! `direct`: seed 004's direct drawing, `y = m (x - x0) + y0` at every column.
+//! `direct`: the line-drawing slides' direct drawing, `y = m (x - x0) + y0` at every column.
 //!
 //! ```text
 //! m = (y1 - y0) / (x1 - x0)

@@ -1,6 +1,6 @@
 //! Line rasterizer back-ends.
 //!
-//! Seed 004's algorithms assume a line with more run than rise, drawn left
+//! The line-drawing slides' algorithms assume a line with more run than rise, drawn left
 //! to right (the first octant, slope in `[0, 1]`); every other direction is
 //! handled **by symmetry**: [`OctantFrame`] mirrors and swaps the axes so
 //! the segment runs along `+u` with `0 <= dv <= du`, the algorithm picks one
@@ -11,7 +11,7 @@
 //! coordinates, not necessarily on a pixel centre. The endpoint pixels are
 //! the pixels containing the endpoints, and each column's row is the
 //! nearest pixel centre to the ideal line, **ties going to the row nearer
-//! the start** (seed 004's midpoint test: only `d < 0` steps up).
+//! the start** (the line-drawing slides' midpoint test: only `d < 0` steps up).
 //!
 //! Options ([`LineOptions`]): 8- or 4-connected runs, both endpoints drawn
 //! or half-open (the end pixel left out, so a polyline's shared vertices
@@ -84,7 +84,7 @@ pub enum Endpoints {
     HalfOpen,
 }
 
-/// Options of the seed 004 line algorithms.
+/// Options of the line algorithms of the line-drawing slides.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub struct LineOptions {
     /// 8- or 4-connected.
@@ -269,7 +269,7 @@ impl OctantFrame {
     }
 
     /// `du * v(i)`: the ideal line's minor coordinate at column `i`'s centre,
-    /// times `du` so that it stays an exact integer (seed 004's
+    /// times `du` so that it stays an exact integer (the line-drawing slides'
     /// `y = m (x - x0) + y0` with `m = dv / du`).
     ///
     /// Exact in `i64`: snapped coordinates lie within the guard band
@@ -319,7 +319,7 @@ fn major_minor(p: FixedPoint, swap: bool) -> (i64, i64) {
     }
 }
 
-/// The frame a seed 004 algorithm walks, given the options: from `from`, or
+/// The frame an algorithm of the line-drawing slides walks, given the options: from `from`, or
 /// for the symmetric variant from the endpoint with the smaller major
 /// coordinate (the pixels are then re-ordered into the direction of travel).
 pub fn walk_frame(line: &LineSetup, options: &LineOptions) -> (OctantFrame, bool) {
@@ -371,7 +371,7 @@ pub fn finish_pixels(
     pixels
 }
 
-/// The `rasterize` of a seed 004 aliased algorithm given its pixel
+/// The `rasterize` of an aliased algorithm of the line-drawing slides given its pixel
 /// function: each segment's pixels, in the order of travel, clipped to the
 /// viewport.
 pub fn rasterize_aliased(

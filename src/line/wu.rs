@@ -1,4 +1,4 @@
-//! `wu`: Xiaolin Wu's anti-aliased lines (seed 004: "multiple shades of a
+//! `wu`: Xiaolin Wu's anti-aliased lines (the line-drawing slides: "multiple shades of a
 //! color can be used to draw anti-aliased lines").
 //!
 //! At every column the ideal line's exact height `y` falls between two

@@ -1,6 +1,6 @@
 //! Indexed triangle meshes and their loaders.
 //!
-//! A [`Mesh`] is the course's *vertex specification* (seed 000, step 1) for
+//! A [`Mesh`] is the course's *vertex specification* (the course chapter, step 1) for
 //! real data: an array of vertex positions and an array of triangles, each
 //! three indices into it. Loaders:
 //!

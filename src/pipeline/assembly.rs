@@ -1,4 +1,4 @@
-//! Primitive assembly (seed 000, step 3): grouping vertices into triangles.
+//! Primitive assembly (the course chapter, step 3): grouping vertices into triangles.
 //!
 //! The vertex stream is either the vertices in order or an index buffer
 //! into them, and its [`Topology`] says how consecutive entries form
@@ -13,7 +13,7 @@
 //! ```
 //! use rasterlab::pipeline::assembly::{assemble, Topology};
 //!
-//! // Seed 000: three vertices, no index buffer, one triangle.
+//! // The course chapter: three vertices, no index buffer, one triangle.
 //! assert_eq!(assemble(Topology::List, None, 3).unwrap(), vec![[0, 1, 2]]);
 //! assert_eq!(assemble(Topology::Strip, None, 5).unwrap(), vec![[0, 1, 2], [2, 1, 3], [2, 3, 4]]);
 //! assert_eq!(assemble(Topology::Fan, Some(&[4, 0, 1, 2]), 5).unwrap(), vec![[4, 0, 1], [4, 1, 2]]);

@@ -1,4 +1,4 @@
-//! A camera that frames a mesh: view and projection matrices (seed 003).
+//! A camera that frames a mesh: view and projection matrices (the software-rasterizer article).
 
 use glam::{Mat4, Vec3};
 
@@ -63,7 +63,7 @@ impl Camera {
     }
 
     /// View space to clip space, OpenGL convention (`-w <= z <= w`), as in
-    /// seed 003.
+    /// the software-rasterizer article.
     pub fn projection(&self) -> Mat4 {
         Mat4::perspective_rh_gl(self.fov_y, self.aspect, self.near, self.far)
     }

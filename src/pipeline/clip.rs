@@ -1,4 +1,4 @@
-//! Clipping in homogeneous clip space (seed 003).
+//! Clipping in homogeneous clip space (the software-rasterizer article).
 //!
 //! A clip-space point `(x, y, z, w)` is inside the view frustum when
 //! `-w <= x, y, z <= w` (after the perspective divide the frustum is the
@@ -8,14 +8,14 @@
 //!
 //! Planes clipped against, each as `distance(p) >= 0`:
 //!
-//! * **near** `z + w >= 0` and **far** `w - z >= 0`, exactly as in seed 003;
+//! * **near** `z + w >= 0` and **far** `w - z >= 0`, exactly as in the software-rasterizer article;
 //! * `w >= W_MIN`, so that no vertex with `w <= 0` survives even for
 //!   projection matrices without a near plane;
 //! * four **guard-band** planes `|x|, |y| <= g w`, placed so that every
 //!   surviving vertex lands within [`GUARD_LIMIT_PX`] pixels of the origin
 //!   after the viewport transform. The actual screen edges are *not*
 //!   clipped against: the rasterizer's bounding box is clamped to the
-//!   viewport, as in seed 003, so only triangles reaching far outside the
+//!   viewport, as in the software-rasterizer article, so only triangles reaching far outside the
 //!   screen are cut, and only to keep their snapped coordinates exact.
 //!
 //! A triangle with all three vertices inside every plane is accepted as is

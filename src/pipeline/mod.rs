@@ -1,7 +1,7 @@
 //! The 3D pipeline: from vertices to the triangle back-ends.
 //!
-//! The course's five steps (seed 000) with the article's frame changes
-//! (seed 003):
+//! The course's five steps (the course chapter) with the article's frame changes
+//! (the software-rasterizer article):
 //!
 //! ```text
 //! 1. vertex specification   positions (+ normals, UVs, colours), index buffer   vertex::MeshVertex, mesh::Mesh

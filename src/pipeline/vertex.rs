@@ -1,5 +1,5 @@
-//! Vertex specification and the vertex shader (seed 000, steps 1 and 2;
-//! seed 003's frame changes).
+//! Vertex specification and the vertex shader (the course chapter, steps 1 and 2;
+//! the software-rasterizer article's frame changes).
 //!
 //! A vertex shader takes one vertex and returns its position in homogeneous
 //! **clip space** plus the values to interpolate across the triangle. It is
@@ -29,7 +29,7 @@ where
     }
 }
 
-/// Seed 000's vertex specification: a flat array of `x, y, z` floats, three
+/// The course chapter's vertex specification: a flat array of `x, y, z` floats, three
 /// per vertex, as in its C listing.
 ///
 /// ```
@@ -132,7 +132,7 @@ impl Transform {
         }
     }
 
-    /// The identity: positions are already in clip space (seed 000).
+    /// The identity: positions are already in clip space (the course chapter).
     pub fn identity() -> Transform {
         Transform::new(Mat4::IDENTITY, Mat4::IDENTITY, Mat4::IDENTITY)
     }

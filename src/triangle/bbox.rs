@@ -1,10 +1,10 @@
-//! `bbox`: bounding box, then the edge-function test per pixel (seed 002).
+//! `bbox`: bounding box, then the edge-function test per pixel (the rasterization slides).
 //!
 //! Testing every pixel of the screen wastes work on small triangles. Seed
 //! 002's answer is the **axis-aligned bounding box**: only the pixels whose
 //! sample points lie between the triangle's smallest and largest vertex
 //! coordinates can be inside, so only those are tested. For each of them
-//! the three edge functions (seed 000's implicit line equation, which give
+//! the three edge functions (the course chapter's implicit line equation, which give
 //! the barycentric coordinates) are evaluated directly, with
 //! multiplications, and the pixel is a fragment when all three pass.
 //!

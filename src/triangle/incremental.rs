@@ -5,7 +5,7 @@
 //! fixed-point units). The back-end evaluates the three edge functions
 //! once, at the first sample of the bounding box, and from then on only
 //! adds: the inner loop has no multiplication, just three additions and
-//! the sign test. It is the same idea as seed 004's incremental line
+//! the sign test. It is the same idea as the line-drawing slides' incremental line
 //! algorithm (`y = y + m` instead of `y = m x + b`), and exact because the
 //! steps are integers.
 //!

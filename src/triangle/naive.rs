@@ -1,4 +1,4 @@
-//! `naive`: the course's rasterisation pseudocode, literally (seed 000).
+//! `naive`: the course's rasterisation pseudocode, literally (the course chapter).
 //!
 //! ```text
 //! for each pixel y in Y dimension
@@ -12,7 +12,7 @@
 //! ([`TriangleSetup::inside`](crate::edge::TriangleSetup::inside)). Every pixel of the target is tested against
 //! every triangle: `width x height x triangles` tests. This is the
 //! reference every other back-end is checked against, and the red/green
-//! picture of seed 002's "checking every pixel" slide.
+//! picture of the rasterization slides' "checking every pixel" slide.
 
 use super::{emit, TriangleRasterizer, TriangleSelection};
 use crate::edge::PixelRect;

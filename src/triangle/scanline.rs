@@ -1,7 +1,7 @@
 //! `scanline`: the classic scanline algorithm, with exact integer span ends.
 //!
 //! The triangle is drawn as a series of horizontal spans, one per pixel row
-//! (seed 003 calls this the historical approach):
+//! (the software-rasterizer article calls this the historical approach):
 //!
 //! 1. sort the vertices by y: `top`, `mid`, `bottom`;
 //! 2. the **long edge** runs from `top` to `bottom` and bounds every row;
