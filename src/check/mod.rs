@@ -285,8 +285,8 @@ pub fn check_with_progress(
             Box::new(Broken { error, case })
         })?;
         progress(index + 1);
-        if judge::judge(options.property, &case, &drawn).is_some() {
-            let finding = shrink::shrink(options.property, &case, subject, options.shrink_runs);
+        if let Some(first) = judge::judge(options.property, &case, &drawn) {
+            let finding = shrink::shrink(first, subject, options.shrink_runs);
             return Ok(Verdict::Fail {
                 case_index: index,
                 original: case,

@@ -24,10 +24,11 @@ use super::judge::{judge, Finding, Property};
 use super::{reference, Subject, SubjectError};
 use crate::fixed::GUARD_BAND;
 
-/// Shrinks `case`, which fails `property` for `subject`, within `runs`
-/// runs of the subject; returns what is wrong with the smallest failing
-/// case found.
-pub fn shrink(property: Property, case: &Case, subject: &mut dyn Subject, runs: u32) -> Finding {
+/// Shrinks the case of `first`, a failure of `subject` already judged,
+/// within `runs` more runs of the subject; returns what is wrong with the
+/// smallest failing case found.
+pub fn shrink(first: Finding, subject: &mut dyn Subject, runs: u32) -> Finding {
+    let property = first.property;
     let mut budget = runs;
     let mut fails = |c: &Case, budget: &mut u32| -> Option<Finding> {
         if *budget == 0 || !valid(property, c) {
@@ -37,27 +38,7 @@ pub fn shrink(property: Property, case: &Case, subject: &mut dyn Subject, runs: 
         let drawn = subject.draw(c).ok()?;
         judge(property, c, &drawn)
     };
-    let mut unlimited = u32::MAX;
-    let mut best = match fails(case, &mut unlimited) {
-        Some(f) => f,
-        None => {
-            // Flaky: the subject passed this time. Report the first run's
-            // case as drawn now.
-            let drawn = subject.draw(case).unwrap_or_default();
-            return Finding {
-                property,
-                case: case.clone(),
-                drawn,
-                expected: reference(property, case),
-                missing: Vec::new(),
-                extra: Vec::new(),
-                problems: vec![
-                    "the program failed this case once and passed it when run again".into(),
-                ],
-                diagnosis: None,
-            };
-        }
-    };
+    let mut best = first;
     'improve: while budget > 0 {
         let focus = best
             .extra

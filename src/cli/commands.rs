@@ -396,37 +396,37 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         )));
     }
     let mut target = RenderTarget::new(w, h)?;
+    // The back-end is looked up once, and must draw what the input holds.
+    let (name, chosen) = match &shapes {
+        Drawing::Triangles(_) => {
+            let name = args.backend.as_deref().unwrap_or("scanline");
+            (name, backend(name)?)
+        }
+        Drawing::Lines(..) => {
+            let name = args.backend.as_deref().unwrap_or("bresenham");
+            (name, backend(name)?)
+        }
+    };
+    let draw = |target: &mut RenderTarget| match (&shapes, chosen) {
+        (Drawing::Triangles(scene), Backend::Triangle(b)) => {
+            Ok(scene.draw(b, rule, depth, &Flat, target))
+        }
+        (Drawing::Lines(_, _, lines), Backend::Line(b)) => Ok(lines.run(b, target)),
+        (Drawing::Triangles(_), _) => Err(Error::InvalidArgument(
+            "triangles are drawn by a triangle back-end (see `rasterlab backends`)".into(),
+        )),
+        (Drawing::Lines(..), _) => Err(Error::InvalidArgument(
+            "a line set is drawn by a line back-end (see `rasterlab backends`)".into(),
+        )),
+    };
     let mut times = Vec::with_capacity(args.mesh.frames as usize);
     let mut work = WorkCounters::default();
     for _ in 0..args.mesh.frames {
         target.clear();
         let start = Instant::now();
-        work = match &shapes {
-            Drawing::Triangles(scene) => {
-                let Backend::Triangle(b) = named("scanline")? else {
-                    return Err(Error::InvalidArgument(
-                        "triangles are drawn by a triangle back-end (see `rasterlab backends`)"
-                            .into(),
-                    ));
-                };
-                scene.draw(b, rule, depth, &Flat, &mut target)
-            }
-            Drawing::Lines(_, _, lines) => {
-                let Backend::Line(b) = named("bresenham")? else {
-                    return Err(Error::InvalidArgument(
-                        "a line set is drawn by a line back-end (see `rasterlab backends`)".into(),
-                    ));
-                };
-                lines.run(b, &mut target)
-            }
-        };
+        work = draw(&mut target)?;
         times.push(start.elapsed());
     }
-    let name = match (&shapes, args.backend.as_deref()) {
-        (_, Some(n)) => n.to_string(),
-        (Drawing::Triangles(_), None) => "scanline".into(),
-        (Drawing::Lines(..), None) => "bresenham".into(),
-    };
     rasterlab::output::write_png(&args.out, &target.to_image_scaled(args.scale))?;
     say!(
         "{name}: {} primitives, {} samples tested, {} fragments -> {}",
