@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::chromium;
+use common::{chromium, HEADLESS};
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
@@ -189,6 +189,19 @@ impl DevTools {
         }
     }
 
+    /// Opens `url` in a new page, attaches this session to it, and waits
+    /// for the lab's first update to draw fragments.
+    fn open(&mut self, url: &str) {
+        let target = self.call("Target.createTarget", json!({ "url": url }), false);
+        let attached = self.call(
+            "Target.attachToTarget",
+            json!({ "targetId": target["targetId"], "flatten": true }),
+            false,
+        );
+        self.session = attached["sessionId"].as_str().unwrap().to_string();
+        self.wait_for("Number(document.body.dataset.updates || 0) >= 1 && document.querySelectorAll('#grid rect.fragment').length > 0");
+    }
+
     fn eval(&mut self, expression: &str) -> Value {
         let r = self.call(
             "Runtime.evaluate",
@@ -234,18 +247,8 @@ fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
         std::env::temp_dir().join(format!("rasterlab-lab-chromium-{}", std::process::id()));
     let mut chrome = Killed(
         Command::new(browser)
-            .args([
-                "--headless",
-                "--no-sandbox",
-                "--disable-gpu",
-                "--disable-quic",
-                "--no-first-run",
-                "--disable-background-networking",
-                "--disable-component-update",
-                "--disable-sync",
-                "--remote-debugging-port=0",
-                "--window-size=1400,1000",
-            ])
+            .args(HEADLESS)
+            .args(["--remote-debugging-port=0", "--window-size=1400,1000"])
             .arg(format!("--user-data-dir={}", profile.display()))
             .arg("about:blank")
             .stdout(Stdio::null())
@@ -271,18 +274,7 @@ fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
         session: String::new(),
         next_id: 0,
     };
-    let target = dev.call(
-        "Target.createTarget",
-        json!({ "url": format!("http://{}/", lab.address) }),
-        false,
-    );
-    let attached = dev.call(
-        "Target.attachToTarget",
-        json!({ "targetId": target["targetId"], "flatten": true }),
-        false,
-    );
-    dev.session = attached["sessionId"].as_str().unwrap().to_string();
-    dev.wait_for("Number(document.body.dataset.updates || 0) >= 1 && document.querySelectorAll('#grid rect.fragment').length > 0");
+    dev.open(&format!("http://{}/", lab.address));
 
     let fragments = |dev: &mut DevTools| {
         dev.eval("document.querySelectorAll('#grid rect.fragment').length")
@@ -366,14 +358,7 @@ fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
 
     // A shared link restores the same state in a fresh page.
     let shared = dev.eval("location.href").as_str().unwrap().to_string();
-    let target = dev.call("Target.createTarget", json!({ "url": shared }), false);
-    let attached = dev.call(
-        "Target.attachToTarget",
-        json!({ "targetId": target["targetId"], "flatten": true }),
-        false,
-    );
-    dev.session = attached["sessionId"].as_str().unwrap().to_string();
-    dev.wait_for("Number(document.body.dataset.updates || 0) >= 1 && document.querySelectorAll('#grid rect.fragment').length > 0");
+    dev.open(&shared);
     assert_eq!(
         fragments(&mut dev),
         after,

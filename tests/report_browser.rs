@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::chromium;
+use common::{chromium, HEADLESS};
 use rasterlab::report::{CompareInput, Report};
 use rasterlab::scene::Scene2D;
 use std::path::Path;
@@ -18,18 +18,8 @@ use std::process::Command;
 /// Runs headless Chromium on `page` with extra arguments; returns stdout.
 fn run_chromium(browser: &Path, profile: &Path, page: &Path, extra: &[&str]) -> String {
     let output = Command::new(browser)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--hide-scrollbars",
-            "--virtual-time-budget=10000",
-        ])
+        .args(HEADLESS)
+        .args(["--hide-scrollbars", "--virtual-time-budget=10000"])
         .arg(format!("--user-data-dir={}", profile.display()))
         .args(extra)
         .arg(format!("file://{}", page.display()))

@@ -136,3 +136,17 @@ pub fn chromium() -> Option<std::path::PathBuf> {
         })
     })
 }
+
+/// The flags every headless Chromium run of the tests starts with: no
+/// sandbox (root), no GPU, and no background connections, which this
+/// machine's closed network would refuse.
+pub const HEADLESS: [&str; 8] = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+];
