@@ -5,7 +5,7 @@
 //!   vertex), against `euc` doing the same; rasterlab on one thread per
 //!   back-end, and `tiled` on two;
 //! * `fill`, `size`, `sliver`: 2D triangles with depth test and colour
-//!   write (see `rasterlab::workload`), against `tiny-skia` filling the same
+//!   write (see `rasterlab::measure::workload`), against `tiny-skia` filling the same
 //!   triangles without anti-aliasing (colour only, no depth buffer);
 //! * `lines`: a million short and ten thousand long lines, every line
 //!   back-end through the stage and the fast path, against the
@@ -22,14 +22,14 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::{Mat4, Vec3};
-use rasterlab::backend::{line_backends, triangle_backend, triangle_backends};
-use rasterlab::fixed::FixedPoint;
-use rasterlab::line::pixel_containing;
-use rasterlab::mesh::Mesh;
-use rasterlab::pipeline::CullMode;
-use rasterlab::render::{MeshRenderer, RenderSettings, Shading};
-use rasterlab::target::RenderTarget;
-use rasterlab::workload::{self, LineWorkload, TriangleWorkload};
+use rasterlab::geometry::mesh::Mesh;
+use rasterlab::geometry::pipeline::CullMode;
+use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
+use rasterlab::measure::workload::{self, LineWorkload, TriangleWorkload};
+use rasterlab::raster::backend::{line_backends, triangle_backend, triangle_backends};
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::line::pixel_containing;
+use rasterlab::raster::target::RenderTarget;
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
@@ -94,7 +94,7 @@ fn dragon(c: &mut Criterion) {
         let mut target = RenderTarget::without_coverage(W, H).unwrap();
         let one = pool(1);
         let pixels = u64::from(W) * u64::from(H);
-        let affordable = |b: &&&dyn rasterlab::triangle::TriangleRasterizer| {
+        let affordable = |b: &&&dyn rasterlab::raster::triangle::TriangleRasterizer| {
             b.affordable(mesh.triangles.len() as u64, pixels, 2 * pixels)
         };
         for b in triangle_backends().iter().filter(affordable) {

@@ -13,14 +13,14 @@
 //!
 //! `cargo run --release --example blue_triangle`
 
-use rasterlab::backend::triangle_backend;
-use rasterlab::pipeline::assembly::{assemble, Topology};
-use rasterlab::pipeline::vertex::{positions_from_floats, Transform};
-use rasterlab::pipeline::{draw, process_triangles, PipelineOptions, Viewport};
-use rasterlab::scene::BLUE;
-use rasterlab::shader::Constant;
-use rasterlab::stage::Interpolation;
-use rasterlab::target::{DepthState, RenderTarget};
+use rasterlab::geometry::pipeline::assembly::{assemble, Topology};
+use rasterlab::geometry::pipeline::vertex::{positions_from_floats, Transform};
+use rasterlab::geometry::pipeline::{draw, process_triangles, PipelineOptions, Viewport};
+use rasterlab::geometry::scene::BLUE;
+use rasterlab::raster::backend::triangle_backend;
+use rasterlab::raster::shader::Constant;
+use rasterlab::raster::stage::Interpolation;
+use rasterlab::raster::target::{DepthState, RenderTarget};
 
 fn main() -> rasterlab::Result<()> {
     // Step 1: the vertex array, three floats (x, y, z) per vertex.

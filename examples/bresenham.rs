@@ -4,9 +4,9 @@
 //!
 //! `cargo run --release --example bresenham`
 
-use rasterlab::fixed::FixedPoint;
-use rasterlab::line::bresenham::Bresenham;
-use rasterlab::line::OctantFrame;
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::line::bresenham::Bresenham;
+use rasterlab::raster::line::OctantFrame;
 
 fn main() -> rasterlab::Result<()> {
     // Pixel (i, j) has its centre at (i + 0.5, j + 0.5).

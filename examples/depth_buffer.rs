@@ -5,10 +5,10 @@
 //!
 //! `cargo run --release --example depth_buffer`
 
-use rasterlab::backend::triangle_backend;
-use rasterlab::edge::FillRule;
-use rasterlab::scene::Scene2D;
-use rasterlab::shader::Flat;
+use rasterlab::geometry::scene::Scene2D;
+use rasterlab::raster::backend::triangle_backend;
+use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::shader::Flat;
 
 fn print_depth(title: &str, depth: &[f32]) {
     println!("{title}");

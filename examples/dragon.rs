@@ -7,10 +7,10 @@
 //!
 //! `cargo run --release --example dragon`
 
-use rasterlab::backend::triangle_backends;
-use rasterlab::mesh::Mesh;
-use rasterlab::pipeline::CullMode;
-use rasterlab::render::{MeshRenderer, RenderSettings};
+use rasterlab::geometry::mesh::Mesh;
+use rasterlab::geometry::pipeline::CullMode;
+use rasterlab::geometry::render::{MeshRenderer, RenderSettings};
+use rasterlab::raster::backend::triangle_backends;
 use std::path::Path;
 
 fn main() -> rasterlab::Result<()> {

@@ -6,11 +6,11 @@
 //!
 //! `cargo run --release --example line_algorithms`
 
-use rasterlab::backend::line_backends;
-use rasterlab::edge::PixelRect;
-use rasterlab::fixed::FixedPoint;
-use rasterlab::fragment::FragmentList;
-use rasterlab::line::{LineOptions, LineSetup};
+use rasterlab::raster::backend::line_backends;
+use rasterlab::raster::edge::PixelRect;
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::fragment::FragmentList;
+use rasterlab::raster::line::{LineOptions, LineSetup};
 
 fn main() -> rasterlab::Result<()> {
     let (width, height) = (15u32, 8u32);

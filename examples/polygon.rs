@@ -7,12 +7,12 @@
 //!
 //! `cargo run --release --example polygon`
 
-use rasterlab::backend::triangle_backends;
-use rasterlab::edge::FillRule;
-use rasterlab::fixed::FixedPoint;
-use rasterlab::polygon::Polygon;
-use rasterlab::scene::Scene2D;
-use rasterlab::shader::Flat;
+use rasterlab::geometry::polygon::Polygon;
+use rasterlab::geometry::scene::Scene2D;
+use rasterlab::raster::backend::triangle_backends;
+use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::shader::Flat;
 
 fn main() -> rasterlab::Result<()> {
     let p = |x: f32, y: f32| FixedPoint::snap(x, y);

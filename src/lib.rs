@@ -17,39 +17,49 @@
 //!                                       depth buffer (starts at 1.0)
 //! ```
 //!
-//! * [`fixed`]: snapping to 1/256 pixel and the guard band;
-//! * [`edge`]: the course's implicit line equation as exact `i64` edge
-//!   functions, fill rules (top-left, bottom-right, off-screen point,
-//!   inclusive, exclusive) and triangle set-up;
-//! * [`triangle`]: the triangle back-ends, one file each;
-//! * [`fragment`]: fragments, the [`FragmentSink`](fragment::FragmentSink)
-//!   they go into, work counters;
-//! * [`stage`] and [`shader`]: the shared fragment stage and its shaders;
-//! * [`target`]: colour, depth and coverage buffers;
-//! * [`backend`]: the registry of back-ends by name;
-//! * [`line`](mod@line): the line back-ends, one file each, and their options;
-//! * [`polygon`]: simple polygons and their spade triangulation;
-//! * [`input`] and [`scene`]: text inputs and small 2D scenes;
-//! * [`mesh`]: PLY and OBJ meshes;
-//! * [`pipeline`]: vertex shaders, assembly, clipping, divide, culling,
-//!   viewport (the course's five steps for 3D input);
-//! * [`render`]: a mesh rendered end to end (camera, shading, wireframe);
-//! * [`trace`]: step-by-step traces of the algorithms for teaching;
-//! * [`grid_picture`]: zoomed pictures of the pixel grid (tested, emitted)
-//!   and fill-rule heat maps;
-//! * [`report`]: the side-by-side HTML comparison of every back-end;
-//! * [`output`]: output files checked before the work and written whole;
-//! * [`lab`]: the interactive lab's requests, answers and server;
-//! * [`check`]: check any rasterizer (a back-end, a closure, another
-//!   program) against the rules, with shrunk counterexamples.
+//! ## The map
+//!
+//! The crate is in rooms; each depends only on the rooms above it.
+//!
+//! | room | what lives there |
+//! |---|---|
+//! | [`raster`] (the core) | fixed-point snapping, edge functions and fill rules, the triangle and line back-ends (one file each) and their registry, fragments, the shared fragment stage, shaders, render targets |
+//! | [`geometry`] | where primitives come from: the 3D pipeline (vertex shader, assembly, clipping, divide, viewport, culling, drawing on one or many threads), meshes (PLY, OBJ), polygons (spade triangulation), text inputs, 2D scenes, mesh rendering |
+//! | [`measure`] | workloads and the benchmark |
+//! | [`teaching`] | step-by-step traces, grid pictures and heat maps, the side-by-side report |
+//! | [`check`] | checking any rasterizer (a back-end, a closure, another program) against the rules, with shrunk counterexamples |
+//! | [`lab`] | the interactive lab's requests, answers and server |
+//!
+//! Beside them: [`Error`] and [`Result`], and [`output`] (files checked
+//! before the work and written whole). The names most uses need are
+//! re-exported here, at the root.
+//!
+//! ## Where to start
+//!
+//! * **Studying an algorithm**: its file under [`raster::triangle`] or
+//!   [`raster::line`](mod@raster::line) explains it in the course's terms; its trace in
+//!   [`teaching::trace`] prints each step; [`teaching::grid_picture`] draws
+//!   the pixel grid. [`Scene2D`] holds the course's examples (the
+//!   depth-buffer example, the blue triangle).
+//! * **Checking a rasterizer**: [`check`] runs generated cases against the
+//!   rules and shrinks a failure; wrap yours as a [`check::Subject`] (or a
+//!   closure), or run `rasterlab check --exec` on a program in any language.
+//! * **Comparing performance**: [`measure::workload`] prepares the inputs,
+//!   [`measure::benchmark`] times every back-end; meshes are drawn by
+//!   [`MeshRenderer`].
+//! * **Adding a back-end**: implement [`TriangleRasterizer`] (or
+//!   [`LineRasterizer`]) in a file of its own and list it in
+//!   [`raster::backend`]; every command, check, report, benchmark and
+//!   test picks it up from there.
 //!
 //! ```
-//! use rasterlab::{backend, edge::FillRule, scene::Scene2D, shader::Flat};
+//! use rasterlab::raster::shader::Flat;
+//! use rasterlab::{triangle_backends, FillRule, Scene2D};
 //!
 //! // The rasterization slides' depth-buffer example, drawn by every triangle back-end.
 //! let scene = Scene2D::depth_example(true);
-//! let reference = scene.render(backend::triangle_backends()[0], FillRule::TopLeft, &Flat).unwrap().0;
-//! for b in backend::triangle_backends() {
+//! let reference = scene.render(triangle_backends()[0], FillRule::TopLeft, &Flat).unwrap().0;
+//! for b in triangle_backends() {
 //!     let (image, _work) = scene.render(*b, FillRule::TopLeft, &Flat).unwrap();
 //!     assert_eq!(image, reference, "{} differs", b.name());
 //! }
@@ -58,30 +68,30 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
-pub mod backend;
-pub mod benchmark;
-pub mod binning;
+mod names;
+
 pub mod check;
-pub mod edge;
 pub mod error;
-pub mod fixed;
-pub mod fragment;
-pub mod grid_picture;
-pub mod input;
+pub mod geometry;
 pub mod lab;
-pub mod line;
-pub mod mesh;
+pub mod measure;
 pub mod output;
-pub mod pipeline;
-pub mod polygon;
-pub mod render;
-pub mod report;
-pub mod scene;
-pub mod shader;
-pub mod stage;
-pub mod target;
-pub mod trace;
-pub mod triangle;
-pub mod workload;
+pub mod raster;
+pub mod teaching;
 
 pub use error::{Error, Result};
+pub use geometry::mesh::Mesh;
+pub use geometry::pipeline::{Geometry, PipelineOptions, Viewport};
+pub use geometry::polygon::Polygon;
+pub use geometry::render::{MeshRenderer, RenderSettings};
+pub use geometry::scene::Scene2D;
+pub use raster::backend::{
+    backend, line_backend, line_backends, triangle_backend, triangle_backends, Backend,
+};
+pub use raster::edge::{FillRule, PixelRect, TriangleSetup};
+pub use raster::fixed::{Fixed, FixedPoint};
+pub use raster::fragment::{FragmentSink, LineFragment, TriangleFragment, WorkCounters};
+pub use raster::line::{LineOptions, LineRasterizer, LineSetup};
+pub use raster::stage::{FragmentShader, FragmentStage, ShadedVertex};
+pub use raster::target::RenderTarget;
+pub use raster::triangle::{TriangleRasterizer, TriangleSelection};

@@ -3,13 +3,13 @@
 //! primitives, and an outside program passes and fails as it should
 //! through `rasterlab check --exec`.
 
-use rasterlab::backend::{line_backend, triangle_backend, triangle_backends};
 use rasterlab::check::judge::LineConvention;
 use rasterlab::check::{
     check, line_fragments, triangle_fragments, Builtin, Case, CheckOptions, Fragment, Property,
     SubjectError, Verdict,
 };
-use rasterlab::edge::FillRule;
+use rasterlab::raster::backend::{line_backend, triangle_backend, triangle_backends};
+use rasterlab::raster::edge::FillRule;
 use std::process::{Command, Output};
 
 fn options(property: Property, cases: u32, seed: u64) -> CheckOptions {
@@ -169,7 +169,7 @@ fn mutants_are_caught_with_at_most_three_primitives() {
         let keep: Vec<bool> = c
             .snapped_triangles()
             .iter()
-            .map(|t| rasterlab::edge::TriangleSetup::signed_area(*t) > 0)
+            .map(|t| rasterlab::raster::edge::TriangleSetup::signed_area(*t) > 0)
             .collect();
         triangle_fragments(scanline, c, FillRule::TopLeft)
             .into_iter()

@@ -2,12 +2,12 @@
 //! pattern on a triangle with pixel centres on all three edges, and seed
 //! 002's depth-buffer example.
 
-use rasterlab::backend::triangle_backends;
-use rasterlab::edge::FillRule;
-use rasterlab::fixed::FixedPoint;
-use rasterlab::scene::{collect_fragments, setup_triangles, Scene2D, BLUE, RED};
-use rasterlab::shader::Flat;
-use rasterlab::stage::to_rgba8;
+use rasterlab::geometry::scene::{collect_fragments, setup_triangles, Scene2D, BLUE, RED};
+use rasterlab::raster::backend::triangle_backends;
+use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::shader::Flat;
+use rasterlab::raster::stage::to_rgba8;
 
 fn snap(x: f32, y: f32) -> FixedPoint {
     FixedPoint::snap(x, y).unwrap()
@@ -228,8 +228,8 @@ fn seed_002_depth_buffer_example_matches_the_slides_in_both_drawing_orders() {
 /// blue are hidden and 8 reach the buffer at 0.8).
 #[test]
 fn seed_002_depth_buffer_trace_prints_the_slides_matrices() {
-    let bbox = rasterlab::backend::triangle_backend("bbox").unwrap();
-    let text = rasterlab::trace::depth_buffer_trace(
+    let bbox = rasterlab::raster::backend::triangle_backend("bbox").unwrap();
+    let text = rasterlab::teaching::trace::depth_buffer_trace(
         &Scene2D::depth_example(true),
         bbox,
         FillRule::TopLeft,

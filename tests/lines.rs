@@ -4,19 +4,19 @@
 //! Vulkan's tolerance, and `line_drawing` as an outside oracle.
 
 use proptest::prelude::*;
-use rasterlab::edge::PixelRect;
-use rasterlab::fixed::FixedPoint;
-use rasterlab::fragment::FragmentList;
-use rasterlab::line::bresenham::Bresenham;
-use rasterlab::line::dda::Dda;
-use rasterlab::line::diamond::{exits_diamond, Diamond};
-use rasterlab::line::direct::Direct;
-use rasterlab::line::wu::Wu;
-use rasterlab::line::{
+use rasterlab::measure::workload::LineWorkload;
+use rasterlab::raster::edge::PixelRect;
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::fragment::FragmentList;
+use rasterlab::raster::line::bresenham::Bresenham;
+use rasterlab::raster::line::dda::Dda;
+use rasterlab::raster::line::diamond::{exits_diamond, Diamond};
+use rasterlab::raster::line::direct::Direct;
+use rasterlab::raster::line::wu::Wu;
+use rasterlab::raster::line::{
     Connectivity, Endpoints, LineOptions, LineRasterizer, LineSetup, OctantFrame,
 };
-use rasterlab::target::RenderTarget;
-use rasterlab::workload::LineWorkload;
+use rasterlab::raster::target::RenderTarget;
 use std::collections::BTreeSet;
 
 type Pixels = Vec<(i64, i64)>;
@@ -469,12 +469,12 @@ fn line_backends_clip_to_the_viewport_and_reject_options_they_cannot_honour() {
 #[test]
 fn lines_are_depth_tested_against_triangles_in_the_shared_stage() {
     use glam::Vec4;
-    use rasterlab::backend::triangle_backends;
-    use rasterlab::edge::FillRule;
-    use rasterlab::scene::Scene2D;
-    use rasterlab::shader::Gouraud;
-    use rasterlab::stage::{FragmentStage, ShadedLine, ShadedVertex};
-    use rasterlab::target::{DepthState, RenderTarget};
+    use rasterlab::geometry::scene::Scene2D;
+    use rasterlab::raster::backend::triangle_backends;
+    use rasterlab::raster::edge::FillRule;
+    use rasterlab::raster::shader::Gouraud;
+    use rasterlab::raster::stage::{FragmentStage, ShadedLine, ShadedVertex};
+    use rasterlab::raster::target::{DepthState, RenderTarget};
 
     // A square at depth 0.5, and a horizontal line across it whose depth
     // goes from 0.2 (left, in front) to 0.8 (right, behind).

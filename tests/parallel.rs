@@ -5,21 +5,21 @@ mod common;
 
 use glam::{Mat4, Vec3, Vec4};
 use proptest::prelude::*;
-use rasterlab::backend::triangle_backends;
-use rasterlab::binning::draw_binned;
-use rasterlab::edge::FillRule;
-use rasterlab::fixed::FixedPoint;
-use rasterlab::fragment::{FragmentList, FragmentSink};
-use rasterlab::mesh::Mesh;
-use rasterlab::pipeline::vertex::Transform;
-use rasterlab::pipeline::{
+use rasterlab::geometry::mesh::Mesh;
+use rasterlab::geometry::pipeline::draw_binned;
+use rasterlab::geometry::pipeline::vertex::Transform;
+use rasterlab::geometry::pipeline::{
     draw, process_triangles, process_triangles_into, CullMode, Geometry, PipelineOptions, Viewport,
 };
-use rasterlab::render::{MeshRenderer, RenderSettings, Shading};
-use rasterlab::scene::setup_triangles;
-use rasterlab::shader::{Constant, Flat, Gouraud};
-use rasterlab::stage::{FragmentShader, FragmentStage, Interpolation, ShadedVertex};
-use rasterlab::target::{DepthState, DepthTest, RenderTarget};
+use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
+use rasterlab::geometry::scene::setup_triangles;
+use rasterlab::raster::backend::triangle_backends;
+use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::fragment::{FragmentList, FragmentSink};
+use rasterlab::raster::shader::{Constant, Flat, Gouraud};
+use rasterlab::raster::stage::{FragmentShader, FragmentStage, Interpolation, ShadedVertex};
+use rasterlab::raster::target::{DepthState, DepthTest, RenderTarget};
 use std::path::Path;
 
 fn pool(threads: usize) -> rayon::ThreadPool {

@@ -9,8 +9,8 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
-use rasterlab::input::parse_shapes;
-use rasterlab::mesh::{obj, ply};
+use rasterlab::geometry::input::parse_shapes;
+use rasterlab::geometry::mesh::{obj, ply};
 use std::collections::BTreeSet;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -260,7 +260,7 @@ fn gzip_compressed_ply_files_survive_mutation() {
     let file = path.to_str().unwrap().to_string();
     fuzz("ply.gz", &packed, &file, false, 800, |d| {
         std::fs::write(&path, d).unwrap();
-        rasterlab::mesh::Mesh::load(&path)
+        rasterlab::geometry::mesh::Mesh::load(&path)
             .err()
             .map(|e| e.to_string())
     });

@@ -5,16 +5,16 @@ mod common;
 
 use common::{point, quantum, SIZE};
 use proptest::prelude::*;
-use rasterlab::backend::{line_backends, triangle_backend, triangle_backends};
-use rasterlab::edge::{FillRule, PixelRect};
-use rasterlab::fixed::FixedPoint;
-use rasterlab::fragment::{FragmentList, FragmentSink, LineFragment, TriangleFragment};
-use rasterlab::grid_picture::{
+use rasterlab::geometry::scene::{setup_triangles, Scene2D};
+use rasterlab::raster::backend::{line_backends, triangle_backend, triangle_backends};
+use rasterlab::raster::edge::{FillRule, PixelRect};
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::fragment::{FragmentList, FragmentSink, LineFragment, TriangleFragment};
+use rasterlab::raster::line::LineOptions;
+use rasterlab::raster::shader::Flat;
+use rasterlab::teaching::grid_picture::{
     is_fragment_green, GridPicture, AS_REFERENCE, GAP, OVERDRAWN, OVERDRAWN_MORE, TESTED_OUTSIDE,
 };
-use rasterlab::line::LineOptions;
-use rasterlab::scene::{setup_triangles, Scene2D};
-use rasterlab::shader::Flat;
 
 /// Counts the samples a back-end reports as tested, per pixel.
 struct TestedCells(Vec<bool>);
@@ -108,11 +108,11 @@ proptest! {
     fn line_pictures_show_one_green_cell_per_pixel_chosen(
         x0 in 0u32..SIZE, y0 in 0u32..SIZE, x1 in 0u32..SIZE, y1 in 0u32..SIZE,
     ) {
-        let line = rasterlab::trace::LineEnds::pixels([x0, y0, x1, y1].map(f64::from)).unwrap();
+        let line = rasterlab::teaching::trace::LineEnds::pixels([x0, y0, x1, y1].map(f64::from)).unwrap();
         for backend in line_backends() {
             let picture = GridPicture::of_lines(*backend, &[line], &LineOptions::DEFAULT, SIZE, SIZE).unwrap();
             let mut list = FragmentList::default();
-            let setup = rasterlab::line::LineSetup {
+            let setup = rasterlab::raster::line::LineSetup {
                 id: 0,
                 from: FixedPoint::snap(x0 as f32 + 0.5, y0 as f32 + 0.5).unwrap(),
                 to: FixedPoint::snap(x1 as f32 + 0.5, y1 as f32 + 0.5).unwrap(),
@@ -240,9 +240,9 @@ fn fill_rule_heat_maps_show_seed_004s_double_draws_and_gaps() {
 /// back-ends that visit pixels one by one have no blocks.
 #[test]
 fn the_tiled_picture_frames_its_blocks_by_class() {
-    use rasterlab::triangle::tiled::BlockClass;
+    use rasterlab::raster::triangle::tiled::BlockClass;
     let triangle = [(1.0, 1.0), (60.0, 2.0), (3.0, 46.0)];
-    let tiled = rasterlab::backend::triangle_backend("tiled").unwrap();
+    let tiled = rasterlab::raster::backend::triangle_backend("tiled").unwrap();
     let picture = GridPicture::of_triangles(tiled, &[triangle], FillRule::TopLeft, 64, 48).unwrap();
     assert!(picture.blocks.len() >= 9, "{}", picture.blocks.len());
     for (r, class) in &picture.blocks {
@@ -258,7 +258,7 @@ fn the_tiled_picture_frames_its_blocks_by_class() {
     }
     assert!(picture.blocks.iter().any(|b| b.1 == BlockClass::Inside));
     assert!(picture.to_svg().contains("class=\"block\""));
-    let bbox = rasterlab::backend::triangle_backend("bbox").unwrap();
+    let bbox = rasterlab::raster::backend::triangle_backend("bbox").unwrap();
     let picture = GridPicture::of_triangles(bbox, &[triangle], FillRule::TopLeft, 64, 48).unwrap();
     assert!(picture.blocks.is_empty());
 }

@@ -5,21 +5,21 @@ mod common;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use proptest::prelude::*;
-use rasterlab::backend::{triangle_backend, triangle_backends};
-use rasterlab::edge::FillRule;
-use rasterlab::fragment::FragmentList;
-use rasterlab::mesh::Mesh;
-use rasterlab::pipeline::assembly::{assemble, Topology};
-use rasterlab::pipeline::clip::ClipVertex;
-use rasterlab::pipeline::vertex::{positions_from_floats, Transform};
-use rasterlab::pipeline::{
+use rasterlab::geometry::mesh::Mesh;
+use rasterlab::geometry::pipeline::assembly::{assemble, Topology};
+use rasterlab::geometry::pipeline::clip::ClipVertex;
+use rasterlab::geometry::pipeline::vertex::{positions_from_floats, Transform};
+use rasterlab::geometry::pipeline::{
     draw, process_triangles, CullMode, FrontFace, PipelineOptions, Viewport,
 };
-use rasterlab::render::{MeshRenderer, RenderSettings, Shading};
-use rasterlab::scene::Scene2D;
-use rasterlab::shader::{Constant, Filter, Flat, Texture, Textured};
-use rasterlab::stage::{Interpolation, ShadedVertex, Varyings};
-use rasterlab::target::{DepthState, RenderTarget};
+use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
+use rasterlab::geometry::scene::Scene2D;
+use rasterlab::raster::backend::{triangle_backend, triangle_backends};
+use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::fragment::FragmentList;
+use rasterlab::raster::shader::{Constant, Filter, Flat, Texture, Textured};
+use rasterlab::raster::stage::{Interpolation, ShadedVertex, Varyings};
+use rasterlab::raster::target::{DepthState, RenderTarget};
 use rasterlab::Error;
 use std::path::Path;
 
@@ -345,7 +345,7 @@ fn golden_images() {
                 width: 160,
                 height: 120,
                 zoom: 2.0,
-                wireframe: Some(rasterlab::backend::line_backend("bresenham").unwrap()),
+                wireframe: Some(rasterlab::raster::backend::line_backend("bresenham").unwrap()),
                 ..small_settings(Shading::Flat)
             },
         ),
@@ -505,7 +505,7 @@ fn oracle(t: &[Vec4; 3], ndc: (f64, f64)) -> Option<bool> {
     let b = m.inverse() * glam::DVec3::new(0., 0., 1.);
     let q = p[0] * b.x + p[1] * b.y + p[2] * b.z;
     // Inside the triangle, beyond the w >= W_MIN plane, between near and far.
-    let w_min = f64::from(rasterlab::pipeline::clip::W_MIN);
+    let w_min = f64::from(rasterlab::geometry::pipeline::clip::W_MIN);
     let margins = [
         b.x,
         b.y,
@@ -560,7 +560,7 @@ proptest! {
         let shader = |v: &Vec4| ClipVertex { position: *v, varyings: Varyings::default() };
         let geometry = process_triangles(&tri, &[[0, 1, 2]], &shader, Viewport { width: w, height: h }, &PipelineOptions::default()).unwrap();
         let mut list = FragmentList::default();
-        triangle_backends()[2].rasterize(&geometry.setups, rasterlab::edge::PixelRect::of_target(w, h), &mut list);
+        triangle_backends()[2].rasterize(&geometry.setups, rasterlab::raster::edge::PixelRect::of_target(w, h), &mut list);
         let mut covered = vec![false; (w * h) as usize];
         for f in &list.triangles {
             prop_assert!(!covered[(f.y * w + f.x) as usize], "pixel ({}, {}) drawn twice", f.x, f.y);
@@ -612,7 +612,7 @@ proptest! {
         let n = soup.len();
         let vertex = |i: usize| {
             // Distinct constant depths, distinct colours.
-            [ShadedVertex::flat((i as f32 + 1.0) / 16.0, rasterlab::scene::palette(i)); 3]
+            [ShadedVertex::flat((i as f32 + 1.0) / 16.0, rasterlab::geometry::scene::palette(i)); 3]
         };
         let order: Vec<usize> = order.into_iter().filter(|&i| i < n).collect();
         let scene = |idx: &[usize]| Scene2D {

@@ -378,12 +378,17 @@ fn gzip(bytes: &[u8]) -> Vec<u8> {
 fn gzip_members_are_all_read_and_their_trailers_checked() {
     let bunny = std::fs::read(BUNNY).unwrap();
     let (a, b) = bunny.split_at(bunny.len() / 2);
-    let whole = rasterlab::mesh::Mesh::load(Path::new(BUNNY)).unwrap();
+    let whole = rasterlab::geometry::mesh::Mesh::load(Path::new(BUNNY)).unwrap();
     let multi = temp_file("multi.ply.gz", &[gzip(a), gzip(b)].concat());
-    assert_eq!(rasterlab::mesh::Mesh::load(&multi).unwrap(), whole);
+    assert_eq!(
+        rasterlab::geometry::mesh::Mesh::load(&multi).unwrap(),
+        whole
+    );
     let packed = gzip(&bunny);
     let cut = temp_file("cut.ply.gz", &packed[..packed.len() - 3]);
-    let err = rasterlab::mesh::Mesh::load(&cut).unwrap_err().to_string();
+    let err = rasterlab::geometry::mesh::Mesh::load(&cut)
+        .unwrap_err()
+        .to_string();
     assert!(
         err.contains("cut.ply.gz") && err.contains("end of file"),
         "{err}"
@@ -392,7 +397,9 @@ fn gzip_members_are_all_read_and_their_trailers_checked() {
     let at = bad.len() - 6;
     bad[at] ^= 0xff;
     let crc = temp_file("crc.ply.gz", &bad);
-    let err = rasterlab::mesh::Mesh::load(&crc).unwrap_err().to_string();
+    let err = rasterlab::geometry::mesh::Mesh::load(&crc)
+        .unwrap_err()
+        .to_string();
     assert!(
         err.contains("crc.ply.gz") && err.contains("checksum"),
         "{err}"

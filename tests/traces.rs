@@ -1,8 +1,10 @@
 //! Traces checked against answers worked by hand from the course notes.
 
 use proptest::prelude::*;
-use rasterlab::edge::FillRule;
-use rasterlab::trace::{bresenham_trace, line_trace, scanline_trace, triangle_trace, LineEnds};
+use rasterlab::raster::edge::FillRule;
+use rasterlab::teaching::trace::{
+    bresenham_trace, line_trace, scanline_trace, triangle_trace, LineEnds,
+};
 
 /// The line-drawing slides' midpoint loop on (0, 0) -> (7, 3): f(x, y) = -3 x + 7 y, so
 /// d starts at f(1, 1/2) = 0.5 and then adds -3 (keep y) or -3 + 7 (step).
@@ -173,13 +175,15 @@ proptest! {
 
 mod newer_traces {
     use proptest::prelude::*;
-    use rasterlab::backend::{line_backend, triangle_backend};
-    use rasterlab::edge::{FillRule, PixelRect};
-    use rasterlab::fixed::FixedPoint;
-    use rasterlab::fragment::FragmentList;
-    use rasterlab::line::{LineOptions, LineSetup};
-    use rasterlab::scene::setup_triangles;
-    use rasterlab::trace::{diamond_trace, incremental_trace, tiled_trace, wu_trace, LineEnds};
+    use rasterlab::geometry::scene::setup_triangles;
+    use rasterlab::raster::backend::{line_backend, triangle_backend};
+    use rasterlab::raster::edge::{FillRule, PixelRect};
+    use rasterlab::raster::fixed::FixedPoint;
+    use rasterlab::raster::fragment::FragmentList;
+    use rasterlab::raster::line::{LineOptions, LineSetup};
+    use rasterlab::teaching::trace::{
+        diamond_trace, incremental_trace, tiled_trace, wu_trace, LineEnds,
+    };
     use std::collections::HashSet;
 
     fn fragments(name: &str, v: [(f64, f64); 3], size: u32) -> (HashSet<(i64, i64)>, u64) {

@@ -6,10 +6,10 @@ mod common;
 
 use common::*;
 use proptest::prelude::*;
-use rasterlab::backend::triangle_backends;
-use rasterlab::edge::FillRule;
-use rasterlab::fixed::FixedPoint;
-use rasterlab::triangle::naive::Naive;
+use rasterlab::raster::backend::triangle_backends;
+use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::triangle::naive::Naive;
 
 /// Asserts every back-end's fragments equal `naive`'s, as sorted lists,
 /// and that each back-end emits each pixel's fragments in ascending
@@ -191,12 +191,12 @@ mod images {
     use super::common::*;
     use glam::Vec4;
     use proptest::prelude::*;
-    use rasterlab::backend::triangle_backends;
-    use rasterlab::edge::FillRule;
-    use rasterlab::scene::Scene2D;
-    use rasterlab::shader::Gouraud;
-    use rasterlab::stage::ShadedVertex;
-    use rasterlab::target::{DepthState, DepthTest, RenderTarget};
+    use rasterlab::geometry::scene::Scene2D;
+    use rasterlab::raster::backend::triangle_backends;
+    use rasterlab::raster::edge::FillRule;
+    use rasterlab::raster::shader::Gouraud;
+    use rasterlab::raster::stage::ShadedVertex;
+    use rasterlab::raster::target::{DepthState, DepthTest, RenderTarget};
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(500))]

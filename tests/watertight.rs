@@ -8,11 +8,11 @@ mod common;
 use common::*;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseError, TestError, TestRunner};
-use rasterlab::backend::triangle_backends;
-use rasterlab::edge::FillRule;
-use rasterlab::fixed::FixedPoint;
-use rasterlab::polygon::{Polygon, Side};
-use rasterlab::triangle::{naive::Naive, TriangleRasterizer};
+use rasterlab::geometry::polygon::{Polygon, Side};
+use rasterlab::raster::backend::triangle_backends;
+use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::triangle::{naive::Naive, TriangleRasterizer};
 
 /// The watertightness property: every pixel covered at most once, every
 /// pixel centre strictly inside the polygon exactly once, nothing strictly

@@ -26,7 +26,7 @@
 
 use super::judge::Property;
 use crate::error::{Error, Result};
-use crate::fixed::{FixedPoint, GUARD_BAND};
+use crate::raster::fixed::{FixedPoint, GUARD_BAND};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 use std::f64::consts::TAU;
 use std::fmt::Write;
@@ -271,7 +271,7 @@ fn polygon(rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]> {
     } else {
         Vec::new()
     };
-    crate::polygon::Polygon::new(outer, holes)
+    crate::geometry::polygon::Polygon::new(outer, holes)
         .and_then(|p| p.triangulate())
         .map(|ts| ts.iter().map(|t| t.map(|p| p.to_f64())).collect())
         .unwrap_or_else(|_| grid(rng, w, h))

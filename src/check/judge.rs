@@ -12,8 +12,8 @@
 
 use super::generate::Case;
 use super::{reference, Fragment};
-use crate::edge::{FillRule, TriangleSetup};
-use crate::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
+use crate::raster::edge::{FillRule, TriangleSetup};
+use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt::{self, Write};
 

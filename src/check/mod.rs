@@ -30,9 +30,9 @@
 //! [`Finding::ascii_grid`] and [`Finding::counterexample_text`] show.
 //!
 //! ```
-//! use rasterlab::backend::triangle_backend;
+//! use rasterlab::raster::backend::triangle_backend;
 //! use rasterlab::check::{check, CheckOptions, Property, Verdict};
-//! use rasterlab::edge::FillRule;
+//! use rasterlab::raster::edge::FillRule;
 //!
 //! let scanline = triangle_backend("scanline").unwrap();
 //! let options = CheckOptions { cases: 50, ..CheckOptions::new(Property::Exact(FillRule::TopLeft)) };
@@ -50,12 +50,12 @@ pub use generate::Case;
 pub use judge::{Finding, Property};
 pub use program::Program;
 
-use crate::backend::{line_backend, triangle_backend};
-use crate::edge::{FillRule, PixelRect};
-use crate::fragment::FragmentList;
-use crate::line::{LineOptions, LineRasterizer, LineSetup};
-use crate::scene::setup_triangles;
-use crate::triangle::TriangleRasterizer;
+use crate::geometry::scene::setup_triangles;
+use crate::raster::backend::{line_backend, triangle_backend};
+use crate::raster::edge::{FillRule, PixelRect};
+use crate::raster::fragment::FragmentList;
+use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
+use crate::raster::triangle::TriangleRasterizer;
 use std::fmt;
 
 /// One fragment a rasterizer reports: a pixel and the index of the

@@ -3,7 +3,7 @@
 //! rasterizer did against the expected answer.
 
 use super::judge::Finding;
-use crate::grid_picture::escape;
+use crate::teaching::grid_picture::escape;
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
@@ -91,7 +91,7 @@ impl Finding {
                 );
             }
         }
-        let to_px = |p: crate::fixed::FixedPoint| {
+        let to_px = |p: crate::raster::fixed::FixedPoint| {
             let (x, y) = p.to_f64();
             format!("{:.2},{:.2}", x * CELL, y * CELL)
         };

@@ -22,7 +22,7 @@
 use super::generate::{Case, Point};
 use super::judge::{judge, Finding, Property};
 use super::{reference, Subject, SubjectError};
-use crate::fixed::GUARD_BAND;
+use crate::raster::fixed::GUARD_BAND;
 
 /// Shrinks the case of `first`, a failure of `subject` already judged,
 /// within `runs` more runs of the subject; returns what is wrong with the

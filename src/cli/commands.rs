@@ -1,25 +1,25 @@
 //! One function per subcommand.
 
 use clap::Args;
-use rasterlab::backend::{
+use rasterlab::geometry::input::{read_shapes, Shapes};
+use rasterlab::geometry::mesh::Mesh;
+use rasterlab::geometry::pipeline::{CullMode, PipelineOptions};
+use rasterlab::geometry::render::{MeshRenderer, RenderSettings};
+use rasterlab::geometry::scene::{setup_triangles, Scene2D};
+use rasterlab::raster::backend::{
     all_backends, backend, line_backend, triangle_backend, triangle_backends, Backend,
 };
-use rasterlab::edge::FillRule;
-use rasterlab::edge::PixelRect;
-use rasterlab::fragment::FragmentList;
-use rasterlab::fragment::WorkCounters;
-use rasterlab::grid_picture::GridPicture;
-use rasterlab::input::{read_shapes, Shapes};
-use rasterlab::line::{Connectivity, Endpoints, LineOptions, LineSetup};
-use rasterlab::mesh::Mesh;
-use rasterlab::pipeline::{CullMode, PipelineOptions};
-use rasterlab::render::{MeshRenderer, RenderSettings};
-use rasterlab::report::{CompareInput, Report};
-use rasterlab::scene::{setup_triangles, Scene2D};
-use rasterlab::shader::Flat;
-use rasterlab::target::{DepthState, DepthTest, RenderTarget};
-use rasterlab::trace::LineEnds;
-use rasterlab::triangle::TriangleRasterizer;
+use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::edge::PixelRect;
+use rasterlab::raster::fragment::FragmentList;
+use rasterlab::raster::fragment::WorkCounters;
+use rasterlab::raster::line::{Connectivity, Endpoints, LineOptions, LineSetup};
+use rasterlab::raster::shader::Flat;
+use rasterlab::raster::target::{DepthState, DepthTest, RenderTarget};
+use rasterlab::raster::triangle::TriangleRasterizer;
+use rasterlab::teaching::grid_picture::GridPicture;
+use rasterlab::teaching::report::{CompareInput, Report};
+use rasterlab::teaching::trace::LineEnds;
 use rasterlab::{Error, Result};
 use std::io::Write;
 use std::path::Path;
@@ -371,7 +371,10 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 Drawing::Lines(
                     w,
                     h,
-                    rasterlab::workload::LineWorkload::new("input", LineSetup::numbered(&segments)),
+                    rasterlab::measure::workload::LineWorkload::new(
+                        "input",
+                        LineSetup::numbered(&segments),
+                    ),
                 )
             }
         },
@@ -449,7 +452,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
 /// What `render` draws when the input is not a mesh.
 enum Drawing {
     Triangles(Scene2D),
-    Lines(u32, u32, rasterlab::workload::LineWorkload),
+    Lines(u32, u32, rasterlab::measure::workload::LineWorkload),
 }
 
 fn render_mesh(
@@ -764,22 +767,31 @@ pub fn explain(args: &ExplainArgs) -> Result<()> {
     }
     let (width, height) = args.size(EXPLAIN_GRID)?;
     let text = match args.backend.as_str() {
-        "bresenham" => rasterlab::trace::bresenham_trace(&args.line()?),
-        "wu" => rasterlab::trace::wu_trace(&args.line()?),
-        "diamond" => rasterlab::trace::diamond_trace(&args.line()?)?,
+        "bresenham" => rasterlab::teaching::trace::bresenham_trace(&args.line()?),
+        "wu" => rasterlab::teaching::trace::wu_trace(&args.line()?),
+        "diamond" => rasterlab::teaching::trace::diamond_trace(&args.line()?)?,
         "incremental" => {
-            rasterlab::trace::incremental_trace(args.triangle()?, rule, width, height)?
+            rasterlab::teaching::trace::incremental_trace(args.triangle()?, rule, width, height)?
         }
-        "tiled" => rasterlab::trace::tiled_trace(args.triangle()?, rule, width, height)?,
-        "direct" | "dda" => rasterlab::trace::line_trace(&args.backend, &args.line()?)?,
-        "bbox" | "naive" => {
-            rasterlab::trace::triangle_trace(&args.backend, args.triangle()?, rule, width, height)?
+        "tiled" => rasterlab::teaching::trace::tiled_trace(args.triangle()?, rule, width, height)?,
+        "direct" | "dda" => rasterlab::teaching::trace::line_trace(&args.backend, &args.line()?)?,
+        "bbox" | "naive" => rasterlab::teaching::trace::triangle_trace(
+            &args.backend,
+            args.triangle()?,
+            rule,
+            width,
+            height,
+        )?,
+        "scanline" => {
+            rasterlab::teaching::trace::scanline_trace(args.triangle()?, rule, width, height)?
         }
-        "scanline" => rasterlab::trace::scanline_trace(args.triangle()?, rule, width, height)?,
         "depth-buffer" => {
             let scene = args.depth_scene()?;
-            let text =
-                rasterlab::trace::depth_buffer_trace(&scene, triangle_backend("bbox")?, rule)?;
+            let text = rasterlab::teaching::trace::depth_buffer_trace(
+                &scene,
+                triangle_backend("bbox")?,
+                rule,
+            )?;
             if let Some(path) = &args.picture {
                 GridPicture::depth_buffer(&scene, rule)?.save(path)?;
             }
@@ -811,7 +823,7 @@ pub fn explain(args: &ExplainArgs) -> Result<()> {
 pub struct BenchArgs {
     /// Workload set: quick (seconds) or full (the `cargo bench` sizes).
     #[arg(long, default_value = "quick")]
-    set: rasterlab::benchmark::WorkloadSet,
+    set: rasterlab::measure::benchmark::WorkloadSet,
     /// Target size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1920x1080")]
     size: Size,
@@ -830,7 +842,7 @@ pub struct BenchArgs {
 }
 
 pub fn bench(args: &BenchArgs) -> Result<()> {
-    use rasterlab::benchmark::{self, BenchOptions};
+    use rasterlab::measure::benchmark::{self, BenchOptions};
     check_samples(args.samples)?;
     rasterlab::output::check_dir(&args.out)?;
     let meshes = if args.meshes.is_empty() {

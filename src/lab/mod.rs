@@ -25,16 +25,16 @@
 //! assert!(LabRequest::parse(r#"{"width": 100000, "height": 8, "kind": "triangles"}"#).is_err());
 //! ```
 
-use crate::backend::{backend, Backend};
 use crate::check::judge::{cover, Cover};
 use crate::check::{Case, Program, Subject};
-use crate::edge::{FillRule, TriangleSetup};
 use crate::error::{Error, Result};
-use crate::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
-use crate::grid_picture::{is_fragment_green, GridPicture, TESTED_OUTSIDE};
-use crate::line::LineOptions;
-use crate::scene::Scene2D;
-use crate::trace::{self, LineEnds};
+use crate::geometry::scene::Scene2D;
+use crate::raster::backend::{backend, Backend};
+use crate::raster::edge::{FillRule, TriangleSetup};
+use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
+use crate::raster::line::LineOptions;
+use crate::teaching::grid_picture::{is_fragment_green, GridPicture, TESTED_OUTSIDE};
+use crate::teaching::trace::{self, LineEnds};
 use serde::{Deserialize, Serialize};
 
 /// The page the lab serves: one HTML file, no build step, nothing fetched.
@@ -292,9 +292,9 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
             .collect();
         let scene = Scene2D::with_depths(w, h, &numbers)?;
         let (target, _) = scene.render(
-            crate::backend::triangle_backend("scanline")?,
+            crate::raster::backend::triangle_backend("scanline")?,
             rule,
-            &crate::shader::Flat,
+            &crate::raster::shader::Flat,
         )?;
         target.depth
     } else {

@@ -2,12 +2,12 @@
 #![allow(dead_code)]
 
 use proptest::prelude::*;
-use rasterlab::edge::{FillRule, PixelRect, TriangleSetup};
-use rasterlab::fixed::FixedPoint;
-use rasterlab::fragment::FragmentList;
-use rasterlab::polygon::Polygon;
-use rasterlab::scene::setup_triangles;
-use rasterlab::triangle::TriangleRasterizer;
+use rasterlab::geometry::polygon::Polygon;
+use rasterlab::geometry::scene::setup_triangles;
+use rasterlab::raster::edge::{FillRule, PixelRect, TriangleSetup};
+use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::fragment::FragmentList;
+use rasterlab::raster::triangle::TriangleRasterizer;
 
 /// Side of the square target used by the property tests.
 pub const SIZE: u32 = 40;

@@ -1,0 +1,293 @@
+//! Plain-text 2D inputs: triangle soups and line sets.
+//!
+//! One primitive per line, coordinates in screen pixels (x right, y down):
+//!
+//! ```text
+//! # a triangle soup: x0 y0 x1 y1 x2 y2
+//! 0 0  5 0  5 5
+//! 0 5  0 0  5 5
+//! ```
+//!
+//! ```text
+//! # a line set: x0 y0 x1 y1
+//! 0 0 7 3
+//! ```
+//!
+//! ```text
+//! # a polygon (any number of x y pairs), then its holes; spade triangulates it
+//! polygon 0 0  20 0  20 14  0 14
+//! hole 6 4  14 4  10 10
+//! ```
+//!
+//! Blank lines and `#` comments are ignored. A file holds either triangles
+//! (triangles and polygons may be mixed) or lines. A polygon's triangles
+//! all carry the polygon line's number. Every coordinate is snapped when read, so NaN, infinities and
+//! coordinates beyond the guard band are reported with the file and line.
+
+use crate::error::{Error, Result};
+use crate::geometry::polygon::Polygon;
+use crate::raster::fixed::FixedPoint;
+use std::path::Path;
+
+/// Snapped primitives read from a text file, with their source lines.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shapes {
+    /// A triangle soup.
+    Triangles {
+        /// The snapped triangles, in file order.
+        triangles: Vec<[FixedPoint; 3]>,
+        /// The 1-based line each triangle came from.
+        lines: Vec<usize>,
+    },
+    /// A set of line segments.
+    Lines {
+        /// The snapped segments, in file order.
+        segments: Vec<[FixedPoint; 2]>,
+        /// The 1-based line each segment came from.
+        lines: Vec<usize>,
+    },
+}
+
+impl Shapes {
+    /// Number of primitives.
+    pub fn len(&self) -> usize {
+        match self {
+            Shapes::Triangles { triangles, .. } => triangles.len(),
+            Shapes::Lines { segments, .. } => segments.len(),
+        }
+    }
+
+    /// True when the file held no primitive.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Parses the text of a triangle soup or line set. `path` is used in
+/// error messages only.
+pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
+    let mut triangles = Vec::new();
+    let mut segments = Vec::new();
+    let mut lines = Vec::new();
+    let mut polygon: Option<PolygonRings> = None;
+    // A UTF-8 byte-order mark, as some editors write, is not content.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    for (index, raw_line) in text.lines().enumerate() {
+        let line_no = index + 1;
+        let content = raw_line.split('#').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        let at = |message: String| Error::Parse {
+            path: path.to_path_buf(),
+            line: Some(line_no),
+            message,
+        };
+        let (keyword, numbers_text) = match content.split_once(char::is_whitespace) {
+            Some((k @ ("polygon" | "hole"), rest)) => (Some(k), rest),
+            _ => (None, content),
+        };
+        let numbers = numbers_text
+            .split_whitespace()
+            .map(|tok| {
+                tok.parse::<f64>()
+                    .map_err(|_| at(format!("`{tok}` is not a number")))
+            })
+            .collect::<Result<Vec<f64>>>()?;
+        let points = numbers
+            .chunks(2)
+            .filter(|c| c.len() == 2)
+            .map(|c| {
+                Ok(FixedPoint {
+                    x: crate::raster::fixed::Fixed::snap_f64(c[0])?,
+                    y: crate::raster::fixed::Fixed::snap_f64(c[1])?,
+                })
+            })
+            .collect::<Result<Vec<FixedPoint>>>()
+            .map_err(|e| e.at_line(path, line_no))?;
+        if let Some(keyword) = keyword {
+            if !segments.is_empty() {
+                return Err(at(
+                    "a file holds either triangles and polygons, or lines, not both".into(),
+                ));
+            }
+            if numbers.len() % 2 != 0 || numbers.len() < 6 {
+                return Err(at(format!(
+                    "a {keyword} ring takes at least 3 points as x y pairs, found {} numbers",
+                    numbers.len()
+                )));
+            }
+            match (keyword, polygon.as_mut()) {
+                ("hole", None) => return Err(at("`hole` before any `polygon`".into())),
+                ("hole", Some(rings)) => rings.push((line_no, points)),
+                _ => {
+                    finish_polygon(polygon.take(), path, &mut triangles, &mut lines)?;
+                    polygon = Some(vec![(line_no, points)]);
+                }
+            }
+            continue;
+        }
+        finish_polygon(polygon.take(), path, &mut triangles, &mut lines)?;
+        match numbers.len() {
+            6 if segments.is_empty() => triangles.push([points[0], points[1], points[2]]),
+            4 if triangles.is_empty() => segments.push([points[0], points[1]]),
+            6 | 4 => {
+                return Err(at(
+                    "a file holds either triangles (6 numbers) or lines (4 numbers), not both"
+                        .to_string(),
+                ))
+            }
+            n => {
+                return Err(at(format!(
+                    "expected 6 numbers (x0 y0 x1 y1 x2 y2) or 4 numbers (x0 y0 x1 y1), found {n}"
+                )))
+            }
+        }
+        lines.push(line_no);
+    }
+    finish_polygon(polygon, path, &mut triangles, &mut lines)?;
+    Ok(if segments.is_empty() {
+        Shapes::Triangles { triangles, lines }
+    } else {
+        Shapes::Lines { segments, lines }
+    })
+}
+
+/// A polygon being read: its rings (the outer ring first, then the holes),
+/// each with its line.
+type PolygonRings = Vec<(usize, Vec<FixedPoint>)>;
+
+/// Triangulates a polygon read from the file and appends its triangles.
+fn finish_polygon(
+    polygon: Option<PolygonRings>,
+    path: &Path,
+    triangles: &mut Vec<[FixedPoint; 3]>,
+    lines: &mut Vec<usize>,
+) -> Result<()> {
+    let Some(rings) = polygon else {
+        return Ok(());
+    };
+    let ring_lines: Vec<usize> = rings.iter().map(|r| r.0).collect();
+    let line_no = ring_lines[0];
+    let mut points = rings.into_iter().map(|r| r.1);
+    let outer = points.next().unwrap_or_default();
+    let pieces = Polygon::with_faulty_ring(outer, points.collect())
+        .map_err(|(ring, e)| e.at_line(path, ring_lines[ring]))?
+        .triangulate()
+        .map_err(|e| e.at_line(path, line_no))?;
+    lines.extend(std::iter::repeat_n(line_no, pieces.len()));
+    triangles.extend(pieces);
+    Ok(())
+}
+
+/// Reads and parses a triangle soup or line set file; `-` reads standard
+/// input. A mesh file is refused with a message that says so.
+pub fn read_shapes(path: &Path) -> Result<Shapes> {
+    if crate::geometry::mesh::Mesh::is_mesh_path(path) {
+        return Err(Error::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            message: "this is a mesh; this command reads triangle soups, polygons and line sets (`render` and `compare` read meshes)".into(),
+        });
+    }
+    let text = if path.as_os_str() == "-" {
+        std::io::read_to_string(std::io::stdin().lock())
+    } else {
+        std::fs::read_to_string(path)
+    }
+    .map_err(|e| Error::io(path, &e))?;
+    parse_shapes(&text, path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Shapes> {
+        parse_shapes(text, Path::new("soup.txt"))
+    }
+
+    #[test]
+    fn comments_and_blank_lines_are_skipped() {
+        let s = parse("# header\n\n0 0 5 0 5 5 # first\n  0 5 0 0 5 5\n").unwrap();
+        match s {
+            Shapes::Triangles { triangles, lines } => {
+                assert_eq!(triangles.len(), 2);
+                assert_eq!(lines, vec![3, 4]);
+            }
+            other => panic!("expected triangles, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn errors_name_the_file_and_line() {
+        let cases = [
+            ("0 0 1 1 2\n", "soup.txt:1: expected 6 numbers"),
+            (
+                "0 0 5 0 5 5\n0 0 x 0 5 5\n",
+                "soup.txt:2: `x` is not a number",
+            ),
+            (
+                "0 0 5 0 5 5\n\n0 0 NaN 0 5 5\n",
+                "soup.txt:3: coordinate NaN is not a finite",
+            ),
+            (
+                "0 0 5 0 inf 5\n",
+                "soup.txt:1: coordinate inf is not a finite",
+            ),
+            (
+                "0 0 5 0 1e9 5\n",
+                "soup.txt:1: coordinate 1000000000 px is outside the guard band",
+            ),
+            ("0 0 5 0 5 5\n0 0 1 1\n", "soup.txt:2: a file holds either"),
+        ];
+        for (text, expected) in cases {
+            let msg = parse(text).unwrap_err().to_string();
+            assert!(
+                msg.starts_with(expected),
+                "{msg:?} should start with {expected:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn polygons_are_triangulated_with_their_holes() {
+        let s =
+            parse("polygon 0 0 20 0 20 14 0 14\nhole 6 4 14 4 10 10\n0 20 4 20 0 24\n").unwrap();
+        match s {
+            Shapes::Triangles { triangles, lines } => {
+                // A square with a triangular hole: 7 vertices, 7 triangles
+                // (n + 2h - 2 = 7 + 2 - 2), then the loose triangle.
+                assert_eq!(triangles.len(), 8);
+                assert_eq!(lines, vec![1, 1, 1, 1, 1, 1, 1, 3]);
+            }
+            other => panic!("expected triangles, got {other:?}"),
+        }
+        for (text, expected) in [
+            (
+                "hole 0 0 1 0 0 1\n",
+                "soup.txt:1: `hole` before any `polygon`",
+            ),
+            (
+                "polygon 0 0 1 0\n",
+                "soup.txt:1: a polygon ring takes at least 3 points",
+            ),
+            (
+                "0 0 1 1\npolygon 0 0 1 0 0 1\n",
+                "soup.txt:2: a file holds either",
+            ),
+        ] {
+            let msg = parse(text).unwrap_err().to_string();
+            assert!(
+                msg.starts_with(expected),
+                "{msg:?} should start with {expected:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn line_sets_are_recognised() {
+        let s = parse("0 0 7 3\n1 1 2 9\n").unwrap();
+        assert!(matches!(s, Shapes::Lines { ref segments, .. } if segments.len() == 2));
+    }
+}

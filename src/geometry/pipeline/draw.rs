@@ -1,0 +1,188 @@
+//! Drawing the pipeline's result through the shared fragment stage: on one
+//! thread ([`draw`]), or band by band on every core ([`draw_binned`]), the
+//! same image.
+//!
+//! The target is cut into horizontal **bands** of full rows, a few per
+//! thread ([`band_rows`](super::bands::band_rows)). Each set-up triangle is **binned**: its index goes into
+//! the list of every band its bounding box meets. The bands are then drawn in
+//! parallel with `rayon`, each by its own [`FragmentStage`] writing only its
+//! own rows, with the back-end's viewport narrowed to the band.
+//!
+//! A mesh rendered by [`MeshRenderer`](crate::geometry::render::MeshRenderer) on
+//! several threads comes binned already: the pipeline's tasks bin the
+//! triangles they keep as they set them up, and leave them in their own
+//! chunks (runs), which the bands read in order, without a copy into one
+//! array. Other geometry is binned here, in parallel chunks.
+//!
+//! Why the image is bit-identical to a single-threaded draw: a pixel lies in
+//! exactly one band, and that band receives its triangles in ascending id
+//! order (binning keeps the order: triangles are binned in chunks, and each
+//! band walks its chunk lists in chunk order). Every back-end emits a
+//! pixel's fragments in triangle order, and the stage is a pure function of
+//! the fragment, so each pixel sees exactly the same sequence of fragments
+//! as in [`draw`](crate::geometry::pipeline::draw).
+//!
+//! With one thread there is nothing to share out, and the draw is
+//! [`pipeline::draw`](crate::geometry::pipeline::draw) itself. The number of threads
+//! is rayon's: all cores by default,
+//! `RAYON_NUM_THREADS` or a pool installed by the caller (`--threads N` on
+//! the command line). Work counters are summed over bands, so a triangle
+//! met by three bands counts three primitives.
+
+use super::bands::{Bands, Bins};
+use super::geometry::Geometry;
+use super::Viewport;
+use crate::raster::edge::{PixelRect, TriangleSetup};
+use crate::raster::fragment::WorkCounters;
+use crate::raster::stage::{
+    FragmentShader, FragmentStage, Interpolation, ShadedTriangle, TriangleData,
+};
+use crate::raster::target::{DepthState, RenderTarget};
+use crate::raster::triangle::{TriangleRasterizer, TriangleSelection};
+use rayon::prelude::*;
+
+/// A run of set-up triangles and their stage data: the set-up with id `i`
+/// in the run belongs to `triangles[i]`.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct TriangleRun<'a> {
+    pub setups: &'a [TriangleSetup],
+    pub triangles: &'a [ShadedTriangle],
+}
+
+/// What a draw reads: the stage's vertices, the triangles in runs in id
+/// order (one for a [`Geometry`], one per part for a geometry left in its
+/// parts), and the parts' bins when they binned their triangles.
+pub(crate) struct Runs<'a> {
+    pub shaded: &'a TriangleData,
+    pub runs: Vec<TriangleRun<'a>>,
+    /// The parts' bins, when they binned their triangles.
+    pub bins: Option<PartBins<'a>>,
+}
+
+/// The bins the pipeline's parts filled as they kept their triangles.
+pub(crate) struct PartBins<'a> {
+    /// The bands they binned into.
+    pub bands: Bands,
+    /// The viewport the bands cut.
+    pub viewport: Viewport,
+    /// Per run, per band, the indices of the run's triangles meeting it.
+    pub per_run: Vec<&'a [Vec<u32>]>,
+}
+
+/// Rasterizes `geometry` with `backend` into `target` through the shared
+/// fragment stage.
+pub fn draw(
+    geometry: &Geometry,
+    backend: &dyn TriangleRasterizer,
+    shader: &dyn FragmentShader,
+    depth: DepthState,
+    interpolation: Interpolation,
+    target: &mut RenderTarget,
+) -> WorkCounters {
+    draw_runs(
+        &geometry.runs(),
+        backend,
+        shader,
+        depth,
+        interpolation,
+        target,
+    )
+}
+
+/// [`draw`] of triangles in runs.
+fn draw_runs(
+    geometry: &Runs<'_>,
+    backend: &dyn TriangleRasterizer,
+    shader: &dyn FragmentShader,
+    depth: DepthState,
+    interpolation: Interpolation,
+    target: &mut RenderTarget,
+) -> WorkCounters {
+    let viewport = PixelRect::of_target(target.width(), target.height());
+    let mut stage = FragmentStage::new(target, shader)
+        .with_triangles(geometry.shaded)
+        .with_depth(depth)
+        .with_interpolation(interpolation);
+    let mut work = WorkCounters::default();
+    for run in &geometry.runs {
+        stage.use_triangles(run.triangles);
+        work.add(&backend.rasterize(run.setups, viewport, &mut stage));
+    }
+    work
+}
+
+/// Rasterizes `geometry` with `backend` into `target` through the shared
+/// fragment stage, band by band in parallel; bit-identical to
+/// [`pipeline::draw`](crate::geometry::pipeline::draw).
+pub fn draw_binned(
+    geometry: &Geometry,
+    backend: &dyn TriangleRasterizer,
+    shader: &dyn FragmentShader,
+    depth: DepthState,
+    interpolation: Interpolation,
+    target: &mut RenderTarget,
+) -> WorkCounters {
+    draw_runs_binned(
+        &geometry.runs(),
+        backend,
+        shader,
+        depth,
+        interpolation,
+        target,
+    )
+}
+
+/// [`draw_binned`] of triangles in runs, with the bins of the pipeline's
+/// parts when they are those of this draw.
+pub(crate) fn draw_runs_binned(
+    geometry: &Runs<'_>,
+    backend: &dyn TriangleRasterizer,
+    shader: &dyn FragmentShader,
+    depth: DepthState,
+    interpolation: Interpolation,
+    target: &mut RenderTarget,
+) -> WorkCounters {
+    let threads = rayon::current_num_threads();
+    if threads == 1 {
+        return draw_runs(geometry, backend, shader, depth, interpolation, target);
+    }
+    let (width, height) = (target.width(), target.height());
+    let runs = &geometry.runs;
+    let bands = Bands::for_threads(height, threads);
+    // Per chunk in id order: its run, and per band its triangles there.
+    let computed: Bins;
+    let chunks: Vec<(usize, &[Vec<u32>])> = match &geometry.bins {
+        Some(b) if (b.bands, b.viewport) == (bands, Viewport { width, height }) => {
+            b.per_run.iter().copied().enumerate().collect()
+        }
+        _ => {
+            computed = Bins::new(runs, width, height, bands);
+            computed.chunks.iter().map(|(r, b)| (*r, &b[..])).collect()
+        }
+    };
+    target
+        .bands_mut(bands.rows())
+        .into_par_iter()
+        .enumerate()
+        .map(|(b, rows)| {
+            let viewport = rows.rect();
+            let mut stage = FragmentStage::on_rows(rows, shader)
+                .with_triangles(geometry.shaded)
+                .with_depth(depth)
+                .with_interpolation(interpolation);
+            let mut work = WorkCounters::default();
+            for &(run, per_band) in &chunks {
+                if !per_band[b].is_empty() {
+                    let run = runs[run];
+                    stage.use_triangles(run.triangles);
+                    let selection = TriangleSelection::indexed(run.setups, &per_band[b]);
+                    work.add(&backend.rasterize_selection(selection, viewport, &mut stage));
+                }
+            }
+            work
+        })
+        .reduce(WorkCounters::default, |mut a, b| {
+            a.add(&b);
+            a
+        })
+}

@@ -1,0 +1,51 @@
+//! The pipeline's choices: the fill rule of the set-up, back-face culling
+//! and which winding faces the viewer.
+
+use crate::raster::edge::FillRule;
+
+/// Which faces back-face culling removes.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum CullMode {
+    /// Keep every triangle.
+    #[default]
+    None,
+    /// Drop triangles facing away from the viewer.
+    Back,
+    /// Drop triangles facing the viewer.
+    Front,
+}
+
+/// Which winding, as seen on screen, faces the viewer.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum FrontFace {
+    /// Counter-clockwise triangles face the viewer (OpenGL's default).
+    #[default]
+    CounterClockwise,
+    /// Clockwise triangles face the viewer.
+    Clockwise,
+}
+
+crate::names::named_enum!(
+    CullMode,
+    "cull mode",
+    None = "none",
+    Back = "back",
+    Front = "front"
+);
+crate::names::named_enum!(
+    FrontFace,
+    "front face",
+    CounterClockwise = "ccw",
+    Clockwise = "cw"
+);
+
+/// How geometry is turned into set-up triangles.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct PipelineOptions {
+    /// Fill rule for the set-up.
+    pub rule: FillRule,
+    /// Back-face culling.
+    pub cull: CullMode,
+    /// Which winding faces the viewer.
+    pub front_face: FrontFace,
+}

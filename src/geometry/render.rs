@@ -1,0 +1,374 @@
+//! Rendering a mesh end to end: camera, vertex shader, pipeline, back-end,
+//! fragment shader, optional wireframe. What `rasterlab render` and
+//! `rasterlab demo` run.
+//!
+//! ```
+//! use rasterlab::{backend, mesh::Mesh, render::{MeshRenderer, RenderSettings}};
+//! use std::path::Path;
+//!
+//! let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
+//! let settings = RenderSettings { width: 64, height: 48, ..RenderSettings::default() };
+//! let renderer = MeshRenderer::new(&bunny, settings).unwrap();
+//! let a = renderer.render(backend::triangle_backend("scanline").unwrap()).unwrap();
+//! let b = renderer.render(backend::triangle_backend("incremental").unwrap()).unwrap();
+//! assert_eq!(a.target, b.target); // bit-identical colour, depth and coverage
+//! assert!(a.stats.work.fragments > 0);
+//! ```
+
+use crate::error::{Error, Result};
+use crate::geometry::mesh::Mesh;
+use crate::geometry::pipeline::camera::Camera;
+use crate::geometry::pipeline::vertex::{MeshVertex, Transform};
+use crate::geometry::pipeline::{
+    self, Geometry, GeometryInParts, GeometryStats, PipelineOptions, Viewport,
+};
+use crate::raster::fragment::WorkCounters;
+use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
+use crate::raster::shader::DirectionalLight;
+use crate::raster::shader::{Diffuse, Filter, Flat, Gouraud, NormalColors, Texture, Textured};
+use crate::raster::stage::{FragmentShader, FragmentStage, Interpolation, ShadedLine};
+use crate::raster::target::{DepthState, DepthTest, RenderTarget};
+use crate::raster::triangle::TriangleRasterizer;
+use glam::{Mat4, Vec4};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// How a mesh is coloured.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Shading {
+    /// Lit per vertex, one colour per triangle (its first vertex's).
+    Flat,
+    /// Lit per vertex, colours interpolated (Gouraud).
+    Gouraud,
+    /// Lit per fragment with the interpolated normal (diffuse, the software-rasterizer article).
+    #[default]
+    Diffuse,
+    /// The interpolated normal as a colour.
+    Normals,
+    /// A checkerboard texture at the mesh's (or generated) UVs, lit per fragment.
+    Texture,
+}
+
+crate::names::named_enum!(
+    Shading,
+    "shading",
+    Flat = "flat",
+    Gouraud = "gouraud",
+    Diffuse = "diffuse",
+    Normals = "normals",
+    Texture = "texture"
+);
+
+/// Everything about a rendering except the back-end.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+    /// Camera direction around the vertical axis, degrees (0 = from +Z).
+    pub azimuth: f32,
+    /// Camera elevation above the horizon, degrees.
+    pub elevation: f32,
+    /// Zoom factor (1 frames the whole mesh).
+    pub zoom: f32,
+    /// Colouring.
+    pub shading: Shading,
+    /// Texture filter for [`Shading::Texture`].
+    pub filter: Filter,
+    /// Perspective-correct or linear varyings.
+    pub interpolation: Interpolation,
+    /// Fill rule and culling.
+    pub pipeline: PipelineOptions,
+    /// Depth test and write.
+    pub depth: DepthState,
+    /// Surface colour where the mesh has none.
+    pub color: Vec4,
+    /// The light.
+    pub light: DirectionalLight,
+    /// Line back-end drawing the triangle edges over the surface, if any.
+    pub wireframe: Option<&'static dyn LineRasterizer>,
+    /// Background colour.
+    pub background: [u8; 4],
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            width: 640,
+            height: 480,
+            azimuth: 0.0,
+            elevation: 15.0,
+            zoom: 1.0,
+            shading: Shading::Diffuse,
+            filter: Filter::Bilinear,
+            interpolation: Interpolation::PerspectiveCorrect,
+            pipeline: PipelineOptions::default(),
+            depth: DepthState::DEFAULT,
+            color: Vec4::new(0.85, 0.78, 0.62, 1.0),
+            light: DirectionalLight::default(),
+            wireframe: None,
+            background: [24, 26, 32, 255],
+        }
+    }
+}
+
+/// What drawing one frame did and cost.
+#[derive(Copy, Clone, Debug)]
+pub struct FrameStats {
+    /// What the pipeline did with the triangles.
+    pub geometry: GeometryStats,
+    /// The triangle back-end's work.
+    pub work: WorkCounters,
+    /// Time in the vertex shader, clipping and set-up.
+    pub geometry_time: Duration,
+    /// Time clearing, rasterizing and shading (including the wireframe).
+    pub raster_time: Duration,
+}
+
+/// One rendered frame: its buffers and what it cost.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// The colour, depth and coverage buffers.
+    pub target: RenderTarget,
+    /// The pipeline's and the back-end's work, and the times.
+    pub stats: FrameStats,
+}
+
+/// A mesh prepared for rendering from one view.
+pub struct MeshRenderer {
+    settings: RenderSettings,
+    vertices: Vec<MeshVertex>,
+    triangles: Vec<[u32; 3]>,
+    edges: Vec<[u32; 2]>,
+    transform: Transform,
+    shader: Box<dyn FragmentShader>,
+    /// The geometry buffers, filled again for each frame so that a frame
+    /// allocates nothing for them once the first is drawn.
+    geometry: Mutex<GeometryInParts>,
+}
+
+/// The largest zoom a camera accepts: beyond it the view is a fraction of
+/// a pixel of the mesh and the projection loses every digit.
+pub const MAX_ZOOM: f32 = 1e6;
+
+impl MeshRenderer {
+    /// Frames `mesh` with a camera and prepares its vertices and shaders.
+    ///
+    /// Errors: a zero-size or oversized target, a non-finite angle, a zoom
+    /// that is not in `(0, MAX_ZOOM]`.
+    pub fn new(mesh: &Mesh, settings: RenderSettings) -> Result<MeshRenderer> {
+        RenderTarget::check_size(settings.width, settings.height)?;
+        for (name, value) in [
+            ("azimuth", settings.azimuth),
+            ("elevation", settings.elevation),
+        ] {
+            if !value.is_finite() {
+                return Err(Error::InvalidArgument(format!(
+                    "{name} must be a finite angle in degrees, not {value}"
+                )));
+            }
+        }
+        // NaN fails this test too.
+        if !(settings.zoom > 0.0 && settings.zoom <= MAX_ZOOM) {
+            return Err(Error::InvalidArgument(format!(
+                "zoom must be > 0 and at most {MAX_ZOOM}, not {}",
+                settings.zoom
+            )));
+        }
+        let aspect = settings.width as f32 / settings.height as f32;
+        let camera = Camera::framing(
+            mesh.bounds(),
+            aspect,
+            settings.azimuth,
+            settings.elevation,
+            settings.zoom,
+        );
+        let mut transform = Transform::new(Mat4::IDENTITY, camera.view(), camera.projection());
+        if matches!(settings.shading, Shading::Flat | Shading::Gouraud) {
+            transform = transform.with_vertex_light(settings.light);
+        }
+        let uvs = (settings.shading == Shading::Texture).then(|| mesh.uvs_or_generated());
+        let vertices = (0..mesh.positions.len())
+            .map(|i| MeshVertex {
+                position: mesh.positions[i],
+                normal: mesh.normals[i],
+                uv: uvs.as_ref().map_or(glam::Vec2::ZERO, |u| u[i]),
+                color: mesh.colors.as_ref().map_or(settings.color, |c| c[i]),
+            })
+            .collect();
+        let shader: Box<dyn FragmentShader> = match settings.shading {
+            Shading::Flat => Box::new(Flat),
+            Shading::Gouraud => Box::new(Gouraud),
+            Shading::Diffuse => Box::new(Diffuse(settings.light)),
+            Shading::Normals => Box::new(NormalColors),
+            Shading::Texture => Box::new(Textured {
+                texture: Texture::checkerboard(16, 8, settings.color, settings.color * 0.35),
+                filter: settings.filter,
+                light: Some(settings.light),
+            }),
+        };
+        let edges = if settings.wireframe.is_some() {
+            unique_edges(&mesh.triangles)
+        } else {
+            Vec::new()
+        };
+        Ok(MeshRenderer {
+            settings,
+            vertices,
+            triangles: mesh.triangles.clone(),
+            edges,
+            transform,
+            shader,
+            geometry: Mutex::new(GeometryInParts::default()),
+        })
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    /// The vertex shader in use.
+    pub fn transform(&self) -> &Transform {
+        &self.transform
+    }
+
+    fn viewport(&self) -> Viewport {
+        Viewport {
+            width: self.settings.width,
+            height: self.settings.height,
+        }
+    }
+
+    /// Runs the geometry stages (vertex shader, clipping, set-up).
+    pub fn geometry(&self) -> Result<Geometry> {
+        pipeline::process_triangles(
+            &self.vertices,
+            &self.triangles,
+            &self.transform,
+            self.viewport(),
+            &self.settings.pipeline,
+        )
+    }
+
+    /// Renders one frame with `backend` into a new target that counts
+    /// coverage, on rayon's threads ([`draw_binned`](crate::geometry::pipeline::draw_binned)): the image does not
+    /// depend on their number.
+    pub fn render(&self, backend: &dyn TriangleRasterizer) -> Result<Frame> {
+        let mut target = RenderTarget::new(self.settings.width, self.settings.height)?;
+        let stats = self.render_into(backend, &mut target)?;
+        Ok(Frame { target, stats })
+    }
+
+    /// Clears `target` and renders one frame into it, as an application
+    /// redraws its framebuffer: the buffers are reused, and a target made
+    /// [`without_coverage`](RenderTarget::without_coverage) skips the
+    /// coverage count. Errors if `target` is not the size of the settings.
+    pub fn render_into(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        target: &mut RenderTarget,
+    ) -> Result<FrameStats> {
+        let (width, height) = (self.settings.width, self.settings.height);
+        if (target.width(), target.height()) != (width, height) {
+            return Err(Error::InvalidArgument(format!(
+                "the target is {}x{}, the renderer draws {width}x{height}",
+                target.width(),
+                target.height()
+            )));
+        }
+        let start = Instant::now();
+        // A renderer drawing from several threads at once gives the other
+        // threads buffers of their own.
+        let mut reused = self.geometry.try_lock().ok();
+        let mut own = GeometryInParts::default();
+        let geometry = reused.as_deref_mut().unwrap_or(&mut own);
+        geometry.process_into(
+            &self.vertices,
+            &self.triangles,
+            &self.transform,
+            self.viewport(),
+            &self.settings.pipeline,
+        )?;
+        let geometry = &*geometry;
+        let lines = if self.edges.is_empty() {
+            Vec::new()
+        } else {
+            pipeline::process_lines(
+                &self.vertices,
+                &self.edges,
+                &self.transform,
+                self.viewport(),
+            )?
+        };
+        let geometry_time = start.elapsed();
+        let start = Instant::now();
+        target.clear_color(self.settings.background);
+        target.clear_depth_and_coverage();
+        let work = pipeline::draw_runs_binned(
+            &geometry.runs(),
+            backend,
+            self.shader.as_ref(),
+            self.settings.depth,
+            self.settings.interpolation,
+            target,
+        );
+        if let Some(line_backend) = self.settings.wireframe {
+            self.draw_wireframe(line_backend, &lines, target);
+        }
+        Ok(FrameStats {
+            geometry: geometry.stats,
+            work,
+            geometry_time,
+            raster_time: start.elapsed(),
+        })
+    }
+
+    /// Draws the edges in a contrasting constant colour, depth-tested with
+    /// `less-equal` and pulled slightly towards the viewer so the surface
+    /// they lie on does not hide them.
+    fn draw_wireframe(
+        &self,
+        backend: &dyn LineRasterizer,
+        lines: &[ShadedLine],
+        target: &mut RenderTarget,
+    ) {
+        let setups: Vec<LineSetup> = lines
+            .iter()
+            .enumerate()
+            .map(|(i, l)| LineSetup {
+                id: i as u32,
+                from: l.from,
+                to: l.to,
+            })
+            .collect();
+        let shader = crate::raster::shader::Constant(Vec4::new(0.1, 0.1, 0.12, 1.0));
+        let viewport = crate::raster::edge::PixelRect::of_target(target.width(), target.height());
+        let mut stage = FragmentStage::new(target, &shader)
+            .with_lines(lines)
+            .with_depth(DepthState {
+                test: DepthTest::LessEqual,
+                write: false,
+            });
+        stage.line_depth_offset = -2e-4;
+        backend.rasterize(&setups, &LineOptions::DEFAULT, viewport, &mut stage);
+    }
+}
+
+/// Every edge of the triangles once, as (smaller index, larger index), in
+/// order of first appearance.
+pub fn unique_edges(triangles: &[[u32; 3]]) -> Vec<[u32; 2]> {
+    let mut seen = std::collections::HashSet::new();
+    let mut edges = Vec::new();
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let e = [a.min(b), a.max(b)];
+            if seen.insert(e) {
+                edges.push(e);
+            }
+        }
+    }
+    edges
+}

@@ -1,0 +1,263 @@
+//! Small 2D scenes in screen pixels, and helpers to draw them.
+//!
+//! A [`Scene2D`] is a list of snapped triangles with a depth and colour per
+//! vertex. The built-in scenes are the course's examples: the rasterization slides'
+//! depth-buffer example, the rules' split square, a pinwheel of triangles
+//! around one pixel centre and a fan.
+
+use crate::error::{Error, Result};
+use crate::raster::edge::{FillRule, PixelRect, TriangleSetup};
+use crate::raster::fixed::FixedPoint;
+use crate::raster::fragment::{FragmentList, WorkCounters};
+use crate::raster::stage::{FragmentShader, FragmentStage, ShadedVertex, TriangleData};
+use crate::raster::target::{DepthState, RenderTarget};
+use crate::raster::triangle::TriangleRasterizer;
+use glam::Vec4;
+
+/// A set of 2D triangles with per-vertex depth and colour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene2D {
+    /// Suggested target width.
+    pub width: u32,
+    /// Suggested target height.
+    pub height: u32,
+    /// Snapped triangles, drawn in this order.
+    pub triangles: Vec<[FixedPoint; 3]>,
+    /// Depth and colour of each triangle's vertices.
+    pub vertices: Vec<[ShadedVertex; 3]>,
+}
+
+/// The blue of the course chapter's triangle and the rasterization slides' first triangle.
+pub const BLUE: Vec4 = Vec4::new(0.0, 0.25, 1.0, 1.0);
+/// The red of the rasterization slides' second triangle.
+pub const RED: Vec4 = Vec4::new(0.9, 0.1, 0.1, 1.0);
+
+/// A palette for colouring triangles by index.
+pub fn palette(i: usize) -> Vec4 {
+    const COLORS: [[f32; 3]; 8] = [
+        [0.12, 0.47, 0.71],
+        [1.00, 0.50, 0.05],
+        [0.17, 0.63, 0.17],
+        [0.84, 0.15, 0.16],
+        [0.58, 0.40, 0.74],
+        [0.55, 0.34, 0.29],
+        [0.89, 0.47, 0.76],
+        [0.74, 0.74, 0.13],
+    ];
+    let [r, g, b] = COLORS[i % COLORS.len()];
+    Vec4::new(r, g, b, 1.0)
+}
+
+fn snap(x: f32, y: f32) -> FixedPoint {
+    FixedPoint::snap(x, y).expect("built-in scene coordinates are inside the guard band")
+}
+
+impl Scene2D {
+    /// A scene from snapped triangles, coloured by index with the
+    /// [`palette`], all at depth 0.
+    pub fn from_triangles(width: u32, height: u32, triangles: Vec<[FixedPoint; 3]>) -> Scene2D {
+        let vertices = (0..triangles.len())
+            .map(|i| [ShadedVertex::flat(0.0, palette(i)); 3])
+            .collect();
+        Scene2D {
+            width,
+            height,
+            triangles,
+            vertices,
+        }
+    }
+
+    /// Triangles with one depth each, from numbers in groups of seven
+    /// (`x0 y0 x1 y1 x2 y2 z`, screen pixels and a depth in `[0, 1]`),
+    /// coloured by index with the [`palette`].
+    ///
+    /// ```
+    /// use rasterlab::geometry::scene::Scene2D;
+    /// let scene = Scene2D::with_depths(8, 8, &[0., 0., 4., 0., 0., 4., 0.5]).unwrap();
+    /// assert_eq!(scene.vertices[0][0].depth, 0.5);
+    /// assert!(Scene2D::with_depths(8, 8, &[0., 0., 4., 0., 0., 4., 1.5]).is_err());
+    /// ```
+    pub fn with_depths(width: u32, height: u32, numbers: &[f64]) -> Result<Scene2D> {
+        if !numbers.len().is_multiple_of(7) {
+            return Err(Error::InvalidArgument(format!(
+                "triangles with a depth take 7 numbers each (x0 y0 x1 y1 x2 y2 z), not {}",
+                numbers.len()
+            )));
+        }
+        let mut triangles = Vec::new();
+        let mut vertices = Vec::new();
+        for (i, t) in numbers.chunks(7).enumerate() {
+            let z = t[6] as f32;
+            if !(0.0..=1.0).contains(&t[6]) {
+                return Err(Error::InvalidArgument(format!(
+                    "triangle {}: depth {z} is outside [0, 1]",
+                    i + 1
+                )));
+            }
+            triangles.push([
+                FixedPoint::snap_f64(t[0], t[1])?,
+                FixedPoint::snap_f64(t[2], t[3])?,
+                FixedPoint::snap_f64(t[4], t[5])?,
+            ]);
+            vertices.push([ShadedVertex::flat(z, palette(i)); 3]);
+        }
+        Ok(Scene2D {
+            width,
+            height,
+            triangles,
+            vertices,
+        })
+    }
+
+    /// The rasterization slides' depth-buffer example on its 14 x 9 grid: a blue triangle
+    /// at depth 0.5 and a red one at depth 0.8, drawn in that order
+    /// (`blue_first`) or the other.
+    pub fn depth_example(blue_first: bool) -> Scene2D {
+        let blue = [snap(2.75, 3.0), snap(12.3359375, 3.0), snap(1.9296875, 6.9)];
+        let red = [snap(3.6, 1.0), snap(6.8, 1.0), snap(10.0, 9.0)];
+        let mut triangles = vec![blue, red];
+        let mut vertices = vec![
+            [ShadedVertex::flat(0.5, BLUE); 3],
+            [ShadedVertex::flat(0.8, RED); 3],
+        ];
+        if !blue_first {
+            triangles.reverse();
+            vertices.reverse();
+        }
+        Scene2D {
+            width: 14,
+            height: 9,
+            triangles,
+            vertices,
+        }
+    }
+
+    /// the rules' known answer: a 5 x 5 square split along its diagonal
+    /// into triangles covering 15 and 10 pixels.
+    pub fn split_square() -> Scene2D {
+        Scene2D::from_triangles(
+            5,
+            5,
+            vec![
+                [snap(0., 0.), snap(5., 0.), snap(5., 5.)],
+                [snap(0., 5.), snap(0., 0.), snap(5., 5.)],
+            ],
+        )
+    }
+
+    /// Eight triangles around the centre of pixel (4, 4): every shared edge
+    /// runs through a pixel centre.
+    pub fn pinwheel() -> Scene2D {
+        let c = (4.5f32, 4.5f32);
+        let ring: Vec<(f32, f32)> = vec![
+            (0.5, 0.5),
+            (4.5, 0.5),
+            (8.5, 0.5),
+            (8.5, 4.5),
+            (8.5, 8.5),
+            (4.5, 8.5),
+            (0.5, 8.5),
+            (0.5, 4.5),
+        ];
+        let tris = (0..8)
+            .map(|i| {
+                let a = ring[i];
+                let b = ring[(i + 1) % 8];
+                [snap(c.0, c.1), snap(a.0, a.1), snap(b.0, b.1)]
+            })
+            .collect();
+        Scene2D::from_triangles(9, 9, tris)
+    }
+
+    /// A fan of thin triangles with non-integer steps around one vertex.
+    pub fn fan() -> Scene2D {
+        let centre = (3.3f32, 28.7f32);
+        let n = 12;
+        let tris = (0..n)
+            .map(|i| {
+                let a0 = (i as f32) / (n as f32) * std::f32::consts::FRAC_PI_2;
+                let a1 = ((i + 1) as f32) / (n as f32) * std::f32::consts::FRAC_PI_2;
+                let p = |a: f32| snap(centre.0 + 27.0 * a.cos(), centre.1 - 27.0 * a.sin());
+                [snap(centre.0, centre.1), p(a0), p(a1)]
+            })
+            .collect();
+        Scene2D::from_triangles(32, 32, tris)
+    }
+
+    /// The names of the built-in scenes.
+    pub const BUILT_IN: [&'static str; 4] = ["depth-example", "split-square", "pinwheel", "fan"];
+
+    /// A built-in scene by name.
+    pub fn built_in(name: &str) -> Result<Scene2D> {
+        match name {
+            "depth-example" => Ok(Scene2D::depth_example(true)),
+            "split-square" => Ok(Scene2D::split_square()),
+            "pinwheel" => Ok(Scene2D::pinwheel()),
+            "fan" => Ok(Scene2D::fan()),
+            _ => Err(Error::UnknownName {
+                what: "scene",
+                name: name.to_string(),
+                known: Scene2D::BUILT_IN.join(", "),
+            }),
+        }
+    }
+
+    /// Sets up every triangle under `rule`; zero-area ones are dropped
+    /// (they cover nothing), the others keep their index as id.
+    pub fn setups(&self, rule: FillRule) -> Vec<TriangleSetup> {
+        setup_triangles(&self.triangles, rule)
+    }
+
+    /// Draws the scene with a back-end into `target` through the shared
+    /// fragment stage.
+    pub fn draw(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        rule: FillRule,
+        depth: DepthState,
+        shader: &dyn FragmentShader,
+        target: &mut RenderTarget,
+    ) -> WorkCounters {
+        let setups = self.setups(rule);
+        let viewport = PixelRect::of_target(target.width(), target.height());
+        let triangles = TriangleData::of_triangles(&setups, &self.vertices);
+        let mut stage = FragmentStage::new(target, shader)
+            .with_triangles(&triangles)
+            .with_depth(depth);
+        backend.rasterize(&setups, viewport, &mut stage)
+    }
+
+    /// Renders the scene into a new target of its own size.
+    pub fn render(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        rule: FillRule,
+        shader: &dyn FragmentShader,
+    ) -> Result<(RenderTarget, WorkCounters)> {
+        let mut target = RenderTarget::new(self.width, self.height)?;
+        let work = self.draw(backend, rule, DepthState::DEFAULT, shader, &mut target);
+        Ok((target, work))
+    }
+}
+
+/// Sets up snapped triangles under `rule`, dropping zero-area ones; each
+/// keeps its index in `triangles` as its id.
+pub fn setup_triangles(triangles: &[[FixedPoint; 3]], rule: FillRule) -> Vec<TriangleSetup> {
+    triangles
+        .iter()
+        .enumerate()
+        .filter_map(|(i, v)| TriangleSetup::new(i as u32, *v, rule))
+        .collect()
+}
+
+/// Runs a back-end over triangles and keeps every fragment in emission order.
+pub fn collect_fragments(
+    backend: &dyn TriangleRasterizer,
+    setups: &[TriangleSetup],
+    width: u32,
+    height: u32,
+) -> (FragmentList, WorkCounters) {
+    let mut list = FragmentList::default();
+    let work = backend.rasterize(setups, PixelRect::of_target(width, height), &mut list);
+    (list, work)
+}

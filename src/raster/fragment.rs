@@ -1,0 +1,157 @@
+//! Fragments and the sink every back-end writes them into.
+//!
+//! A **fragment** is a candidate pixel (the rasterization slides): a back-end decides only
+//! *which* pixels a primitive covers, and hands each one to a
+//! [`FragmentSink`]. Triangle fragments carry the exact integer edge values
+//! at the pixel's sample point, so whatever receives them (the shared
+//! [`FragmentStage`](crate::raster::stage::FragmentStage), a test, a trace) computes
+//! barycentrics, depth and colour the same way whichever back-end produced
+//! them. Two back-ends that emit the same fragments therefore produce
+//! bit-identical images.
+
+/// A pixel covered by a triangle.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct TriangleFragment {
+    /// Pixel column, inside the target.
+    pub x: u32,
+    /// Pixel row, inside the target.
+    pub y: u32,
+    /// The triangle's id ([`TriangleSetup::id`](crate::raster::edge::TriangleSetup::id)).
+    pub triangle: u32,
+    /// The three edge values at the pixel's sample point (inside-positive,
+    /// edge `i` opposite vertex `i`).
+    pub edges: [i64; 3],
+}
+
+/// A pixel drawn by a line back-end.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct LineFragment {
+    /// Pixel column, inside the target.
+    pub x: u32,
+    /// Pixel row, inside the target.
+    pub y: u32,
+    /// The segment's index in the draw.
+    pub line: u32,
+    /// How much of the pixel the line covers, in `[0, 1]`: `1.0` for
+    /// aliased back-ends, Xiaolin Wu's intensity for `wu`.
+    pub coverage: f32,
+}
+
+/// A run of covered pixels of one triangle on one row: pixels `x0..=x1` of
+/// row `y`. Triangles are convex, so the covered pixels of a row are always
+/// one run; back-ends that know the run hand it over whole.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct TriangleSpan {
+    /// Pixel row.
+    pub y: u32,
+    /// First pixel column.
+    pub x0: u32,
+    /// Last pixel column (inclusive, `>= x0`).
+    pub x1: u32,
+    /// The triangle's id.
+    pub triangle: u32,
+    /// The edge values at pixel `x0`'s sample point.
+    pub edges: [i64; 3],
+    /// What the edge values gain per pixel to the right.
+    pub step: [i64; 3],
+}
+
+impl TriangleSpan {
+    /// The span's fragments, left to right.
+    pub fn fragments(&self) -> impl Iterator<Item = TriangleFragment> + '_ {
+        (self.x0..=self.x1).scan(self.edges, |e, x| {
+            let f = TriangleFragment {
+                x,
+                y: self.y,
+                triangle: self.triangle,
+                edges: *e,
+            };
+            *e = [0, 1, 2].map(|k| e[k] + self.step[k]);
+            Some(f)
+        })
+    }
+}
+
+/// Receives fragments from rasterizer back-ends.
+pub trait FragmentSink {
+    /// One covered pixel of a triangle.
+    fn triangle_fragment(&mut self, fragment: &TriangleFragment);
+    /// A run of covered pixels of a triangle on one row: the same as each
+    /// of [`TriangleSpan::fragments`] in turn, which is what the default
+    /// does; sinks override it to do per-span work once.
+    fn triangle_span(&mut self, span: &TriangleSpan) {
+        for f in span.fragments() {
+            self.triangle_fragment(&f);
+        }
+    }
+    /// One pixel of a line.
+    fn line_fragment(&mut self, fragment: &LineFragment);
+    /// The back-end evaluated triangle `triangle`'s inside test at the
+    /// samples of pixels `x0..=x1` of row `y`, whatever the outcome. For
+    /// pictures of which pixels an algorithm tested; back-ends report each
+    /// row's tested run once, and the default ignores it.
+    fn samples_tested(&mut self, triangle: u32, y: u32, x0: u32, x1: u32) {
+        let _ = (triangle, y, x0, x1);
+    }
+}
+
+/// Work a back-end did, for comparing algorithms.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct WorkCounters {
+    /// Primitives that reached the back-end's set-up.
+    pub primitives: u64,
+    /// Samples (pixel centres) whose inside test was evaluated.
+    pub samples_tested: u64,
+    /// Fragments emitted.
+    pub fragments: u64,
+    /// Rows (scanline) or blocks (tiled) visited.
+    pub spans: u64,
+}
+
+impl WorkCounters {
+    /// Adds another set of counters to this one.
+    pub fn add(&mut self, other: &WorkCounters) {
+        self.primitives += other.primitives;
+        self.samples_tested += other.samples_tested;
+        self.fragments += other.fragments;
+        self.spans += other.spans;
+    }
+
+    /// Samples tested per fragment emitted (0 when nothing was emitted).
+    pub fn tests_per_fragment(&self) -> f64 {
+        if self.fragments == 0 {
+            0.0
+        } else {
+            self.samples_tested as f64 / self.fragments as f64
+        }
+    }
+}
+
+/// A sink that keeps every fragment, in emission order.
+#[derive(Clone, Debug, Default)]
+pub struct FragmentList {
+    /// Triangle fragments, in emission order.
+    pub triangles: Vec<TriangleFragment>,
+    /// Line fragments, in emission order.
+    pub lines: Vec<LineFragment>,
+}
+
+impl FragmentSink for FragmentList {
+    fn triangle_fragment(&mut self, fragment: &TriangleFragment) {
+        self.triangles.push(*fragment);
+    }
+    fn line_fragment(&mut self, fragment: &LineFragment) {
+        self.lines.push(*fragment);
+    }
+}
+
+impl FragmentList {
+    /// The triangle fragments sorted by (triangle, row, column): the
+    /// canonical order for comparing back-ends that visit pixels in
+    /// different orders.
+    pub fn sorted_triangle_fragments(&self) -> Vec<TriangleFragment> {
+        let mut v = self.triangles.clone();
+        v.sort_unstable_by_key(|f| (f.triangle, f.y, f.x));
+        v
+    }
+}

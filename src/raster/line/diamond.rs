@@ -1,0 +1,259 @@
+//! `diamond`: the Direct3D / Vulkan diamond-exit rule, the reference for
+//! aliased lines (the rules in the README).
+//!
+//! Each pixel owns the open diamond `|x - xc| + |y - yc| < 1/2` around its
+//! centre. A pixel is drawn when the segment, travelling from start to end,
+//! **leaves** that diamond: it passes through the diamond and the end point
+//! is not inside it. So the end point's own diamond is not drawn (segments
+//! joined end to start neither duplicate nor skip a pixel).
+//!
+//! Open diamonds do not tile the plane: where the ideal line passes exactly
+//! halfway between two pixel centres of a column, it only touches the
+//! corner the two diamonds share, and an open-diamond rule would draw
+//! neither. As Direct3D does with its half-open test area, the diamond here
+//! also owns **one corner**: its bottom corner `(xc, yc + 1/2)` for x-major
+//! segments (`|dx| >= |dy|`, so exactly 45 degrees is x-major), its right
+//! corner `(xc + 1/2, yc)` for y-major ones. Every column (row) the segment
+//! crosses then gets exactly one pixel.
+//!
+//! The test is exact: in the rotated coordinates `s = x + y`, `d = x - y`
+//! the diamond is an open square, and the part of the segment inside it is
+//! found by clipping the parameter `t` against the square's two slabs with
+//! integer fractions (Liang-Barsky). [`exits_diamond`] is that test for one
+//! pixel; the back-end applies it to the few pixels near the line in each
+//! column (or row), and the tests check it against applying it to every
+//! pixel.
+
+use super::{emit_pixels, LineOptions, LineRasterizer, LineSetup};
+use crate::error::{Error, Result};
+use crate::raster::edge::PixelRect;
+use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
+use crate::raster::fragment::{FragmentSink, WorkCounters};
+use std::cmp::Ordering;
+
+/// The diamond-exit rule.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct Diamond;
+
+/// A bound on the segment parameter `t`: the fraction `num / den`
+/// (`den > 0`), and whether the bound itself is excluded.
+#[derive(Copy, Clone, Debug)]
+struct Bound {
+    num: i128,
+    den: i128,
+    strict: bool,
+}
+
+impl Bound {
+    fn cmp_value(&self, other: &Bound) -> Ordering {
+        (self.num * other.den).cmp(&(other.num * self.den))
+    }
+}
+
+/// Does the segment intersect the open slab `lo < s0 + t ds < hi`
+/// within the current `[lower, upper]` range of `t`? Narrows the range.
+fn clip_slab(s0: i128, ds: i128, lo: i128, hi: i128, lower: &mut Bound, upper: &mut Bound) -> bool {
+    if ds == 0 {
+        return lo < s0 && s0 < hi;
+    }
+    let (a, b) = (lo - s0, hi - s0);
+    let (enter, leave) = if ds > 0 { (a, b) } else { (b, a) };
+    let den = ds.abs();
+    let sign = ds.signum();
+    let enter = Bound {
+        num: enter * sign,
+        den,
+        strict: true,
+    };
+    let leave = Bound {
+        num: leave * sign,
+        den,
+        strict: true,
+    };
+    match enter.cmp_value(lower) {
+        Ordering::Greater => *lower = enter,
+        Ordering::Equal => lower.strict = true,
+        Ordering::Less => {}
+    }
+    match leave.cmp_value(upper) {
+        Ordering::Less => *upper = leave,
+        Ordering::Equal => upper.strict = true,
+        Ordering::Greater => {}
+    }
+    true
+}
+
+/// The corner of pixel `(px, py)`'s diamond that belongs to it, for a
+/// segment of the given major axis.
+fn owned_corner(px: i64, py: i64, x_major: bool) -> (i64, i64) {
+    let cx = px * SUBPIXEL_SCALE + HALF_PIXEL;
+    let cy = py * SUBPIXEL_SCALE + HALF_PIXEL;
+    if x_major {
+        (cx, cy + HALF_PIXEL)
+    } else {
+        (cx + HALF_PIXEL, cy)
+    }
+}
+
+/// Is `p` in the diamond test area of pixel `(px, py)`: strictly inside,
+/// or on its owned corner?
+fn in_test_area(p: FixedPoint, px: i64, py: i64, x_major: bool) -> bool {
+    let cx = px * SUBPIXEL_SCALE + HALF_PIXEL;
+    let cy = py * SUBPIXEL_SCALE + HALF_PIXEL;
+    (p.x.raw() - cx).abs() + (p.y.raw() - cy).abs() < HALF_PIXEL
+        || (p.x.raw(), p.y.raw()) == owned_corner(px, py, x_major)
+}
+
+/// Does the closed segment `a b` pass through the point `c`?
+fn passes_through(a: FixedPoint, b: FixedPoint, c: (i64, i64)) -> bool {
+    let (ax, ay, bx, by) = (
+        a.x.raw() as i128,
+        a.y.raw() as i128,
+        b.x.raw() as i128,
+        b.y.raw() as i128,
+    );
+    let (cx, cy) = (c.0 as i128, c.1 as i128);
+    (bx - ax) * (cy - ay) == (by - ay) * (cx - ax)
+        && cx >= ax.min(bx)
+        && cx <= ax.max(bx)
+        && cy >= ay.min(by)
+        && cy <= ay.max(by)
+}
+
+/// The diamond-exit test: does the segment `from -> to` leave the diamond
+/// test area of pixel `(px, py)`?
+pub fn exits_diamond(from: FixedPoint, to: FixedPoint, px: i64, py: i64) -> bool {
+    let x_major = (to.x.raw() - from.x.raw()).abs() >= (to.y.raw() - from.y.raw()).abs();
+    if in_test_area(to, px, py, x_major) {
+        return false;
+    }
+    if passes_through(from, to, owned_corner(px, py, x_major)) {
+        return true;
+    }
+    let cx = (px * SUBPIXEL_SCALE + HALF_PIXEL) as i128;
+    let cy = (py * SUBPIXEL_SCALE + HALF_PIXEL) as i128;
+    let h = HALF_PIXEL as i128;
+    let (ax, ay) = (from.x.raw() as i128, from.y.raw() as i128);
+    let (bx, by) = (to.x.raw() as i128, to.y.raw() as i128);
+    let mut lower = Bound {
+        num: 0,
+        den: 1,
+        strict: false,
+    };
+    let mut upper = Bound {
+        num: 1,
+        den: 1,
+        strict: false,
+    };
+    // s = x + y within (cx + cy - h, cx + cy + h); d = x - y likewise.
+    let ok = clip_slab(
+        ax + ay,
+        (bx + by) - (ax + ay),
+        cx + cy - h,
+        cx + cy + h,
+        &mut lower,
+        &mut upper,
+    ) && clip_slab(
+        ax - ay,
+        (bx - by) - (ax - ay),
+        cx - cy - h,
+        cx - cy + h,
+        &mut lower,
+        &mut upper,
+    );
+    ok && match lower.cmp_value(&upper) {
+        Ordering::Less => true,
+        Ordering::Equal => !lower.strict && !upper.strict,
+        Ordering::Greater => false,
+    }
+}
+
+impl Diamond {
+    /// The pixels of one segment, in the order of travel.
+    pub fn pixels(line: &LineSetup) -> (Vec<(i64, i64)>, u64) {
+        let (a, b) = (line.from, line.to);
+        let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
+        let x_major = dx.abs() >= dy.abs();
+        let (a_major, b_major) = if x_major {
+            (a.x.raw(), b.x.raw())
+        } else {
+            (a.y.raw(), b.y.raw())
+        };
+        let (a_minor, b_minor) = if x_major {
+            (a.y.raw(), b.y.raw())
+        } else {
+            (a.x.raw(), b.x.raw())
+        };
+        let first = (a_major.min(b_major) - HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) - 1;
+        let last = (a_major.max(b_major) + HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) + 1;
+        let columns: Vec<i64> = if b_major >= a_major {
+            (first..=last).collect()
+        } else {
+            (first..=last).rev().collect()
+        };
+        let mut pixels = Vec::new();
+        let mut tested = 0;
+        for i in columns {
+            // The line's minor coordinate at this column's centre: with
+            // |slope| <= 1, any diamond of this column the segment passes
+            // through has its centre within half a pixel of it.
+            let centre = i * SUBPIXEL_SCALE + HALF_PIXEL;
+            let d_major = b_major - a_major;
+            let minor = if d_major == 0 {
+                a_minor
+            } else {
+                let t_num = (centre - a_major) as i128 * (b_minor - a_minor) as i128;
+                a_minor + (t_num / d_major as i128) as i64
+            };
+            let k = minor.div_euclid(SUBPIXEL_SCALE);
+            let mut rows = [k - 1, k, k + 1];
+            if b_minor < a_minor {
+                rows.reverse();
+            }
+            for k in rows {
+                tested += 1;
+                let (px, py) = if x_major { (i, k) } else { (k, i) };
+                if exits_diamond(a, b, px, py) {
+                    pixels.push((px, py));
+                }
+            }
+        }
+        (pixels, tested)
+    }
+}
+
+impl LineRasterizer for Diamond {
+    fn name(&self) -> &'static str {
+        "diamond"
+    }
+
+    fn description(&self) -> &'static str {
+        "Direct3D / Vulkan diamond-exit rule, exact; the end point's diamond is not drawn"
+    }
+
+    fn check_options(&self, options: &LineOptions) -> Result<()> {
+        if *options != LineOptions::DEFAULT {
+            return Err(Error::InvalidArgument(
+                "diamond follows the diamond-exit rule: connectivity, endpoint and symmetry options do not apply".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    fn rasterize(
+        &self,
+        lines: &[LineSetup],
+        _options: &LineOptions,
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+    ) -> WorkCounters {
+        let mut work = WorkCounters::default();
+        for line in lines {
+            work.primitives += 1;
+            let (pixels, tested) = Self::pixels(line);
+            work.samples_tested += tested;
+            emit_pixels(line, &pixels, viewport, sink, &mut work);
+        }
+        work
+    }
+}

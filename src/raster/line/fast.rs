@@ -1,0 +1,158 @@
+//! The fast line path: Bresenham written straight into the buffers.
+//!
+//! The [`bresenham`](super::bresenham) back-end builds each segment's pixel
+//! list and hands every pixel to a [`FragmentSink`](crate::raster::fragment::FragmentSink):
+//! clear for teaching and tracing, but a call and a viewport test per pixel.
+//! [`draw_lines`] draws the very same pixels (the default
+//! [`LineOptions`](super::LineOptions): 8-connected, both endpoints)
+//! without that overhead:
+//!
+//! 1. **clip first**: the segment's frame columns are cut to those whose
+//!    pixel lies on the target. The major axis gives a column range
+//!    directly; the row of each column, `nearest_row(i)`, only grows with
+//!    `i`, so the first and last columns whose row is on the target are
+//!    found by binary search. The walk then starts at the first visible
+//!    column with the decision variable it would have had there,
+//!    `d = du (256 k + 128) - du v(i + 1)`, so no pixel is tested;
+//! 2. **step a buffer index**: each column step moves the pixel's index in
+//!    the colour buffer by one pixel along the major axis, and a row step by
+//!    one along the minor axis too; no coordinates are converted and no
+//!    pixel is tested.
+//!
+//! What is written is what the shared stage writes for a constant colour
+//! with the depth test off (`always`, no depth write): the colour, and one
+//! more in the coverage count when the target counts coverage. A test
+//! checks both against the `bresenham` back-end through the stage, pixel
+//! for pixel.
+
+use super::{LineSetup, OctantFrame};
+use crate::raster::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
+use crate::raster::target::RenderTarget;
+
+/// Draws `lines` with Bresenham's pixels in `color`, clipped to `target`,
+/// and returns the number of pixels written.
+///
+/// ```
+/// use rasterlab::raster::fixed::FixedPoint;
+/// use rasterlab::raster::line::{fast::draw_lines, LineSetup};
+/// use rasterlab::raster::target::RenderTarget;
+///
+/// let mut target = RenderTarget::new(8, 4).unwrap();
+/// let p = |x: f32, y: f32| FixedPoint::snap(x, y).unwrap();
+/// let line = LineSetup { id: 0, from: p(0.5, 0.5), to: p(7.5, 3.5) };
+/// assert_eq!(draw_lines(&mut target, &[line], [255, 0, 0, 255]), 8);
+/// ```
+pub fn draw_lines(target: &mut RenderTarget, lines: &[LineSetup], color: [u8; 4]) -> u64 {
+    let (width, height) = (i64::from(target.width()), i64::from(target.height()));
+    let mut written = 0;
+    for line in lines {
+        let frame = OctantFrame::new(line.from, line.to);
+        let (major_len, minor_len) = if frame.swap {
+            (height, width)
+        } else {
+            (width, height)
+        };
+        let Some((first, last)) = visible_columns(&frame, major_len, minor_len) else {
+            continue;
+        };
+        written += (last - first + 1) as u64;
+        walk(target, &frame, first, last, color);
+    }
+    written
+}
+
+/// The frame columns `[first, last]` whose pixels lie on a target
+/// `major_len` pixels long on the major axis and `minor_len` on the minor.
+fn visible_columns(frame: &OctantFrame, major_len: i64, minor_len: i64) -> Option<(i64, i64)> {
+    // Screen major coordinate is i, or -i when the major axis is flipped.
+    let (lo, hi) = if frame.flip_major {
+        (-(major_len - 1), 0)
+    } else {
+        (0, major_len - 1)
+    };
+    let (mut first, mut last) = (frame.i0.max(lo), frame.i1.min(hi));
+    if first > last {
+        return None;
+    }
+    // Screen minor coordinate is k, or -k; k grows with i.
+    let (k_lo, k_hi) = if frame.flip_minor {
+        (-(minor_len - 1), 0)
+    } else {
+        (0, minor_len - 1)
+    };
+    // The common case, found without a division: every column's row lies
+    // on the target. Column centres are within half a pixel of the segment's
+    // ends and the slope is at most 1, so the ideal line's v over the
+    // columns stays within [v0 - 128, v1 + 128], and its nearest rows,
+    // ceil((v - 128) / 256), within the bounds below.
+    let (rows_from, rows_to) = (
+        (frame.v0 - SUBPIXEL_SCALE).div_euclid(SUBPIXEL_SCALE),
+        frame.v1.div_euclid(SUBPIXEL_SCALE) + 1,
+    );
+    if k_lo <= rows_from && rows_to <= k_hi {
+        return Some((first, last));
+    }
+    // k grows with i: when both end columns are on the target, so is every
+    // column between them.
+    let on_target = |i: i64| (k_lo..=k_hi).contains(&frame.nearest_row(i));
+    if on_target(first) && on_target(last) {
+        return Some((first, last));
+    }
+    first = first_column_where(first, last + 1, |i| frame.nearest_row(i) >= k_lo);
+    last = first_column_where(first, last + 1, |i| frame.nearest_row(i) > k_hi) - 1;
+    (first <= last).then_some((first, last))
+}
+
+/// The first `i` in `[lo, hi)` where the monotone `pred` holds, or `hi`.
+fn first_column_where(mut lo: i64, mut hi: i64, pred: impl Fn(i64) -> bool) -> i64 {
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if pred(mid) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    lo
+}
+
+/// The midpoint walk over columns `first..=last`, all on the target.
+///
+/// The pixel is tracked as a buffer index: a column step moves it by
+/// `major` (one pixel along the major axis: 1 or the row length, signed by
+/// the octant), a row step by `minor` as well. The choice between the two
+/// is made with selects rather than a branch, since on a short or
+/// steep-ish segment it is a coin toss the branch predictor loses.
+fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, color: [u8; 4]) {
+    let width = target.width() as isize;
+    // i64 is exact here, as in OctantFrame::scaled_v_at: |d| < 2^58.
+    let s = SUBPIXEL_SCALE;
+    let (du, dv) = (frame.du(), frame.dv());
+    let k = frame.nearest_row(first);
+    let mut d = du * (s * k + HALF_PIXEL) - frame.scaled_v_at(first + 1);
+    let (up, flat) = (s * (du - dv), s * dv);
+    let (along_major, along_minor) = if frame.swap { (width, 1) } else { (1, width) };
+    let major = if frame.flip_major {
+        -along_major
+    } else {
+        along_major
+    };
+    let minor = if frame.flip_minor {
+        -along_minor
+    } else {
+        along_minor
+    };
+    let (x, y) = frame.to_screen(first, k);
+    let mut at = y as isize * width + x as isize;
+    let count = target.counts_coverage();
+    let (colors, coverage) = (&mut target.color, &mut target.coverage);
+    for _ in first..=last {
+        colors[at as usize] = color;
+        if count {
+            coverage[at as usize] = coverage[at as usize].saturating_add(1);
+        }
+        let step_up = d < 0;
+        at += major + if step_up { minor } else { 0 };
+        d += if step_up { up } else { -flat };
+    }
+}

@@ -1,0 +1,31 @@
+//! The core: everything a pixel goes through, from snapped vertices to the
+//! colour and depth buffers.
+//!
+//! * [`fixed`]: snapping to 1/256 pixel and the guard band;
+//! * [`edge`]: the course's implicit line equation as exact `i64` edge
+//!   functions, fill rules (top-left, bottom-right, off-screen point,
+//!   inclusive, exclusive) and triangle set-up;
+//! * [`triangle`]: the triangle back-ends, one file each, and the
+//!   [`TriangleRasterizer`](triangle::TriangleRasterizer) trait;
+//! * [`line`](mod@line): the line back-ends, one file each, the
+//!   [`LineRasterizer`](line::LineRasterizer) trait and line options;
+//! * [`backend`]: the registry of back-ends by name;
+//! * [`fragment`]: fragments, the [`FragmentSink`](fragment::FragmentSink)
+//!   they go into, work counters;
+//! * [`stage`]: the shared fragment stage (depth test, interpolation,
+//!   shading, writes) and the per-vertex data it reads;
+//! * [`shader`]: fragment shaders and lights;
+//! * [`target`]: colour, depth and coverage buffers.
+//!
+//! Nothing here depends on the rest of the crate: geometry input,
+//! teaching and measurement are built on this.
+
+pub mod backend;
+pub mod edge;
+pub mod fixed;
+pub mod fragment;
+pub mod line;
+pub mod shader;
+pub mod stage;
+pub mod target;
+pub mod triangle;

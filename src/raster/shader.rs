@@ -1,0 +1,229 @@
+//! Built-in fragment shaders.
+//!
+//! A fragment shader calculates the colour of a fragment (the course chapter, step 5).
+//! [`Flat`] colours the whole primitive with its first (provoking)
+//! vertex's colour; [`Gouraud`] interpolates the vertex colours with the
+//! barycentric coordinates (the line-drawing slides: `c = alpha c_a + beta c_b + gamma c_c`).
+//! [`Diffuse`] lights each fragment with its interpolated normal (seed
+//! 003), [`Textured`] samples a [`Texture`] at the interpolated UV (nearest
+//! or bilinear), and [`NormalColors`] shows the normals themselves.
+
+use crate::raster::stage::{FragmentInput, FragmentShader};
+use glam::{Vec2, Vec3, Vec4};
+
+/// A directional light for diffuse (Lambert) shading: intensity
+/// `ambient + diffuse * max(0, n . l)`.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct DirectionalLight {
+    /// Unit vector from the surface towards the light (world space).
+    pub direction: Vec3,
+    /// Light reaching every surface.
+    pub ambient: f32,
+    /// Strength of the directional part.
+    pub diffuse: f32,
+}
+
+impl DirectionalLight {
+    /// A light from `direction` (normalised here).
+    pub fn new(direction: Vec3, ambient: f32, diffuse: f32) -> DirectionalLight {
+        DirectionalLight {
+            direction: direction.normalize_or(Vec3::Z),
+            ambient,
+            diffuse,
+        }
+    }
+
+    /// The intensity on a surface with normal `n` (not necessarily unit).
+    #[inline]
+    pub fn intensity(&self, n: Vec3) -> f32 {
+        self.ambient + self.diffuse * n.normalize_or_zero().dot(self.direction).max(0.0)
+    }
+}
+
+impl Default for DirectionalLight {
+    /// Light from the upper left, in front.
+    fn default() -> Self {
+        DirectionalLight::new(Vec3::new(-0.4, 0.6, 0.7), 0.15, 0.85)
+    }
+}
+
+/// One colour per primitive: the provoking (first) vertex's.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct Flat;
+
+impl FragmentShader for Flat {
+    fn shade(&self, input: &FragmentInput) -> Vec4 {
+        input.flat.color
+    }
+
+    fn uniform_per_primitive(&self) -> bool {
+        true
+    }
+}
+
+/// Vertex colours interpolated across the primitive.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct Gouraud;
+
+impl FragmentShader for Gouraud {
+    fn shade(&self, input: &FragmentInput) -> Vec4 {
+        input.varyings.color
+    }
+}
+
+/// A fixed colour for everything (the course chapter's blue triangle, wireframes).
+#[derive(Copy, Clone, Debug)]
+pub struct Constant(pub Vec4);
+
+impl FragmentShader for Constant {
+    fn shade(&self, _input: &FragmentInput) -> Vec4 {
+        self.0
+    }
+
+    fn uniform_per_primitive(&self) -> bool {
+        true
+    }
+}
+
+/// Diffuse (Lambert) lighting per fragment: the interpolated colour times
+/// `ambient + diffuse * max(0, n . l)`, with the interpolated normal
+/// re-normalised (the software-rasterizer article's diffuse shading).
+#[derive(Copy, Clone, Debug, Default)]
+pub struct Diffuse(pub DirectionalLight);
+
+impl FragmentShader for Diffuse {
+    fn shade(&self, input: &FragmentInput) -> Vec4 {
+        let c = input.varyings.color;
+        (c.truncate() * self.0.intensity(input.varyings.normal)).extend(c.w)
+    }
+}
+
+/// The interpolated normal as a colour, `(n + 1) / 2`, to see the normals.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct NormalColors;
+
+impl FragmentShader for NormalColors {
+    fn shade(&self, input: &FragmentInput) -> Vec4 {
+        ((input.varyings.normal.normalize_or_zero() + Vec3::ONE) * 0.5).extend(1.0)
+    }
+}
+
+/// How a texture is sampled between texel centres.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Filter {
+    /// The texel containing the sample point.
+    Nearest,
+    /// The four nearest texels, weighted by distance.
+    #[default]
+    Bilinear,
+}
+
+crate::names::named_enum!(
+    Filter,
+    "texture filter",
+    Nearest = "nearest",
+    Bilinear = "bilinear"
+);
+
+/// An RGBA texture with repeating (wrap-around) addressing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    width: u32,
+    height: u32,
+    texels: Vec<Vec4>,
+}
+
+impl Texture {
+    /// A texture from texels in row-major order; `None` when the size does
+    /// not match or is zero.
+    pub fn new(width: u32, height: u32, texels: Vec<Vec4>) -> Option<Texture> {
+        (width > 0 && height > 0 && texels.len() == width as usize * height as usize).then_some(
+            Texture {
+                width,
+                height,
+                texels,
+            },
+        )
+    }
+
+    /// A `squares` x `squares` checkerboard of two colours, each square
+    /// `texels` texels wide.
+    pub fn checkerboard(squares: u32, texels: u32, a: Vec4, b: Vec4) -> Texture {
+        let side = (squares * texels).max(1);
+        let texels = (0..side * side)
+            .map(|i| {
+                let (x, y) = (i % side, i / side);
+                if (x / texels.max(1) + y / texels.max(1)).is_multiple_of(2) {
+                    a
+                } else {
+                    b
+                }
+            })
+            .collect();
+        Texture {
+            width: side,
+            height: side,
+            texels,
+        }
+    }
+
+    /// Width in texels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in texels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    #[inline]
+    fn texel(&self, x: i64, y: i64) -> Vec4 {
+        let x = x.rem_euclid(i64::from(self.width)) as usize;
+        let y = y.rem_euclid(i64::from(self.height)) as usize;
+        self.texels[y * self.width as usize + x]
+    }
+
+    /// Samples at `uv` (`(0, 0)` is the top-left corner of texel `(0, 0)`,
+    /// `(1, 1)` the bottom-right corner of the last texel; outside, the
+    /// texture repeats). Non-finite coordinates sample texel `(0, 0)`.
+    pub fn sample(&self, uv: Vec2, filter: Filter) -> Vec4 {
+        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
+        let u = f64::from(uv.x) * f64::from(self.width);
+        let v = f64::from(uv.y) * f64::from(self.height);
+        match filter {
+            Filter::Nearest => self.texel(u.floor() as i64, v.floor() as i64),
+            Filter::Bilinear => {
+                // Texel centres sit at half-integers.
+                let (u, v) = (u - 0.5, v - 0.5);
+                let (x0, y0) = (u.floor(), v.floor());
+                let (fx, fy) = ((u - x0) as f32, (v - y0) as f32);
+                let (x0, y0) = (x0 as i64, y0 as i64);
+                let top = self.texel(x0, y0).lerp(self.texel(x0 + 1, y0), fx);
+                let bottom = self.texel(x0, y0 + 1).lerp(self.texel(x0 + 1, y0 + 1), fx);
+                top.lerp(bottom, fy)
+            }
+        }
+    }
+}
+
+/// A texture sampled at the interpolated UV, optionally lit per fragment.
+#[derive(Clone, Debug)]
+pub struct Textured {
+    /// The texture.
+    pub texture: Texture,
+    /// Nearest or bilinear sampling.
+    pub filter: Filter,
+    /// Diffuse lighting applied to the texel colour, if any.
+    pub light: Option<DirectionalLight>,
+}
+
+impl FragmentShader for Textured {
+    fn shade(&self, input: &FragmentInput) -> Vec4 {
+        let c = self.texture.sample(input.varyings.uv, self.filter);
+        match self.light {
+            Some(light) => (c.truncate() * light.intensity(input.varyings.normal)).extend(c.w),
+            None => c,
+        }
+    }
+}

@@ -1,0 +1,655 @@
+//! The shared fragment stage: every back-end's fragments end here.
+//!
+//! For each fragment the stage does, in this order (the rasterization slides, the software-rasterizer article):
+//!
+//! 1. **coverage count**: the pixel's count in the coverage buffer goes up
+//!    by one, before any test, so double draws and gaps can be analysed (a
+//!    target made [`without_coverage`](RenderTarget::without_coverage)
+//!    skips this step and nothing else);
+//! 2. **depth**, linear in screen space: the plane through the three
+//!    snapped vertices, `z = z0 + beta (z1 - z0) + gamma (z2 - z0)`, set up
+//!    once per triangle as a [`DepthPlane`] and evaluated at the pixel centre
+//!    in `f32` in one fixed order (so a back-end that writes whole spans gets
+//!    the very same bits, and a constant depth stays exactly constant);
+//! 3. **depth test** against the depth buffer (`less` by default); a
+//!    fragment that fails costs nothing more;
+//! 4. **barycentrics** from the exact edge values: `alpha = E0 / area`,
+//!    `beta = E1 / area`, `gamma = E2 / area` with `area = E0 + E1 + E2`
+//!    (exact in integers, so nothing from the back-end but the pixel and its
+//!    edge values is used);
+//! 5. **varyings** (colour, UV, normal), perspective-correct by default:
+//!    interpolate `a / w` and `1 / w`, divide per fragment (the software-rasterizer article); or
+//!    plain linear, to show the difference;
+//! 6. the **fragment shader** computes the colour;
+//! 7. **colour write** (blended by the fragment's coverage for anti-aliased
+//!    lines) and **depth write** when enabled.
+//!
+//! Because every step is a pure function of the fragment's pixel and
+//! integer edge values, back-ends that emit the same fragments in the same
+//! per-pixel order produce bit-identical colour, depth and coverage buffers.
+
+use crate::raster::edge::{PixelRect, TriangleSetup};
+use crate::raster::fixed::{FixedPoint, SUBPIXEL_SCALE};
+use crate::raster::fragment::{FragmentSink, LineFragment, TriangleFragment, TriangleSpan};
+use crate::raster::target::{DepthState, DepthTest, RenderTarget, TargetRows};
+use glam::{Vec2, Vec3, Vec4};
+
+/// Per-vertex values interpolated across a primitive.
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub struct Varyings {
+    /// Linear RGBA colour in `[0, 1]`.
+    pub color: Vec4,
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Normal (world space), not necessarily unit length after interpolation.
+    pub normal: Vec3,
+}
+
+impl Varyings {
+    /// Varyings holding only a colour.
+    pub fn color(color: Vec4) -> Varyings {
+        Varyings {
+            color,
+            ..Varyings::default()
+        }
+    }
+
+    /// The weighted sum `sum(w[i] * v[i])`.
+    pub fn weighted<const N: usize>(v: &[Varyings; N], w: [f32; N]) -> Varyings {
+        let mut out = Varyings {
+            color: Vec4::ZERO,
+            uv: Vec2::ZERO,
+            normal: Vec3::ZERO,
+        };
+        for (vi, wi) in v.iter().zip(w) {
+            out.color += vi.color * wi;
+            out.uv += vi.uv * wi;
+            out.normal += vi.normal * wi;
+        }
+        out
+    }
+}
+
+/// A vertex as the fragment stage needs it: screen depth, `1 / w` and varyings.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadedVertex {
+    /// Depth in `[0, 1]` after the viewport transform (0 near, 1 far).
+    pub depth: f32,
+    /// `1 / w` of the clip-space position (1 for 2D input).
+    pub inv_w: f32,
+    /// Values to interpolate.
+    pub varyings: Varyings,
+}
+
+impl ShadedVertex {
+    /// A 2D vertex (`w = 1`) with a depth and a colour.
+    pub fn flat(depth: f32, color: Vec4) -> ShadedVertex {
+        ShadedVertex {
+            depth,
+            inv_w: 1.0,
+            varyings: Varyings::color(color),
+        }
+    }
+}
+
+/// A triangle's depth as a plane in screen space.
+///
+/// Depth is affine in screen space after the perspective divide, so it is
+/// the plane through the three snapped vertices. It is set up from the
+/// triangle's exact edge functions, relative to the first pixel of its
+/// bounding box, and evaluated as `(z_origin + dz_dy * dy) + dz_dx * dx` in
+/// `f32`: the row term first, then the column term, always in this order, so
+/// every back-end and every code path gets bit-identical depths.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct DepthPlane {
+    /// Pixel column of the origin.
+    pub origin_x: i64,
+    /// Pixel row of the origin.
+    pub origin_y: i64,
+    /// Depth at the origin pixel's centre.
+    pub z_origin: f32,
+    /// Change of depth per pixel to the right.
+    pub dz_dx: f32,
+    /// Change of depth per pixel down.
+    pub dz_dy: f32,
+}
+
+impl DepthPlane {
+    /// The plane through the triangle's snapped vertices at depths `z`
+    /// (vertex `i` at depth `z[i]`).
+    ///
+    /// With `E_i` the edge function opposite vertex `i` and `A` twice the
+    /// area, `z = z0 + ((z1 - z0) E1 + (z2 - z0) E2) / A`; its slopes are
+    /// the edge functions' coefficients weighted the same way.
+    pub fn new(setup: &TriangleSetup, z: [f32; 3]) -> DepthPlane {
+        let [z0, z1, z2] = z.map(f64::from);
+        let (d1, d2) = (z1 - z0, z2 - z0);
+        let area = setup.area as f64;
+        let (ox, oy) = (setup.bounds.x0, setup.bounds.y0);
+        let e = setup.edge_values_at_pixel(ox, oy);
+        let [_, e1, e2] = setup.edges;
+        let scale = SUBPIXEL_SCALE as f64;
+        DepthPlane {
+            origin_x: ox,
+            origin_y: oy,
+            z_origin: (z0 + (d1 * e[1] as f64 + d2 * e[2] as f64) / area) as f32,
+            dz_dx: ((d1 * e1.a as f64 + d2 * e2.a as f64) * scale / area) as f32,
+            dz_dy: ((d1 * e1.b as f64 + d2 * e2.b as f64) * scale / area) as f32,
+        }
+    }
+
+    /// A plane of constant depth.
+    pub fn constant(z: f32) -> DepthPlane {
+        DepthPlane {
+            origin_x: 0,
+            origin_y: 0,
+            z_origin: z,
+            dz_dx: 0.0,
+            dz_dy: 0.0,
+        }
+    }
+
+    /// The depth at the start of row `y`, before the column term.
+    #[inline]
+    pub fn row(&self, y: u32) -> f32 {
+        self.z_origin + self.dz_dy * (i64::from(y) - self.origin_y) as f32
+    }
+
+    /// The depth at column `x` of a row whose [`row`](Self::row) value is
+    /// `row`, clamped to `[0, 1]` as Direct3D and Vulkan clamp to the
+    /// viewport's depth range (rounding in a huge clipped triangle's plane
+    /// can otherwise step outside it).
+    #[inline]
+    pub fn in_row(&self, row: f32, x: u32) -> f32 {
+        self.in_row_at_offset(row, (i64::from(x) - self.origin_x) as f32)
+    }
+
+    /// [`in_row`](Self::in_row) for the column `dx` pixels right of the
+    /// origin (`dx` an integer, given as `f32`).
+    #[inline(always)]
+    fn in_row_at_offset(&self, row: f32, dx: f32) -> f32 {
+        (row + self.dz_dx * dx).clamp(0.0, 1.0)
+    }
+
+    /// The depth at the centre of pixel `(x, y)`.
+    #[inline]
+    pub fn at(&self, x: u32, y: u32) -> f32 {
+        self.in_row(self.row(y), x)
+    }
+}
+
+/// A triangle as the fragment stage needs it: which vertices, and its
+/// depth plane.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadedTriangle {
+    /// Indices of its three vertices in [`TriangleData::vertices`], in the
+    /// order of the set-up.
+    pub vertices: [u32; 3],
+    /// The depth plane through the snapped vertices.
+    pub depth: DepthPlane,
+}
+
+impl ShadedTriangle {
+    /// Pairs a set-up triangle with its vertices (indices) and their depths.
+    pub fn new(setup: &TriangleSetup, vertices: [u32; 3], depths: [f32; 3]) -> ShadedTriangle {
+        ShadedTriangle {
+            vertices,
+            depth: DepthPlane::new(setup, depths),
+        }
+    }
+}
+
+/// The fragment stage's data for the triangles of a draw: the vertices,
+/// shared between triangles as in an index buffer, and per triangle id its
+/// three vertex indices and depth plane.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriangleData {
+    /// Vertex data, shared by index.
+    pub vertices: Vec<ShadedVertex>,
+    /// Entry `i` belongs to the triangle with id `i`.
+    pub triangles: Vec<ShadedTriangle>,
+}
+
+impl TriangleData {
+    /// The data for triangles given by their own three vertices each:
+    /// `vertices[i]` for the triangle with id `i`. Those without a set-up
+    /// (zero area) get a constant depth, as they produce no fragment.
+    pub fn of_triangles(setups: &[TriangleSetup], vertices: &[[ShadedVertex; 3]]) -> TriangleData {
+        let mut triangles: Vec<ShadedTriangle> = (0..vertices.len() as u32)
+            .map(|i| ShadedTriangle {
+                vertices: [3 * i, 3 * i + 1, 3 * i + 2],
+                depth: DepthPlane::constant(vertices[i as usize][0].depth),
+            })
+            .collect();
+        for s in setups {
+            if let Some(slot) = triangles.get_mut(s.id as usize) {
+                slot.depth = DepthPlane::new(s, vertices[s.id as usize].map(|v| v.depth));
+            }
+        }
+        TriangleData {
+            vertices: vertices.iter().flatten().copied().collect(),
+            triangles,
+        }
+    }
+}
+
+/// A line segment as the fragment stage needs it.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadedLine {
+    /// Snapped start point.
+    pub from: FixedPoint,
+    /// Snapped end point.
+    pub to: FixedPoint,
+    /// Start and end vertex data.
+    pub vertices: [ShadedVertex; 2],
+}
+
+/// How varyings are interpolated across a primitive.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Interpolation {
+    /// Interpolate `a / w` and `1 / w` linearly, divide per fragment.
+    #[default]
+    PerspectiveCorrect,
+    /// Interpolate `a` linearly in screen space (wrong under perspective).
+    Linear,
+}
+
+/// What a fragment shader is given.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct FragmentInput {
+    /// Pixel column.
+    pub x: u32,
+    /// Pixel row.
+    pub y: u32,
+    /// Interpolated depth (already tested).
+    pub depth: f32,
+    /// Interpolated varyings.
+    pub varyings: Varyings,
+    /// The provoking (first) vertex's varyings, for flat shading.
+    pub flat: Varyings,
+    /// Index of the primitive in its draw.
+    pub primitive: u32,
+}
+
+/// Computes a fragment's colour (the course chapter, step 5).
+pub trait FragmentShader: Sync {
+    /// The fragment's linear RGBA colour; components are clamped to `[0, 1]`.
+    fn shade(&self, input: &FragmentInput) -> Vec4;
+
+    /// True when the colour depends only on the primitive (`flat` and
+    /// `primitive`), never on the pixel: the stage then shades a span once
+    /// and writes that colour to every pixel of the span that passes the
+    /// depth test. The default, `false`, shades every fragment.
+    fn uniform_per_primitive(&self) -> bool {
+        false
+    }
+}
+
+/// Converts a colour in `[0, 1]` to RGBA8 (clamped, rounded).
+#[inline]
+pub fn to_rgba8(c: Vec4) -> [u8; 4] {
+    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    [q(c.x), q(c.y), q(c.z), q(c.w)]
+}
+
+/// Converts RGBA8 to a colour in `[0, 1]`.
+#[inline]
+pub fn from_rgba8(c: [u8; 4]) -> Vec4 {
+    Vec4::new(c[0] as f32, c[1] as f32, c[2] as f32, c[3] as f32) / 255.0
+}
+
+/// The shared fragment stage: a [`FragmentSink`] that depth-tests, shades
+/// and writes fragments into a [`RenderTarget`].
+pub struct FragmentStage<'a> {
+    target: TargetRows<'a>,
+    shader: &'a dyn FragmentShader,
+    triangles: &'a [ShadedTriangle],
+    vertices: &'a [ShadedVertex],
+    lines: &'a [ShadedLine],
+    /// Depth comparison and write mask.
+    pub depth: DepthState,
+    /// How varyings are interpolated.
+    pub interpolation: Interpolation,
+    /// Added to every line fragment's depth, so a wireframe drawn over its
+    /// own surface with `less-equal` wins (negative values pull it nearer).
+    pub line_depth_offset: f32,
+}
+
+impl<'a> FragmentStage<'a> {
+    /// A stage writing into `target` with `shader`, default depth state and
+    /// perspective-correct interpolation, and no primitive data yet.
+    pub fn new(target: &'a mut RenderTarget, shader: &'a dyn FragmentShader) -> Self {
+        Self::on_rows(target.rows_mut(), shader)
+    }
+
+    /// A stage writing into some rows of a target only (one band of a
+    /// binned draw); fragments must lie in those rows.
+    pub fn on_rows(target: TargetRows<'a>, shader: &'a dyn FragmentShader) -> Self {
+        FragmentStage {
+            target,
+            shader,
+            triangles: &[],
+            vertices: &[],
+            lines: &[],
+            depth: DepthState::DEFAULT,
+            interpolation: Interpolation::PerspectiveCorrect,
+            line_depth_offset: 0.0,
+        }
+    }
+
+    /// Vertex data and depth planes of the triangles, indexed by triangle id.
+    pub fn with_triangles(mut self, data: &'a TriangleData) -> Self {
+        self.triangles = &data.triangles;
+        self.vertices = &data.vertices;
+        self
+    }
+
+    /// Switches to another run of triangles over the same vertices: ids
+    /// now index `triangles` (see [`crate::geometry::pipeline::Geometry`]).
+    pub(crate) fn use_triangles(&mut self, triangles: &'a [ShadedTriangle]) {
+        self.triangles = triangles;
+    }
+
+    /// Vertex data of the line segments, indexed by line id.
+    pub fn with_lines(mut self, lines: &'a [ShadedLine]) -> Self {
+        self.lines = lines;
+        self
+    }
+
+    /// Sets the depth state.
+    pub fn with_depth(mut self, depth: DepthState) -> Self {
+        self.depth = depth;
+        self
+    }
+
+    /// Sets the interpolation mode.
+    pub fn with_interpolation(mut self, interpolation: Interpolation) -> Self {
+        self.interpolation = interpolation;
+        self
+    }
+
+    /// The pixels this stage writes, in target coordinates.
+    pub fn rect(&self) -> PixelRect {
+        self.target.rect()
+    }
+
+    /// Interpolation weights for the varyings from screen-space weights.
+    #[inline]
+    fn varying_weights<const N: usize>(&self, screen: [f32; N], v: &[ShadedVertex; N]) -> [f32; N] {
+        match self.interpolation {
+            Interpolation::Linear => screen,
+            Interpolation::PerspectiveCorrect => {
+                let mut w = [0.0; N];
+                let mut sum = 0.0;
+                for i in 0..N {
+                    w[i] = screen[i] * v[i].inv_w;
+                    sum += w[i];
+                }
+                if sum > 0.0 {
+                    w.map(|wi| wi / sum)
+                } else {
+                    screen
+                }
+            }
+        }
+    }
+
+    /// Triangle `id`'s stage data.
+    #[inline]
+    fn triangle(&self, id: u32) -> Option<&'a ShadedTriangle> {
+        let t = self.triangles.get(id as usize);
+        debug_assert!(t.is_some(), "no vertex data for triangle {id}");
+        t
+    }
+
+    /// The three vertices of `t`.
+    #[inline]
+    fn vertices_of(&self, t: &ShadedTriangle) -> Option<[ShadedVertex; 3]> {
+        let [a, b, c] = t.vertices.map(|i| self.vertices.get(i as usize).copied());
+        debug_assert!(
+            a.is_some() && b.is_some() && c.is_some(),
+            "vertex index out of range"
+        );
+        Some([a?, b?, c?])
+    }
+
+    /// The shader's input for a sample that passed the depth test.
+    #[inline]
+    fn fragment_input<const N: usize>(&self, s: &Sample<N>) -> FragmentInput {
+        let weights = self.varying_weights(s.screen, &s.vertices);
+        FragmentInput {
+            x: s.x,
+            y: s.y,
+            depth: s.depth,
+            varyings: Varyings::weighted(&s.vertices.map(|v| v.varyings), weights),
+            flat: s.vertices[0].varyings,
+            primitive: s.primitive,
+        }
+    }
+
+    /// The shader's colour for `input`, clamped to `[0, 1]`.
+    #[inline]
+    fn color_of(&self, input: &FragmentInput) -> Vec4 {
+        self.shader.shade(input).clamp(Vec4::ZERO, Vec4::ONE)
+    }
+
+    /// Counts a fragment of depth `z` at pixel `(x, y)` and depth-tests it;
+    /// the pixel's buffer index when it passes.
+    #[inline]
+    fn depth_test(&mut self, x: u32, y: u32, z: f32) -> Option<usize> {
+        let idx = self.target.index(x, y);
+        if self.target.counts_coverage() {
+            self.target.coverage[idx] = self.target.coverage[idx].saturating_add(1);
+        }
+        self.depth
+            .test
+            .passes(z, self.target.depth[idx])
+            .then_some(idx)
+    }
+
+    /// Shades a sample that passed the depth test at buffer index `idx`
+    /// and writes its colour (blended by its coverage) and depth.
+    #[inline]
+    fn write<const N: usize>(&mut self, idx: usize, s: Sample<N>) {
+        let color = self.color_of(&self.fragment_input(&s));
+        self.target.color[idx] = if s.coverage >= 1.0 {
+            to_rgba8(color)
+        } else {
+            let dst = from_rgba8(self.target.color[idx]);
+            to_rgba8(color * s.coverage + dst * (1.0 - s.coverage))
+        };
+        if self.depth.write {
+            self.target.depth[idx] = s.depth;
+        }
+    }
+
+    /// One fragment of triangle `t`: depth from its plane, then, only if
+    /// the depth test passes, its vertices and weights for shading.
+    #[inline]
+    fn triangle_sample(&mut self, t: &ShadedTriangle, f: &TriangleFragment) {
+        let z = t.depth.at(f.x, f.y);
+        if let Some(idx) = self.depth_test(f.x, f.y, z) {
+            if let Some(vertices) = self.vertices_of(t) {
+                self.write(idx, Sample::of_triangle(z, vertices, f));
+            }
+        }
+    }
+}
+
+/// The buffers under one span, for the uniform-colour fast path.
+struct SpanRows<'s> {
+    color: &'s mut [[u8; 4]],
+    depth: &'s mut [f32],
+    coverage: &'s mut [u16],
+}
+
+impl SpanRows<'_> {
+    /// Counts coverage (when the target counts), then depth-tests each
+    /// pixel against the plane (evaluated exactly as [`DepthPlane::at`]
+    /// does) and writes `color` (and the depth when `write`) where `passes`.
+    ///
+    /// The loop has no branch: every pixel's colour and depth are stored,
+    /// the old value where the test fails, so the compiler can run it on
+    /// vectors. The column offset is counted in `i32`, whose conversion to
+    /// `f32` gives the same value as [`DepthPlane::in_row`]'s `i64` one:
+    /// both are the same integer, which the guard band keeps below 2^17.
+    #[inline(always)]
+    fn fill(
+        self,
+        plane: DepthPlane,
+        row: f32,
+        x0: u32,
+        color: [u8; 4],
+        write: bool,
+        passes: impl Fn(f32, f32) -> bool,
+    ) {
+        for c in self.coverage.iter_mut() {
+            *c = c.saturating_add(1);
+        }
+        let first = (i64::from(x0) - plane.origin_x) as i32;
+        let color = u32::from_ne_bytes(color);
+        for (i, (d, c)) in self.depth.iter_mut().zip(self.color.iter_mut()).enumerate() {
+            let z = plane.in_row_at_offset(row, (first + i as i32) as f32);
+            // All ones where the test passes, as a vector compare gives.
+            let pass = u32::from(passes(z, *d)).wrapping_neg();
+            let keep = u32::from_ne_bytes(*c) & !pass;
+            *c = (color & pass | keep).to_ne_bytes();
+            let written = pass & u32::from(write).wrapping_neg();
+            *d = f32::from_bits(z.to_bits() & written | d.to_bits() & !written);
+        }
+    }
+}
+
+/// A fragment that passed the depth test, with what shading it needs.
+struct Sample<const N: usize> {
+    x: u32,
+    y: u32,
+    primitive: u32,
+    depth: f32,
+    /// Screen-space interpolation weights of the N vertices.
+    screen: [f32; N],
+    vertices: [ShadedVertex; N],
+    coverage: f32,
+}
+
+impl Sample<3> {
+    /// A triangle fragment's sample at depth `depth` (from the triangle's
+    /// plane): barycentrics from its exact edge values.
+    #[inline]
+    fn of_triangle(depth: f32, vertices: [ShadedVertex; 3], f: &TriangleFragment) -> Sample<3> {
+        let area = (f.edges[0] + f.edges[1] + f.edges[2]) as f64;
+        Sample {
+            x: f.x,
+            y: f.y,
+            primitive: f.triangle,
+            depth,
+            screen: f.edges.map(|e| (e as f64 / area) as f32),
+            vertices,
+            coverage: 1.0,
+        }
+    }
+}
+
+impl FragmentSink for FragmentStage<'_> {
+    fn triangle_fragment(&mut self, f: &TriangleFragment) {
+        if let Some(t) = self.triangle(f.triangle) {
+            self.triangle_sample(t, f);
+        }
+    }
+
+    fn triangle_span(&mut self, span: &TriangleSpan) {
+        let Some(t) = self.triangle(span.triangle) else {
+            return;
+        };
+        if !self.shader.uniform_per_primitive() {
+            for f in span.fragments() {
+                self.triangle_sample(t, &f);
+            }
+            return;
+        }
+        // The colour is the same for every pixel: shade the first one.
+        let first = TriangleFragment {
+            x: span.x0,
+            y: span.y,
+            triangle: span.triangle,
+            edges: span.edges,
+        };
+        let Some(vertices) = self.vertices_of(t) else {
+            return;
+        };
+        let plane = t.depth;
+        let depth = plane.at(first.x, first.y);
+        let input = self.fragment_input(&Sample::of_triangle(depth, vertices, &first));
+        let color = to_rgba8(self.color_of(&input));
+        let start = self.target.index(span.x0, span.y);
+        let end = start + (span.x1 - span.x0) as usize + 1;
+        let counts = self.target.counts_coverage();
+        let rows = SpanRows {
+            color: &mut self.target.color[start..end],
+            depth: &mut self.target.depth[start..end],
+            coverage: if counts {
+                &mut self.target.coverage[start..end]
+            } else {
+                &mut []
+            },
+        };
+        let (row, x0) = (plane.row(span.y), span.x0);
+        let write = self.depth.write;
+        // One monomorphic loop per comparison, so the compare is not
+        // re-dispatched per pixel.
+        match self.depth.test {
+            DepthTest::Never => rows.fill(plane, row, x0, color, write, |_, _| false),
+            DepthTest::Less => rows.fill(plane, row, x0, color, write, |z, d| z < d),
+            DepthTest::Equal => rows.fill(plane, row, x0, color, write, |z, d| z == d),
+            DepthTest::LessEqual => rows.fill(plane, row, x0, color, write, |z, d| z <= d),
+            DepthTest::Greater => rows.fill(plane, row, x0, color, write, |z, d| z > d),
+            DepthTest::NotEqual => rows.fill(plane, row, x0, color, write, |z, d| z != d),
+            DepthTest::GreaterEqual => rows.fill(plane, row, x0, color, write, |z, d| z >= d),
+            DepthTest::Always => rows.fill(plane, row, x0, color, write, |_, _| true),
+        }
+    }
+
+    fn line_fragment(&mut self, f: &LineFragment) {
+        let Some(line) = self.lines.get(f.line as usize).copied() else {
+            debug_assert!(false, "no vertex data for line {}", f.line);
+            return;
+        };
+        // Parameter of the pixel centre's projection onto the snapped segment.
+        let (ax, ay) = line.from.to_f64();
+        let (bx, by) = line.to.to_f64();
+        let (dx, dy) = (bx - ax, by - ay);
+        let len2 = dx * dx + dy * dy;
+        let (px, py) = (f64::from(f.x) + 0.5, f64::from(f.y) + 0.5);
+        let t = if len2 > 0.0 {
+            (((px - ax) * dx + (py - ay) * dy) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let [v0, v1] = line.vertices;
+        let z0 = f64::from(v0.depth);
+        let z = (z0 + t * (f64::from(v1.depth) - z0)) as f32 + self.line_depth_offset;
+        let Some(idx) = self.depth_test(f.x, f.y, z) else {
+            return;
+        };
+        let screen = [(1.0 - t) as f32, t as f32];
+        self.write(
+            idx,
+            Sample {
+                x: f.x,
+                y: f.y,
+                primitive: f.line,
+                depth: z,
+                screen,
+                vertices: line.vertices,
+                coverage: f.coverage,
+            },
+        );
+    }
+}
+
+crate::names::named_enum!(
+    Interpolation,
+    "interpolation",
+    PerspectiveCorrect = "perspective",
+    Linear = "linear"
+);

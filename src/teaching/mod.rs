@@ -1,0 +1,12 @@
+//! Teaching: what makes each algorithm visible, step by step.
+//!
+//! * [`trace`]: step-by-step traces of every back-end, in the course's
+//!   terms (decision variables, edge values, active edges, blocks);
+//! * [`grid_picture`]: zoomed pictures of the pixel grid and fill-rule
+//!   heat maps;
+//! * [`report`]: the side-by-side HTML comparison of every back-end on
+//!   one input (images, differences, work and time).
+
+pub mod grid_picture;
+pub mod report;
+pub mod trace;

@@ -1,0 +1,601 @@
+//! The side-by-side comparison report (`rasterlab compare`).
+//!
+//! Every back-end of the input's kind draws the same input through the
+//! shared fragment stage. The report puts side by side:
+//!
+//! * each back-end's image, and its **difference image** against the
+//!   reference (`naive` for triangles when it runs in reasonable time,
+//!   else `bbox`; `bresenham` for lines): pixels whose colour, depth or
+//!   coverage differ are red, the others a faded copy of the reference.
+//!   Triangle back-ends must all be identical; line back-ends are
+//!   different algorithms and may differ;
+//! * the **work table**: fragments emitted, samples tested, tests per
+//!   fragment, rows or blocks visited, time (median of a few runs, for a
+//!   rough idea; `rasterlab bench` and `cargo bench` measure properly);
+//! * the **fill-rule pictures**: the input drawn under every fill rule, as
+//!   heat maps of each pixel's fragment count against the watertight
+//!   rules ([`GridPicture::coverage_heat_map`]), then the same for seed
+//!   004's edge-drawing problem (the pinwheel);
+//! * for small targets, the **zoomed grid pictures** of each back-end
+//!   ([`GridPicture`]): which pixels it tested, which it emitted.
+//!
+//! The HTML file is self-contained: pictures are embedded as PNG or SVG.
+//!
+//! ```
+//! use rasterlab::teaching::report::{CompareInput, Report};
+//! use rasterlab::geometry::scene::Scene2D;
+//!
+//! let report = Report::compare(&CompareInput::Triangles(Scene2D::split_square()), 8, 8, 1).unwrap();
+//! assert!(report.runs.iter().all(|r| r.differing_pixels == 0));
+//! assert!(report.to_html().contains("<table"));
+//! ```
+
+use crate::error::{Error, Result};
+use crate::geometry::mesh::Mesh;
+use crate::geometry::render::{MeshRenderer, RenderSettings};
+use crate::geometry::scene::Scene2D;
+use crate::measure::benchmark::median_time;
+use crate::measure::workload::LineWorkload;
+use crate::raster::backend::{line_backends, triangle_backend, triangle_backends};
+use crate::raster::edge::FillRule;
+use crate::raster::fragment::WorkCounters;
+use crate::raster::line::LineSetup;
+use crate::raster::shader::Flat;
+use crate::raster::target::RenderTarget;
+use crate::raster::triangle::TriangleRasterizer;
+use crate::teaching::grid_picture::{escape, GridPicture, GAP, OVERDRAWN, OVERDRAWN_MORE};
+use base64::Engine;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+/// Largest number of pixel tests a back-end whose work does not follow the
+/// triangles' size (the naive loop: pixels x triangles) may do in a report;
+/// above it `bbox` is the reference and `naive` is left out.
+pub const NAIVE_TEST_BUDGET: u64 = 50_000_000;
+
+/// Largest target (in pixels) that gets zoomed grid pictures.
+pub const GRID_PICTURE_PIXELS: u32 = 48 * 48;
+
+/// What to compare.
+#[derive(Clone, Debug)]
+pub enum CompareInput {
+    /// 2D triangles (a soup, or a triangulated polygon).
+    Triangles(Scene2D),
+    /// 2D line segments.
+    Lines(Vec<LineSetup>),
+    /// A mesh, rendered by the 3D pipeline with the default camera.
+    Mesh(Box<Mesh>),
+}
+
+/// One back-end's result.
+#[derive(Clone, Debug)]
+pub struct BackendRun {
+    /// Back-end name.
+    pub name: &'static str,
+    /// What it does.
+    pub description: &'static str,
+    /// Its work counters.
+    pub work: WorkCounters,
+    /// Median drawing time.
+    pub time: Duration,
+    /// The buffers it produced.
+    pub target: RenderTarget,
+    /// Pixels whose colour, depth or coverage differ from the reference
+    /// (0 for the reference itself).
+    pub differing_pixels: usize,
+}
+
+impl BackendRun {
+    /// Samples tested per fragment, to two decimals, or a dash when no
+    /// fragment was drawn (the ratio means nothing then).
+    pub fn tests_per_fragment_text(&self) -> String {
+        if self.work.fragments == 0 {
+            "—".to_string()
+        } else {
+            format!("{:.2}", self.work.tests_per_fragment())
+        }
+    }
+
+    /// A run, not yet compared with the reference.
+    fn new(
+        name: &'static str,
+        description: &'static str,
+        work: WorkCounters,
+        time: Duration,
+        target: RenderTarget,
+    ) -> BackendRun {
+        BackendRun {
+            name,
+            description,
+            work,
+            time,
+            target,
+            differing_pixels: 0,
+        }
+    }
+}
+
+/// One fill-rule heat map with its counts.
+#[derive(Clone, Debug)]
+pub struct RulePicture {
+    /// The fill rule.
+    pub rule: FillRule,
+    /// The heat map.
+    pub picture: GridPicture,
+    /// Pixels drawn less often than by every watertight rule.
+    pub gaps: usize,
+    /// Pixels drawn more often than by any watertight rule.
+    pub overdrawn: usize,
+}
+
+/// A comparison of every back-end on one input.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// A short description of the input.
+    pub input: String,
+    /// Target width.
+    pub width: u32,
+    /// Target height.
+    pub height: u32,
+    /// The reference back-end's name.
+    pub reference: &'static str,
+    /// Why it is the reference (and what was left out, if anything).
+    pub reference_note: String,
+    /// True for a line set: no fill rules apply.
+    pub lines: bool,
+    /// One entry per back-end, the reference first.
+    pub runs: Vec<BackendRun>,
+    /// The input's fill-rule heat maps (triangles and meshes).
+    pub rules: Vec<RulePicture>,
+    /// The line-drawing slides' edge-drawing problem: the pinwheel's heat maps.
+    pub pinwheel_rules: Vec<RulePicture>,
+    /// Zoomed grid pictures per back-end (small targets only).
+    pub grids: Vec<(&'static str, GridPicture)>,
+}
+
+/// Whether pixel `i` of two targets differs in colour, depth or coverage.
+fn pixel_differs(a: &RenderTarget, b: &RenderTarget, i: usize) -> bool {
+    a.color[i] != b.color[i]
+        || a.depth[i].to_bits() != b.depth[i].to_bits()
+        || a.coverage[i] != b.coverage[i]
+}
+
+/// The triangle back-ends a report runs: all of them, but those whose work
+/// does not follow the triangles' size (the naive loop) only while it stays
+/// within [`NAIVE_TEST_BUDGET`] tests.
+fn triangle_backends_within_budget(
+    pixels: u64,
+    triangles: usize,
+) -> impl Iterator<Item = &'static dyn TriangleRasterizer> {
+    triangle_backends()
+        .iter()
+        .copied()
+        .filter(move |b| b.affordable(triangles as u64, pixels, NAIVE_TEST_BUDGET))
+}
+
+/// The heat maps of `coverage_of(rule)` for every rule.
+fn rule_pictures(
+    width: u32,
+    height: u32,
+    mut coverage_of: impl FnMut(FillRule) -> Result<Vec<u16>>,
+) -> Result<Vec<RulePicture>> {
+    let coverages = FillRule::ALL
+        .iter()
+        .map(|&r| coverage_of(r))
+        .collect::<Result<Vec<_>>>()?;
+    let watertight = [coverages[0].as_slice(), coverages[1].as_slice()];
+    FillRule::ALL
+        .iter()
+        .zip(&coverages)
+        .map(|(&rule, coverage)| {
+            let mut picture = GridPicture::coverage_heat_map(
+                width,
+                height,
+                coverage,
+                &watertight,
+                String::new(),
+            )?;
+            let gaps = picture.count(GAP);
+            let overdrawn = picture.count(OVERDRAWN) + picture.count(OVERDRAWN_MORE);
+            picture.caption = format!("{}: {gaps} gap pixels, {overdrawn} overdrawn", rule.name());
+            Ok(RulePicture {
+                rule,
+                picture,
+                gaps,
+                overdrawn,
+            })
+        })
+        .collect()
+}
+
+/// Memory a report holds per target pixel, about: each back-end's target
+/// (colour, depth, coverage), its difference image and the pictures
+/// encoded in the page.
+pub const REPORT_BYTES_PER_PIXEL: u64 = 256;
+
+/// The most memory a report may need, by [`REPORT_BYTES_PER_PIXEL`].
+pub const MAX_REPORT_BYTES: u64 = 4 << 30;
+
+impl Report {
+    /// Refuses, with an estimate, a report on a target so large that its
+    /// images would not fit in [`MAX_REPORT_BYTES`].
+    pub fn check_memory(width: u32, height: u32) -> Result<()> {
+        let bytes = u64::from(width) * u64::from(height) * REPORT_BYTES_PER_PIXEL;
+        if bytes > MAX_REPORT_BYTES {
+            return Err(Error::TooMuchWork(format!(
+                "a {width}x{height} report would hold about {:.1} GiB of images (at most {} GiB): give a smaller --size",
+                bytes as f64 / f64::from(1u32 << 30),
+                MAX_REPORT_BYTES >> 30
+            )));
+        }
+        Ok(())
+    }
+
+    /// Runs every back-end of the input's kind on a `width` x `height`
+    /// target, timing each as the median of `samples` runs.
+    pub fn compare(
+        input: &CompareInput,
+        width: u32,
+        height: u32,
+        samples: usize,
+    ) -> Result<Report> {
+        RenderTarget::check_size(width, height)?;
+        Self::check_memory(width, height)?;
+        let pixels = u64::from(width) * u64::from(height);
+        let small = width * height <= GRID_PICTURE_PIXELS;
+        let mut runs = Vec::new();
+        let mut rules = Vec::new();
+        let mut grids = Vec::new();
+        let description;
+        match input {
+            CompareInput::Triangles(scene) => {
+                let scene = Scene2D {
+                    width,
+                    height,
+                    ..scene.clone()
+                };
+                description = format!("{} triangles", scene.triangles.len());
+                for b in triangle_backends_within_budget(pixels, scene.triangles.len()) {
+                    let (time, drawn) =
+                        median_time(samples, || scene.render(b, FillRule::TopLeft, &Flat));
+                    let (target, work) = drawn?;
+                    runs.push(BackendRun::new(
+                        b.name(),
+                        b.description(),
+                        work,
+                        time,
+                        target,
+                    ));
+                    if small {
+                        let picture = GridPicture::of_snapped_triangles(
+                            b,
+                            &scene.triangles,
+                            FillRule::TopLeft,
+                            width,
+                            height,
+                        )?;
+                        grids.push((b.name(), picture));
+                    }
+                }
+                let scanline = triangle_backend("scanline")?;
+                rules = rule_pictures(width, height, |rule| {
+                    Ok(scene.render(scanline, rule, &Flat)?.0.coverage)
+                })?;
+            }
+            CompareInput::Lines(lines) => {
+                description = format!("{} line segments", lines.len());
+                let work = LineWorkload::new("input", lines.clone());
+                for b in line_backends() {
+                    let mut target = RenderTarget::new(width, height)?;
+                    let (time, counters) = median_time(samples, || work.run(*b, &mut target));
+                    runs.push(BackendRun::new(
+                        b.name(),
+                        b.description(),
+                        counters,
+                        time,
+                        target,
+                    ));
+                }
+            }
+            CompareInput::Mesh(mesh) => {
+                description = format!(
+                    "mesh of {} triangles, default camera, back faces culled",
+                    mesh.triangles.len()
+                );
+                let settings = |rule| {
+                    let mut s = RenderSettings {
+                        width,
+                        height,
+                        ..RenderSettings::default()
+                    };
+                    s.pipeline.rule = rule;
+                    s.pipeline.cull = crate::geometry::pipeline::CullMode::Back;
+                    s
+                };
+                let renderer = MeshRenderer::new(mesh, settings(FillRule::TopLeft))?;
+                for b in triangle_backends_within_budget(pixels, mesh.triangles.len()) {
+                    let (time, frame) = median_time(samples, || renderer.render(b));
+                    let frame = frame?;
+                    runs.push(BackendRun::new(
+                        b.name(),
+                        b.description(),
+                        frame.stats.work,
+                        time,
+                        frame.target,
+                    ));
+                }
+                let scanline = triangle_backend("scanline")?;
+                rules = rule_pictures(width, height, |rule| {
+                    let frame = MeshRenderer::new(mesh, settings(rule))?.render(scanline)?;
+                    Ok(frame.target.coverage)
+                })?;
+            }
+        }
+        let (reference, others) = runs
+            .split_first_mut()
+            .ok_or_else(|| Error::InvalidArgument("no back-end ran".into()))?;
+        for run in others {
+            run.differing_pixels = (0..run.target.color.len())
+                .filter(|&i| pixel_differs(&reference.target, &run.target, i))
+                .count();
+        }
+        let triangles_in = match input {
+            CompareInput::Triangles(scene) => scene.triangles.len(),
+            CompareInput::Mesh(mesh) => mesh.triangles.len(),
+            CompareInput::Lines(_) => 0,
+        };
+        let reference_note = match input {
+            CompareInput::Lines(_) => format!(
+                "{}, the first line back-end; lines have no single exact answer, so the others' differences are their algorithms'",
+                reference.name
+            ),
+            _ if reference.name == "naive" => {
+                "naive, the course's loop over every pixel for every triangle".to_string()
+            }
+            _ => format!(
+                "{}: naive was left out, as its {triangles_in} triangles x {pixels} pixels = {} tests are beyond the report's budget of {NAIVE_TEST_BUDGET}",
+                reference.name,
+                triangles_in as u64 * pixels
+            ),
+        };
+        let pinwheel = Scene2D::pinwheel();
+        let bbox = triangle_backend("bbox")?;
+        let pinwheel_rules = rule_pictures(pinwheel.width, pinwheel.height, |rule| {
+            Ok(pinwheel.render(bbox, rule, &Flat)?.0.coverage)
+        })?;
+        Ok(Report {
+            input: description,
+            width,
+            height,
+            reference: runs[0].name,
+            reference_note,
+            lines: matches!(input, CompareInput::Lines(_)),
+            runs,
+            rules,
+            pinwheel_rules,
+            grids,
+        })
+    }
+
+    /// The difference image of `run` against the reference: differing
+    /// pixels red, the others a faded copy of the reference.
+    pub fn difference_image(&self, run: &BackendRun) -> image::RgbaImage {
+        let reference = &self.runs[0].target;
+        let mut img = reference.to_image();
+        for (i, p) in img.pixels_mut().enumerate() {
+            p.0 = if !pixel_differs(reference, &run.target, i) {
+                let [r, g, b, _] = p.0;
+                let fade = |c: u8| (c as u16 / 3 + 150) as u8;
+                [fade(r), fade(g), fade(b), 255]
+            } else {
+                [230, 20, 20, 255]
+            };
+        }
+        img
+    }
+
+    /// The report as one self-contained HTML page.
+    pub fn to_html(&self) -> String {
+        let zoom = (288 / self.width.max(self.height)).clamp(1, 16);
+        let shown = |w: u32| w * zoom;
+        let mut h = String::new();
+        let _ = write!(
+            h,
+            r#"<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>rasterlab compare: {input}</title>
+<style>
+body {{ font-family: sans-serif; margin: 1.5em; color: #222; }}
+.row {{ display: flex; flex-wrap: wrap; gap: 1.2em; }}
+figure {{ margin: 0; }}
+figcaption {{ font-size: 0.9em; max-width: {cap}px; }}
+img.px {{ image-rendering: pixelated; border: 1px solid #999; }}
+table {{ border-collapse: collapse; margin: 0.5em 0 1.5em; }}
+td, th {{ border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: right; }}
+td:first-child, th:first-child {{ text-align: left; }}
+.ok {{ color: #1a7f37; }} .bad {{ color: #c62828; font-weight: bold; }}
+.swatch {{ display: inline-block; width: 1em; height: 1em; vertical-align: middle; border: 1px solid #999; }}
+</style></head><body>
+<h1>rasterlab compare</h1>
+<p>Input: {input}, drawn on a {w} x {h} target {how} through the shared fragment stage. Reference: <b>{reference}</b>.</p>
+"#,
+            input = escape(&self.input),
+            cap = shown(self.width).max(240),
+            w = self.width,
+            h = self.height,
+            how = if self.lines {
+                "by every line back-end"
+            } else {
+                "with the top-left fill rule"
+            },
+            reference = escape(&self.reference_note),
+        );
+
+        h.push_str("<h2>Work</h2>\n<table id=\"work\"><tr><th>back-end</th><th>fragments</th><th>samples tested</th><th>tests per fragment</th><th>rows / blocks</th><th>time (median)</th><th>pixels differing from the reference</th></tr>\n");
+        for run in &self.runs {
+            let differ = match run.differing_pixels {
+                0 => r#"<span class="ok">0 (identical)</span>"#.to_string(),
+                n => format!(r#"<span class="bad">{n}</span>"#),
+            };
+            let _ = writeln!(
+                h,
+                "<tr><td title=\"{}\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.3} ms</td><td>{differ}</td></tr>",
+                escape(run.description),
+                run.name,
+                run.work.fragments,
+                run.work.samples_tested,
+                run.tests_per_fragment_text(),
+                // Rows or blocks only mean something to the back-ends
+                // that hand spans to the stage.
+                if run.work.spans == 0 { "—".to_string() } else { run.work.spans.to_string() },
+                run.time.as_secs_f64() * 1e3
+            );
+        }
+        h.push_str("</table>\n<p>Times are for a rough idea; <code>rasterlab bench</code> and <code>cargo bench</code> measure properly.</p>\n");
+
+        h.push_str("<h2>Images</h2>\n<div class=\"row\">\n");
+        for run in &self.runs {
+            figure(
+                &mut h,
+                &png_data(&run.target.to_image()),
+                shown(self.width),
+                &format!("{}: {}", run.name, run.description),
+            );
+        }
+        h.push_str("</div>\n<h2>Differences from the reference</h2>\n<p>Red: colour, depth or coverage differs from ");
+        h.push_str(self.reference);
+        h.push_str("'s.</p>\n<div class=\"row\">\n");
+        for run in self.runs.iter().skip(1) {
+            figure(
+                &mut h,
+                &png_data(&self.difference_image(run)),
+                shown(self.width),
+                &format!("{}: {} pixels differ", run.name, run.differing_pixels),
+            );
+        }
+        h.push_str("</div>\n");
+
+        let legend = format!(
+            "<p>{} as a watertight rule (white: not covered) {} gap: drawn by no triangle {} drawn once too often {} drawn two or more times too often</p>\n",
+            swatch(crate::teaching::grid_picture::AS_REFERENCE),
+            swatch(GAP),
+            swatch(OVERDRAWN),
+            swatch(OVERDRAWN_MORE)
+        );
+        if !self.rules.is_empty() {
+            h.push_str("<h2>Fill rules</h2>\n");
+            h.push_str(&legend);
+            rule_table(&mut h, "rules", &self.rules);
+            h.push_str("<div class=\"row\">\n");
+            for r in &self.rules {
+                heat_figure(&mut h, r, zoom);
+            }
+            h.push_str("</div>\n");
+        }
+        if !self.lines {
+            h.push_str("<h2>The line-drawing slides' edge-drawing problem</h2>\n<p>Eight triangles around one pixel centre, every shared edge through pixel centres. Drawing every edge (inclusive) draws them twice; drawing none (exclusive) leaves holes; the top-left, bottom-right and off-screen point rules give each edge pixel to exactly one triangle.</p>\n");
+            h.push_str(&legend);
+            rule_table(&mut h, "pinwheel", &self.pinwheel_rules);
+            h.push_str("<div class=\"row\">\n");
+            for r in &self.pinwheel_rules {
+                heat_figure(&mut h, r, 24);
+            }
+            h.push_str("</div>\n");
+        }
+
+        if !self.grids.is_empty() {
+            h.push_str("<h2>Pixels tested and emitted</h2>\n<p>Red: the back-end tested the pixel's centre and found it outside; green: a fragment; white: never looked at. Black: the true edges.</p>\n<div class=\"row\">\n");
+            for (name, grid) in &self.grids {
+                let _ = writeln!(
+                    h,
+                    "<figure class=\"grid\">{}<figcaption>{name}</figcaption></figure>",
+                    grid.to_svg()
+                        .replace("<svg ", "<svg style=\"max-width: 520px; height: auto\" ")
+                );
+            }
+            h.push_str("</div>\n");
+        }
+        h.push_str(
+            r#"<script>
+window.addEventListener('load', () => {
+  const images = [...document.images];
+  document.body.dataset.images = images.length;
+  document.body.dataset.imagesLoaded = images.filter(i => i.complete && i.naturalWidth > 0).length;
+  document.body.dataset.tables = document.querySelectorAll('table').length;
+  document.body.dataset.svgs = document.querySelectorAll('svg').length;
+});
+</script>
+</body></html>
+"#,
+        );
+        h
+    }
+
+    /// Writes `index.html` into `dir` (created if missing) and returns
+    /// its path.
+    pub fn write(&self, dir: &Path) -> Result<PathBuf> {
+        crate::output::check_dir(dir)?;
+        let path = dir.join("index.html");
+        crate::output::write_file(&path, self.to_html().as_bytes())?;
+        Ok(path)
+    }
+}
+
+fn png_data<P: image::PixelWithColorType, C: std::ops::Deref<Target = [P::Subpixel]>>(
+    img: &image::ImageBuffer<P, C>,
+) -> String
+where
+    [P::Subpixel]: image::EncodableLayout,
+{
+    let mut bytes = Vec::new();
+    img.write_to(
+        &mut std::io::Cursor::new(&mut bytes),
+        image::ImageFormat::Png,
+    )
+    .expect("encoding a PNG in memory does not fail");
+    format!(
+        "data:image/png;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(bytes)
+    )
+}
+
+fn figure(h: &mut String, src: &str, width: u32, caption: &str) {
+    let _ = writeln!(
+        h,
+        "<figure><img class=\"px\" src=\"{src}\" width=\"{width}\" alt=\"{0}\"><figcaption>{0}</figcaption></figure>",
+        escape(caption)
+    );
+}
+
+fn heat_figure(h: &mut String, r: &RulePicture, zoom: u32) {
+    let png = r
+        .picture
+        .to_png(zoom.min(24))
+        .expect("a heat map of a checked target size can be drawn");
+    let src = png_data(&png);
+    figure(h, &src, png.width(), &r.picture.caption);
+}
+
+fn rule_table(h: &mut String, id: &str, rules: &[RulePicture]) {
+    let _ = writeln!(
+        h,
+        "<table id=\"{id}\"><tr><th>fill rule</th><th>gap pixels</th><th>overdrawn pixels</th><th>watertight here</th></tr>"
+    );
+    for r in rules {
+        let ok = r.gaps == 0 && r.overdrawn == 0;
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"{}\">{}</td></tr>",
+            r.rule.name(),
+            r.gaps,
+            r.overdrawn,
+            if ok { "ok" } else { "bad" },
+            if ok { "yes" } else { "no" }
+        );
+    }
+    h.push_str("</table>\n");
+}
+
+fn swatch([r, g, b]: [u8; 3]) -> String {
+    format!("<span class=\"swatch\" style=\"background:#{r:02x}{g:02x}{b:02x}\"></span>")
+}

@@ -1,0 +1,805 @@
+//! Step-by-step traces of one algorithm on one small input, in the
+//! course's terms, as plain-text tables (what `rasterlab explain` prints).
+//!
+//! * [`bresenham_trace`]: the line-drawing slides' midpoint loop, each column's `x`, `y`,
+//!   decision variable `d = f(x + 1, y + 1/2)` and the choice it makes;
+//! * [`line_trace`] for `direct` and `dda`: each column's exact `y` and
+//!   the row it rounds to;
+//! * [`triangle_trace`] for `bbox` and `naive`: every pixel tested, its
+//!   three edge values, its barycentric coordinates, inside or not, and
+//!   why (which edge rejected it, or which tie rule decided);
+//! * [`scanline_trace`]: the vertices sorted by y, then each row's sample
+//!   line, where each active edge crosses it and the span filled;
+//! * [`incremental_trace`]: the edge values at the box's first sample,
+//!   the steps added per pixel and per row, every pixel the walk tests;
+//! * [`tiled_trace`]: every 8 x 8 block of the box and its class from the
+//!   corner test (trivial reject, trivial accept, partial);
+//! * [`wu_trace`]: each column's two pixels and their weights;
+//! * [`diamond_trace`]: the candidate pixels around the line and whether
+//!   the segment leaves each one's diamond;
+//! * [`depth_buffer_trace`]: the rasterization slides' depth buffer, printed as the
+//!   slides' matrix after each triangle.
+//!
+//! Line endpoints are given as [`LineEnds`]: pixel indices, as in the
+//! course's hand-worked tables (`0 0 7 3` means from the centre of pixel
+//! (0, 0) to the centre of pixel (7, 3)), or screen coordinates, as in
+//! files and `rasterlab fragments` (`0.5 0.5 7.5 3.5` is the same line).
+//! The trace's first line says which. Every coordinate is read as `f64` and
+//! snapped as every other command snaps it. Edge values are printed in
+//! square pixels (the fixed-point value divided by 256^2).
+//!
+//! ```
+//! use rasterlab::teaching::trace::{bresenham_trace, LineEnds};
+//! let ends = LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap();
+//! let text = bresenham_trace(&ends);
+//! assert!(text.lines().nth(2).unwrap().contains("0.500"));
+//! assert_eq!(ends, LineEnds::screen([0.5, 0.5, 7.5, 3.5]).unwrap().snapped_only());
+//! ```
+
+use crate::error::{Error, Result};
+use crate::geometry::scene::Scene2D;
+use crate::raster::edge::{FillRule, PixelRect, TriangleSetup};
+use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
+use crate::raster::line::bresenham::Bresenham;
+use crate::raster::line::dda::Dda;
+use crate::raster::line::OctantFrame;
+use crate::raster::shader::Flat;
+use crate::raster::target::{DepthState, DepthTest, RenderTarget};
+use crate::raster::triangle::scanline::{active_edges, row_range, row_span, sorted_by_y, Span};
+use crate::raster::triangle::TriangleRasterizer;
+use std::fmt::Write;
+
+/// The most pixel lines a triangle trace prints, and the most depth-buffer
+/// cells the depth-buffer trace prints (about 5 MB of text): a trace is
+/// read by a person, and past this it would only fill the memory.
+pub const MAX_TRACE_LINES: u64 = 65_536;
+
+/// Refuses a trace that would print more than [`MAX_TRACE_LINES`] lines.
+fn check_trace_length(lines: u64, what: &str) -> Result<()> {
+    if lines > MAX_TRACE_LINES {
+        return Err(Error::TooMuchWork(format!(
+            "this trace would print {lines} {what} (at most {MAX_TRACE_LINES}): trace a smaller grid (--size) or triangle"
+        )));
+    }
+    Ok(())
+}
+
+/// Square pixels per fixed-point edge unit.
+const AREA_UNIT: f64 = (SUBPIXEL_SCALE * SUBPIXEL_SCALE) as f64;
+
+/// A line's two endpoints, snapped, and how they were given.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct LineEnds {
+    /// The snapped start.
+    pub from: FixedPoint,
+    /// The snapped end.
+    pub to: FixedPoint,
+    /// True when given as pixel indices (their centres), false for screen
+    /// coordinates.
+    pub pixel_indices: bool,
+}
+
+impl LineEnds {
+    /// From pixel `(x0, y0)` to pixel `(x1, y1)`: their centres, as in the
+    /// course's tables.
+    pub fn pixels([x0, y0, x1, y1]: [f64; 4]) -> Result<LineEnds> {
+        Ok(LineEnds {
+            from: FixedPoint::snap_centre_of(x0, y0)?,
+            to: FixedPoint::snap_centre_of(x1, y1)?,
+            pixel_indices: true,
+        })
+    }
+
+    /// From `(x0, y0)` to `(x1, y1)` in screen coordinates, as files and
+    /// `rasterlab fragments` read them.
+    pub fn screen([x0, y0, x1, y1]: [f64; 4]) -> Result<LineEnds> {
+        Ok(LineEnds {
+            from: FixedPoint::snap_f64(x0, y0)?,
+            to: FixedPoint::snap_f64(x1, y1)?,
+            pixel_indices: false,
+        })
+    }
+
+    /// The same snapped points, marked as given in pixel indices (for
+    /// comparing two ways of writing one line).
+    pub fn snapped_only(self) -> LineEnds {
+        LineEnds {
+            pixel_indices: true,
+            ..self
+        }
+    }
+
+    /// "from pixel (0, 0) to pixel (7, 3) (centres ...)" or "from (0.5,
+    /// 0.5) to ... in screen coordinates".
+    fn describe(&self) -> String {
+        let (fx, fy) = self.from.to_f64();
+        let (tx, ty) = self.to.to_f64();
+        if self.pixel_indices {
+            format!(
+                "from pixel ({}, {}) to pixel ({}, {}) (pixel indices: the line joins their centres)",
+                fx - 0.5,
+                fy - 0.5,
+                tx - 0.5,
+                ty - 0.5
+            )
+        } else {
+            format!("from ({fx}, {fy}) to ({tx}, {ty}) in screen coordinates")
+        }
+    }
+}
+
+fn frame_note(frame: &OctantFrame) -> String {
+    let mut notes = Vec::new();
+    if frame.swap {
+        notes.push("steep: x and y swapped");
+    }
+    if frame.flip_major {
+        notes.push("major axis mirrored");
+    }
+    if frame.flip_minor {
+        notes.push("minor axis mirrored");
+    }
+    if notes.is_empty() {
+        "first octant: no symmetry needed".to_string()
+    } else {
+        format!(
+            "walked in the first octant ({}), pixels mapped back",
+            notes.join(", ")
+        )
+    }
+}
+
+/// The line-drawing slides' midpoint / Bresenham loop on one line.
+pub fn bresenham_trace(ends: &LineEnds) -> String {
+    let frame = OctantFrame::new(ends.from, ends.to);
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "bresenham (midpoint) {}; {}",
+        ends.describe(),
+        frame_note(&frame)
+    );
+    let _ = writeln!(
+        out,
+        "{:>4} {:>6} {:>6} {:>12}  choice",
+        "x", "y", "pixel", "d"
+    );
+    for step in Bresenham::steps(&frame) {
+        let (px, py) = frame.to_screen(step.i, step.k);
+        let d = step.d as f64 / AREA_UNIT;
+        let choice = if step.step_up {
+            "d < 0: midpoint below the line, y = y + 1"
+        } else {
+            "d >= 0: midpoint on or above the line, keep y"
+        };
+        let _ = writeln!(
+            out,
+            "{:>4} {:>6} {:>6} {:>12.3}  {choice}",
+            step.i,
+            step.k,
+            format!("{px},{py}"),
+            d
+        );
+    }
+    let _ = writeln!(
+        out,
+        "d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame"
+    );
+    out
+}
+
+/// Direct evaluation (`y = m x + b`, rounded) or DDA (`y += m`, rounded)
+/// on one line: each column's exact and rounded `y`.
+pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
+    let frame = OctantFrame::new(ends.from, ends.to);
+    let scale = SUBPIXEL_SCALE as f64;
+    let du = frame.du() as f64;
+    let m = if du > 0.0 {
+        frame.dv() as f64 / du
+    } else {
+        0.0
+    };
+    let mut out = String::new();
+    let how = match backend {
+        "direct" => "y = m (x - x0) + y0, evaluated exactly per column, then rounded",
+        "dda" => "y starts at y0 and grows by m per column (y = y + m), then rounded",
+        _ => {
+            return Err(Error::InvalidArgument(format!(
+                "no line trace for `{backend}` (traces: direct, dda, bresenham)"
+            )))
+        }
+    };
+    let _ = writeln!(
+        out,
+        "{backend} {}, m = {m:.4}: {how}; {}",
+        ends.describe(),
+        frame_note(&frame)
+    );
+    let _ = writeln!(
+        out,
+        "{:>4} {:>10} {:>6} {:>6}",
+        "x", "exact y", "y", "pixel"
+    );
+    let columns: Vec<(i64, f64, i64)> = match backend {
+        "direct" => (frame.i0..=frame.i1)
+            .map(|i| {
+                let exact = frame.scaled_v_at(i) as f64 / (du.max(1.0) * scale);
+                (i, exact, frame.nearest_row(i))
+            })
+            .collect(),
+        _ => Dda::columns(&frame),
+    };
+    for (i, exact, k) in columns {
+        let (px, py) = frame.to_screen(i, k);
+        let _ = writeln!(
+            out,
+            "{:>4} {:>10.4} {:>6} {:>6}",
+            i,
+            exact,
+            k,
+            format!("{px},{py}")
+        );
+    }
+    let _ = writeln!(
+        out,
+        "rounding: the nearest row; a tie (exactly .5) goes to the row nearer the start"
+    );
+    Ok(out)
+}
+
+/// The bounding-box (`bbox`) or every-pixel (`naive`) loop on one
+/// triangle given in screen pixels, on a `width` x `height` grid.
+pub fn triangle_trace(
+    backend: &str,
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    let grid = PixelRect::of_target(width, height);
+    let mut out = String::new();
+    let Some(t) = snapped_or_say(
+        vertices,
+        rule,
+        &mut out,
+        "no pixel is tested, nothing is drawn",
+    )?
+    else {
+        return Ok(out);
+    };
+    let region = match backend {
+        "bbox" => t.bounds_within(grid),
+        "naive" => grid,
+        _ => {
+            return Err(Error::InvalidArgument(format!(
+                "no triangle trace for `{backend}` (traces: naive, bbox)"
+            )))
+        }
+    };
+    check_trace_length(region.area(), "pixel lines")?;
+    let _ = writeln!(
+        out,
+        "{backend}, {} rule: triangle {:?}, twice its area = {:.4} px^2, {}",
+        rule.name(),
+        vertices,
+        t.area as f64 / AREA_UNIT,
+        if t.winding > 0 {
+            "counter-clockwise on screen"
+        } else {
+            "clockwise on screen (edges flipped so inside is positive)"
+        }
+    );
+    if backend == "bbox" {
+        let _ = writeln!(
+            out,
+            "bounding box: pixels x {}..={}, y {}..={}",
+            region.x0, region.x1, region.y0, region.y1
+        );
+    }
+    for k in 0..3 {
+        let e = t.edges[k];
+        let _ = writeln!(
+            out,
+            "E{k} (opposite v{k}): {} edge; {}",
+            e.kind(),
+            rule.explain_tie(&e)
+        );
+    }
+    let _ = writeln!(
+        out,
+        "{:>4} {:>4} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7}  verdict",
+        "x", "y", "E0", "E1", "E2", "alpha", "beta", "gamma"
+    );
+    let mut inside_count = 0;
+    if !region.is_empty() {
+        for y in region.y0..=region.y1 {
+            for x in region.x0..=region.x1 {
+                let e = t.edge_values_at_pixel(x, y);
+                let [alpha, beta, gamma] = t.barycentric(e);
+                let inside = t.inside(e);
+                inside_count += usize::from(inside);
+                let verdict = match t.rejecting_edge(e) {
+                    Some(k) if e[k] < 0 => format!("outside: E{k} < 0"),
+                    Some(k) => format!(
+                        "outside: on E{k}, a {} edge that does not own its ties",
+                        t.edges[k].kind()
+                    ),
+                    None => match (0..3).find(|&k| e[k] == 0) {
+                        Some(k) => format!(
+                            "inside: on E{k}, a {} edge that owns its ties",
+                            t.edges[k].kind()
+                        ),
+                        None => "inside".to_string(),
+                    },
+                };
+                let _ = writeln!(
+                    out,
+                    "{:>4} {:>4} {:>9.4} {:>9.4} {:>9.4} {:>7.3} {:>7.3} {:>7.3}  {verdict}",
+                    x,
+                    y,
+                    e[0] as f64 / AREA_UNIT,
+                    e[1] as f64 / AREA_UNIT,
+                    e[2] as f64 / AREA_UNIT,
+                    alpha,
+                    beta,
+                    gamma
+                );
+            }
+        }
+    }
+    let _ = writeln!(
+        out,
+        "{} pixels tested, {inside_count} fragments",
+        region.area()
+    );
+    Ok(out)
+}
+
+/// The classic scanline loop on one triangle given in screen pixels: the
+/// vertices sorted by y, then for each row its sample line, where each
+/// active edge crosses it (exact x), the pixel bound that crossing gives
+/// under the fill rule, and the span filled.
+pub fn scanline_trace(
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    let viewport = PixelRect::of_target(width, height);
+    let mut out = String::new();
+    let Some(t) = snapped_or_say(
+        vertices,
+        rule,
+        &mut out,
+        "no row is filled, nothing is drawn",
+    )?
+    else {
+        return Ok(out);
+    };
+    let order = sorted_by_y(&t);
+    let [top, mid, bottom] = order;
+    let pixel = |k: usize| {
+        let (x, y) = t.vertices[k].to_f64();
+        format!("v{k} ({x}, {y})")
+    };
+    let _ = writeln!(
+        out,
+        "scanline, {} rule: sorted by y, top {}, mid {}, bottom {}",
+        rule.name(),
+        pixel(top),
+        pixel(mid),
+        pixel(bottom)
+    );
+    let _ = writeln!(
+        out,
+        "long edge v{top}-v{bottom} (E{mid}) bounds every row; short edges v{top}-v{mid} (E{bottom}) above mid, v{mid}-v{bottom} (E{top}) below"
+    );
+    let (first_row, last_row) = row_range(&t, order, viewport);
+    let _ = writeln!(
+        out,
+        "rows {first_row}..={last_row}: their sample lines y = row + 0.5 lie between top and bottom"
+    );
+    let _ = writeln!(
+        out,
+        "{:>4} {:>8}  {:<72} span",
+        "row", "sample y", "edge crossings: exact x -> pixel bound"
+    );
+    let mut filled = 0;
+    for j in first_row..=last_row {
+        let y = j * SUBPIXEL_SCALE + HALF_PIXEL;
+        let crossings: Vec<String> = active_edges(&t, order, y)
+            .map(|k| {
+                let e = &t.edges[k];
+                let mut alone = Span {
+                    first: viewport.x0,
+                    last: viewport.x1,
+                };
+                alone.clip_to_edge(e, t.bias[k], y);
+                let bound = if e.a > 0 {
+                    format!("first {}", alone.first)
+                } else if e.a < 0 {
+                    format!("last {}", alone.last)
+                } else if alone.is_empty() {
+                    "none".to_string()
+                } else {
+                    "all".to_string()
+                };
+                if e.a == 0 {
+                    format!("E{k} horizontal -> {bound}")
+                } else {
+                    // E = a X + b Y + c = 0 at X = -(b Y + c) / a (fixed units).
+                    let x = -((e.b * y + e.c) as f64) / e.a as f64 / SUBPIXEL_SCALE as f64;
+                    format!("E{k} x = {x:.4} -> {bound}")
+                }
+            })
+            .collect();
+        let span = row_span(&t, order, j, viewport);
+        let filled_text = if span.is_empty() {
+            "empty".to_string()
+        } else {
+            filled += span.last - span.first + 1;
+            format!(
+                "{}..={} ({} px)",
+                span.first,
+                span.last,
+                span.last - span.first + 1
+            )
+        };
+        let _ = writeln!(
+            out,
+            "{:>4} {:>8.3}  {:<72} {filled_text}",
+            j,
+            y as f64 / SUBPIXEL_SCALE as f64,
+            crossings.join("; ")
+        );
+    }
+    let _ = writeln!(
+        out,
+        "{} rows, {filled} fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last",
+        (last_row - first_row + 1).max(0)
+    );
+    Ok(out)
+}
+
+/// The rasterization slides' depth-buffer loop on a scene: each triangle in turn drawn by
+/// `backend` through the shared stage (`if f.z < depthBuffer[f.xy]: draw
+/// f, depthBuffer[f.xy] = f.z`), and the depth buffer printed after each,
+/// as the slides' matrix.
+pub fn depth_buffer_trace(
+    scene: &Scene2D,
+    backend: &dyn TriangleRasterizer,
+    rule: FillRule,
+) -> Result<String> {
+    let mut target = RenderTarget::new(scene.width, scene.height)?;
+    let matrices = scene.triangles.len() as u64 + 1;
+    check_trace_length(
+        matrices * u64::from(scene.width) * u64::from(scene.height),
+        "depth-buffer cells",
+    )?;
+    let depth = DepthState {
+        test: DepthTest::Less,
+        write: true,
+    };
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "depth buffer, {} x {}, initialised with 1.0; each fragment f is kept if f.z < depthBuffer[f.xy]",
+        scene.width, scene.height
+    );
+    print_matrix(&mut out, &target.depth, scene.width);
+    for (i, (triangle, vertices)) in scene.triangles.iter().zip(&scene.vertices).enumerate() {
+        let one = Scene2D {
+            triangles: vec![*triangle],
+            vertices: vec![*vertices],
+            ..scene.clone()
+        };
+        let before = target.depth.clone();
+        let work = one.draw(backend, rule, depth, &Flat, &mut target);
+        let kept = before
+            .iter()
+            .zip(&target.depth)
+            .filter(|(b, a)| a != b)
+            .count();
+        let z: Vec<String> = vertices.iter().map(|v| format!("{}", v.depth)).collect();
+        let _ = writeln!(
+            out,
+            "\ntriangle {} (z = {}): {} fragments, {kept} kept (nearer than the buffer), {} hidden",
+            i + 1,
+            z.join(", "),
+            work.fragments,
+            work.fragments - kept as u64
+        );
+        print_matrix(&mut out, &target.depth, scene.width);
+    }
+    Ok(out)
+}
+
+fn print_matrix(out: &mut String, depth: &[f32], width: u32) {
+    for row in depth.chunks(width as usize) {
+        let cells: Vec<String> = row.iter().map(|z| format!("{z:.1}")).collect();
+        let _ = writeln!(out, "{}", cells.join(" "));
+    }
+}
+
+/// The triangle snapped and set up under `rule`, or, when it has zero
+/// area once snapped, `None` after writing "the snapped triangle has zero
+/// area: {nothing}" to the trace.
+fn snapped_or_say(
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    out: &mut String,
+    nothing: &str,
+) -> Result<Option<TriangleSetup>> {
+    let [a, b, c] = vertices.map(|(x, y)| FixedPoint::snap_f64(x, y));
+    let t = TriangleSetup::new(0, [a?, b?, c?], rule);
+    if t.is_none() {
+        let _ = writeln!(out, "the snapped triangle has zero area: {nothing}");
+    }
+    Ok(t)
+}
+
+/// The incremental (Pineda) walk on one triangle: the edge values at the
+/// first sample of the box, the steps added per pixel right and per row
+/// down, and every pixel the walk tests with its stepped edge values; a
+/// row's walk stops at the first outside pixel past its span.
+pub fn incremental_trace(
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    let grid = PixelRect::of_target(width, height);
+    let mut out = String::new();
+    let Some(t) = snapped_or_say(vertices, rule, &mut out, "nothing is tested")? else {
+        return Ok(out);
+    };
+    let r = t.bounds_within(grid);
+    check_trace_length(r.area(), "pixel lines")?;
+    let (step_x, step_y) = t.pixel_steps();
+    let px = |v: [i64; 3]| v.map(|e| format!("{:+.4}", e as f64 / AREA_UNIT)).join(" ");
+    let _ = writeln!(
+        out,
+        "incremental, {} rule: bounding box x {}..={}, y {}..={}; E evaluated once, at pixel ({}, {}), then only added to",
+        rule.name(),
+        r.x0,
+        r.x1,
+        r.y0,
+        r.y1,
+        r.x0,
+        r.y0
+    );
+    if r.is_empty() {
+        let _ = writeln!(
+            out,
+            "no pixel centre of the grid is in the box: nothing is tested"
+        );
+        return Ok(out);
+    }
+    let _ = writeln!(
+        out,
+        "per pixel right E += ({})   per row down E += ({})",
+        px(step_x),
+        px(step_y)
+    );
+    let _ = writeln!(
+        out,
+        "{:>4} {:>4} {:>10} {:>10} {:>10}  verdict",
+        "x", "y", "E0", "E1", "E2"
+    );
+    let (mut tested, mut fragments) = (0u64, 0u64);
+    let mut row = t.edge_values_at_pixel(r.x0, r.y0);
+    for y in r.y0..=r.y1 {
+        let mut e = row;
+        let mut in_span = false;
+        for x in r.x0..=r.x1 {
+            tested += 1;
+            let inside = t.inside(e);
+            let verdict = if inside {
+                fragments += 1;
+                "inside"
+            } else if in_span {
+                "outside: past the span, the row stops (the triangle is convex)"
+            } else {
+                "outside"
+            };
+            let [a, b, c] = e.map(|v| v as f64 / AREA_UNIT);
+            let _ = writeln!(
+                out,
+                "{x:>4} {y:>4} {a:>10.4} {b:>10.4} {c:>10.4}  {verdict}"
+            );
+            if !inside && in_span {
+                break;
+            }
+            in_span |= inside;
+            for k in 0..3 {
+                e[k] += step_x[k];
+            }
+        }
+        for k in 0..3 {
+            row[k] += step_y[k];
+        }
+    }
+    let _ = writeln!(
+        out,
+        "{tested} pixels tested, {fragments} fragments; no multiplication after the first pixel"
+    );
+    Ok(out)
+}
+
+/// The tiled back-end's blocks on one triangle: every 8 x 8 block of the
+/// bounding box with its class from the corner test (outside: skipped;
+/// inside: filled untested; partial: each pixel tested).
+pub fn tiled_trace(
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    use crate::raster::triangle::tiled::{BlockClass, BLOCK};
+    let grid = PixelRect::of_target(width, height);
+    let mut out = String::new();
+    let Some(t) = snapped_or_say(vertices, rule, &mut out, "no block is visited")? else {
+        return Ok(out);
+    };
+    let r = t.bounds_within(grid);
+    let _ = writeln!(
+        out,
+        "tiled, {} rule: the bounding box x {}..={}, y {}..={} in {BLOCK} x {BLOCK} blocks on the grid's block lines; each block classified from its corners",
+        rule.name(),
+        r.x0,
+        r.x1,
+        r.y0,
+        r.y1
+    );
+    if r.is_empty() {
+        return Ok(out);
+    }
+    let blocks = crate::raster::triangle::tiled::blocks(&t, grid);
+    if blocks.is_empty() {
+        let _ = writeln!(
+            out,
+            "the box fits in one block: the back-end skips the corner test and tests each of its {} pixels",
+            r.area()
+        );
+        return Ok(out);
+    }
+    check_trace_length(blocks.len() as u64, "block lines")?;
+    let _ = writeln!(out, "{:>15} {:>15}  class", "columns", "rows");
+    let (mut counts, mut tested) = ([0u64; 3], 0u64);
+    for (block, class) in blocks {
+        let what = match class {
+            BlockClass::Outside => {
+                counts[0] += 1;
+                "outside: trivial reject, no pixel tested"
+            }
+            BlockClass::Inside => {
+                counts[1] += 1;
+                "inside: trivial accept, every pixel drawn untested"
+            }
+            BlockClass::Partial => {
+                counts[2] += 1;
+                tested += block.area();
+                "partial: an edge crosses it, each pixel tested"
+            }
+        };
+        let _ = writeln!(
+            out,
+            "{:>15} {:>15}  {what}",
+            format!("{}..={}", block.x0, block.x1),
+            format!("{}..={}", block.y0, block.y1)
+        );
+    }
+    let _ = writeln!(
+        out,
+        "{} outside, {} inside, {} partial blocks; at most {tested} pixels tested (wide triangles are first cut into stretches of blocks, so the back-end may test fewer)",
+        counts[0], counts[1], counts[2]
+    );
+    Ok(out)
+}
+
+/// Xiaolin Wu's anti-aliased line: each column's exact height and the two
+/// pixels around it, with their weights `1 - frac(y)` and `frac(y)`.
+pub fn wu_trace(ends: &LineEnds) -> String {
+    use crate::raster::line::{wu::Wu, LineOptions, LineSetup};
+    let frame = OctantFrame::new(ends.from, ends.to);
+    let line = LineSetup {
+        id: 0,
+        from: ends.from,
+        to: ends.to,
+    };
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "wu (anti-aliased) {}; {}",
+        ends.describe(),
+        frame_note(&frame)
+    );
+    let _ = writeln!(
+        out,
+        "{:>12}  {:>8}  {:>12}  {:>8}",
+        "pixel", "weight", "pixel", "weight"
+    );
+    let pixels = Wu::pixels(&line, &LineOptions::DEFAULT);
+    // Pixels come in columns of one or two (a weight of 0 is not drawn);
+    // a column's pixels share the major coordinate.
+    let major = |p: (i64, i64)| if frame.swap { p.1 } else { p.0 };
+    let mut i = 0;
+    while i < pixels.len() {
+        let (p, w) = pixels[i];
+        let pair = pixels.get(i + 1).filter(|q| major(q.0) == major(p));
+        match pair {
+            Some(&(q, v)) => {
+                let _ = writeln!(
+                    out,
+                    "{:>12}  {w:>8.4}  {:>12}  {v:>8.4}",
+                    format!("{},{}", p.0, p.1),
+                    format!("{},{}", q.0, q.1)
+                );
+                i += 2;
+            }
+            None => {
+                let _ = writeln!(out, "{:>12}  {w:>8.4}", format!("{},{}", p.0, p.1));
+                i += 1;
+            }
+        }
+    }
+    let _ = writeln!(
+        out,
+        "at each column the ideal line passes between two pixel centres; the nearer one gets more: 1 - frac(y) and frac(y)"
+    );
+    out
+}
+
+/// The diamond-exit rule: for each column (row, for steep lines) the three
+/// candidate pixels around the line, and whether the segment leaves each
+/// pixel's diamond (then the pixel is drawn).
+pub fn diamond_trace(ends: &LineEnds) -> Result<String> {
+    use crate::raster::line::diamond::exits_diamond;
+    let (a, b) = (ends.from, ends.to);
+    let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
+    let x_major = dx.abs() >= dy.abs();
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "diamond exit rule {}; {}-major: a pixel is drawn when the segment leaves its diamond |x - cx| + |y - cy| < 1/2 (the end point's diamond is not)",
+        ends.describe(),
+        if x_major { "x" } else { "y" }
+    );
+    let (a_major, b_major, a_minor, b_minor) = if x_major {
+        (a.x.raw(), b.x.raw(), a.y.raw(), b.y.raw())
+    } else {
+        (a.y.raw(), b.y.raw(), a.x.raw(), b.x.raw())
+    };
+    let first = (a_major.min(b_major) - HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) - 1;
+    let last = (a_major.max(b_major) + HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) + 1;
+    check_trace_length(3 * (last - first + 1) as u64, "candidate lines")?;
+    let _ = writeln!(out, "{:>12}  verdict", "pixel");
+    let mut drawn = 0;
+    for i in first..=last {
+        let centre = i * SUBPIXEL_SCALE + HALF_PIXEL;
+        let d = b_major - a_major;
+        let minor = if d == 0 {
+            a_minor
+        } else {
+            a_minor + ((centre - a_major) as i128 * (b_minor - a_minor) as i128 / d as i128) as i64
+        };
+        let k = minor.div_euclid(SUBPIXEL_SCALE);
+        for row in [k - 1, k, k + 1] {
+            let (px, py) = if x_major { (i, row) } else { (row, i) };
+            let exits = exits_diamond(a, b, px, py);
+            drawn += usize::from(exits);
+            let _ = writeln!(
+                out,
+                "{:>12}  {}",
+                format!("{px},{py}"),
+                if exits {
+                    "exits its diamond: drawn"
+                } else {
+                    "does not exit its diamond"
+                }
+            );
+        }
+    }
+    let _ = writeln!(out, "{drawn} pixels drawn");
+    Ok(out)
+}
