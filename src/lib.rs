@@ -92,6 +92,7 @@ pub use raster::edge::{FillRule, PixelRect, TriangleSetup};
 pub use raster::fixed::{Fixed, FixedPoint};
 pub use raster::fragment::{FragmentSink, LineFragment, TriangleFragment, WorkCounters};
 pub use raster::line::{LineOptions, LineRasterizer, LineSetup};
-pub use raster::stage::{FragmentShader, FragmentStage, ShadedVertex};
+pub use raster::shader::FragmentShader;
+pub use raster::stage::{FragmentStage, ShadedVertex};
 pub use raster::target::RenderTarget;
 pub use raster::triangle::{TriangleRasterizer, TriangleSelection};

@@ -6,8 +6,8 @@ use rasterlab::geometry::scene::{collect_fragments, setup_triangles, Scene2D, BL
 use rasterlab::raster::backend::triangle_backends;
 use rasterlab::raster::edge::FillRule;
 use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::shader::to_rgba8;
 use rasterlab::raster::shader::Flat;
-use rasterlab::raster::stage::to_rgba8;
 
 fn snap(x: f32, y: f32) -> FixedPoint {
     FixedPoint::snap(x, y).unwrap()

@@ -17,8 +17,9 @@ use rasterlab::raster::backend::triangle_backends;
 use rasterlab::raster::edge::FillRule;
 use rasterlab::raster::fixed::FixedPoint;
 use rasterlab::raster::fragment::{FragmentList, FragmentSink};
+use rasterlab::raster::shader::FragmentShader;
 use rasterlab::raster::shader::{Constant, Flat, Gouraud};
-use rasterlab::raster::stage::{FragmentShader, FragmentStage, Interpolation, ShadedVertex};
+use rasterlab::raster::stage::{FragmentStage, Interpolation, ShadedVertex};
 use rasterlab::raster::target::{DepthState, DepthTest, RenderTarget};
 use std::path::Path;
 

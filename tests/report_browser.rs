@@ -97,7 +97,7 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
     );
     // The pinwheel's palette colour (first triangle) is on screen: the
     // images were painted, not just decoded.
-    let blue = rasterlab::raster::stage::to_rgba8(rasterlab::geometry::scene::palette(0));
+    let blue = rasterlab::raster::shader::to_rgba8(rasterlab::geometry::scene::palette(0));
     assert!(img.pixels().any(|p| p.0 == [blue[0], blue[1], blue[2]]));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -51,10 +51,10 @@ pub use judge::{Finding, Property};
 pub use program::Program;
 
 use crate::geometry::scene::setup_triangles;
-use crate::raster::backend::{line_backend, triangle_backend};
+use crate::raster::backend::{line_backends, reference_triangle_backend};
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fragment::FragmentList;
-use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
+use crate::raster::line::{LineOptions, LineRasterizer, LineSetup, LineWalk};
 use crate::raster::triangle::TriangleRasterizer;
 use std::fmt;
 
@@ -309,15 +309,22 @@ pub fn check(options: &CheckOptions, subject: &mut dyn Subject) -> Result<Verdic
 /// answer, one of the many that pass).
 pub fn reference(property: Property, case: &Case) -> Vec<Fragment> {
     match property {
-        Property::Exact(rule) => triangle_fragments(naive(), case, rule),
-        Property::Watertight => triangle_fragments(naive(), case, FillRule::TopLeft),
-        Property::Line(judge::LineConvention::Midpoint) => {
-            line_fragments(line_backend("bresenham").expect("built in"), case)
+        Property::Exact(rule) => triangle_fragments(reference_triangle_backend(), case, rule),
+        Property::Watertight => {
+            triangle_fragments(reference_triangle_backend(), case, FillRule::TopLeft)
         }
-        Property::Line(_) => line_fragments(line_backend("diamond").expect("built in"), case),
+        Property::Line(judge::LineConvention::Midpoint) => {
+            line_fragments(line_backend_walking(LineWalk::Midpoint), case)
+        }
+        Property::Line(_) => line_fragments(line_backend_walking(LineWalk::DiamondExit), case),
     }
 }
 
-fn naive() -> &'static dyn TriangleRasterizer {
-    triangle_backend("naive").expect("built in")
+/// The built-in line back-end that chooses its pixels by `walk`.
+fn line_backend_walking(walk: LineWalk) -> &'static dyn LineRasterizer {
+    line_backends()
+        .iter()
+        .copied()
+        .find(|b| b.walk() == walk)
+        .expect("the registry has a back-end for each line rule")
 }

@@ -757,9 +757,6 @@ impl ExplainArgs {
 /// The grid `explain` draws on unless `--size` says otherwise.
 const EXPLAIN_GRID: (u32, u32) = (16, 16);
 
-const TRACES: &str =
-    "bresenham, direct, dda, wu, diamond, bbox, naive, scanline, incremental, tiled, depth-buffer";
-
 pub fn explain(args: &ExplainArgs) -> Result<()> {
     let rule: FillRule = args.rule.parse()?;
     if let Some(path) = &args.picture {
@@ -767,24 +764,6 @@ pub fn explain(args: &ExplainArgs) -> Result<()> {
     }
     let (width, height) = args.size(EXPLAIN_GRID)?;
     let text = match args.backend.as_str() {
-        "bresenham" => rasterlab::teaching::trace::bresenham_trace(&args.line()?),
-        "wu" => rasterlab::teaching::trace::wu_trace(&args.line()?),
-        "diamond" => rasterlab::teaching::trace::diamond_trace(&args.line()?)?,
-        "incremental" => {
-            rasterlab::teaching::trace::incremental_trace(args.triangle()?, rule, width, height)?
-        }
-        "tiled" => rasterlab::teaching::trace::tiled_trace(args.triangle()?, rule, width, height)?,
-        "direct" | "dda" => rasterlab::teaching::trace::line_trace(&args.backend, &args.line()?)?,
-        "bbox" | "naive" => rasterlab::teaching::trace::triangle_trace(
-            &args.backend,
-            args.triangle()?,
-            rule,
-            width,
-            height,
-        )?,
-        "scanline" => {
-            rasterlab::teaching::trace::scanline_trace(args.triangle()?, rule, width, height)?
-        }
         "depth-buffer" => {
             let scene = args.depth_scene()?;
             let text = rasterlab::teaching::trace::depth_buffer_trace(
@@ -797,12 +776,16 @@ pub fn explain(args: &ExplainArgs) -> Result<()> {
             }
             return say_raw!("{text}");
         }
-        other => {
-            backend(other)?;
-            return Err(Error::InvalidArgument(format!(
-                "no trace for `{other}` (traces: {TRACES})"
-            )));
-        }
+        name => match backend(name)? {
+            Backend::Triangle(b) => rasterlab::teaching::trace::of_triangle_backend(
+                b,
+                args.triangle()?,
+                rule,
+                width,
+                height,
+            )?,
+            Backend::Line(b) => rasterlab::teaching::trace::of_line_backend(b, &args.line()?)?,
+        },
     };
     if let Some(path) = &args.picture {
         let picture = match backend(&args.backend)? {

@@ -1,7 +1,7 @@
 //! The interactive lab: what one update of the page asks, and what the
 //! real back-ends answer.
 //!
-//! `rasterlab lab` serves a page ([`PAGE`]) on the loopback address. Each
+//! `rasterlab lab` serves a page ([`page`]) on the loopback address. Each
 //! time a student drags a vertex, the page sends the whole state as a
 //! [`LabRequest`] (JSON) and gets a [`LabResponse`]: for every chosen
 //! back-end, the pixels it tested (red) and the fragments it emitted
@@ -29,7 +29,7 @@ use crate::check::judge::{cover, Cover};
 use crate::check::{Case, Program, Subject};
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
-use crate::raster::backend::{backend, Backend};
+use crate::raster::backend::{backend, line_backends, triangle_backends, Backend};
 use crate::raster::edge::{FillRule, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::line::LineOptions;
@@ -37,8 +37,25 @@ use crate::teaching::grid_picture::{is_fragment_green, GridPicture, TESTED_OUTSI
 use crate::teaching::trace::{self, LineEnds};
 use serde::{Deserialize, Serialize};
 
-/// The page the lab serves: one HTML file, no build step, nothing fetched.
-pub const PAGE: &str = include_str!("page.html");
+/// The page the lab serves, before [`page`] writes the registry's
+/// back-ends into it: one HTML file, no build step, nothing fetched.
+const PAGE: &str = include_str!("page.html");
+
+/// The page the lab serves, with the names of the registry's triangle and
+/// line back-ends (every one has a trace).
+pub fn page() -> String {
+    let names = |names: Vec<&str>| serde_json::to_string(&names).expect("names serialise");
+    PAGE.replacen(
+        "/*TRIANGLE_BACKENDS*/[]",
+        &names(triangle_backends().iter().map(|b| b.name()).collect()),
+        1,
+    )
+    .replacen(
+        "/*LINE_BACKENDS*/[]",
+        &names(line_backends().iter().map(|b| b.name()).collect()),
+        1,
+    )
+}
 
 pub mod server;
 
@@ -226,20 +243,6 @@ pub struct LabResponse {
     pub student: Option<StudentView>,
 }
 
-/// Back-ends with a step-by-step trace, in the order a trace is chosen.
-const TRACED: [&str; 10] = [
-    "scanline",
-    "bbox",
-    "naive",
-    "incremental",
-    "tiled",
-    "bresenham",
-    "direct",
-    "dda",
-    "wu",
-    "diamond",
-];
-
 /// Answers one request with the real back-ends (and `program`, when the
 /// request asks for the student's view).
 pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<LabResponse> {
@@ -265,19 +268,18 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         };
         views.push(view(name, &picture));
     }
+    // Every back-end has a trace: the one asked for, else the first shown.
     let trace_backend = request
         .trace
         .clone()
-        .filter(|t| TRACED.contains(&t.as_str()))
-        .or_else(|| {
-            request
-                .backends
-                .iter()
-                .find(|b| TRACED.contains(&b.as_str()))
-                .cloned()
-        })
+        .filter(|t| backend(t).is_ok())
+        .or_else(|| request.backends.first().cloned())
         .unwrap_or_default();
-    let trace = trace_text(request, &trace_backend, rule).unwrap_or_else(|e| e.to_string());
+    let trace = if trace_backend.is_empty() {
+        String::new()
+    } else {
+        trace_text(request, &trace_backend, rule).unwrap_or_else(|e| e.to_string())
+    };
     let (gaps, doubles) = if request.kind == "triangles" && snapped.len() > 1 {
         heat_map(&snapped, rule, w, h)
     } else {
@@ -340,20 +342,15 @@ fn view(name: &str, picture: &GridPicture) -> BackendView {
 /// The trace `rasterlab explain` prints for the first primitive.
 fn trace_text(request: &LabRequest, backend: &str, rule: FillRule) -> Result<String> {
     let (w, h) = (request.width, request.height);
-    match backend {
-        "bresenham" | "direct" | "dda" | "wu" | "diamond" => {
+    match crate::raster::backend::backend(backend)? {
+        Backend::Line(b) => {
             let Some(l) = request.lines.first().filter(|_| request.kind == "lines") else {
                 return Ok(String::new());
             };
             let ends = LineEnds::screen([l[0][0], l[0][1], l[1][0], l[1][1]])?;
-            match backend {
-                "bresenham" => Ok(trace::bresenham_trace(&ends)),
-                "wu" => Ok(trace::wu_trace(&ends)),
-                "diamond" => trace::diamond_trace(&ends),
-                _ => trace::line_trace(backend, &ends),
-            }
+            trace::of_line_backend(b, &ends)
         }
-        "bbox" | "naive" | "scanline" | "incremental" | "tiled" => {
+        Backend::Triangle(b) => {
             let Some(t) = request
                 .triangles
                 .first()
@@ -361,15 +358,8 @@ fn trace_text(request: &LabRequest, backend: &str, rule: FillRule) -> Result<Str
             else {
                 return Ok(String::new());
             };
-            let vertices = t.map(|p| (p[0], p[1]));
-            match backend {
-                "scanline" => trace::scanline_trace(vertices, rule, w, h),
-                "incremental" => trace::incremental_trace(vertices, rule, w, h),
-                "tiled" => trace::tiled_trace(vertices, rule, w, h),
-                _ => trace::triangle_trace(backend, vertices, rule, w, h),
-            }
+            trace::of_triangle_backend(b, t.map(|p| (p[0], p[1])), rule, w, h)
         }
-        _ => Ok(String::new()),
     }
 }
 
@@ -446,6 +436,21 @@ fn student_view(request: &LabRequest, rule: FillRule, program: &mut Program) -> 
                 missing,
                 error: None,
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_page_lists_every_back_end_of_the_registry() {
+        let page = super::page();
+        assert!(!page.contains("/*TRIANGLE_BACKENDS*/") && !page.contains("/*LINE_BACKENDS*/"));
+        for name in crate::raster::backend::all_backends()
+            .iter()
+            .map(|b| b.name)
+        {
+            assert!(page.contains(&format!("\"{name}\"")), "{name}");
         }
     }
 }

@@ -2,7 +2,7 @@
 //!
 //! | request | answer |
 //! |---|---|
-//! | `GET /` | the page ([`super::PAGE`]) |
+//! | `GET /` | the page ([`super::page`]) |
 //! | `GET /api/info` | `{"exec": true}` when a student's program is attached |
 //! | `POST /api/draw` | a [`super::LabRequest`] in, a [`super::LabResponse`] out; 400 with `{"error": ...}` for a bad request |
 //! | anything else | 404 |
@@ -46,7 +46,7 @@ fn error(status: u16, message: &str) -> Response<std::io::Cursor<Vec<u8>>> {
 fn handle(mut request: Request, program: Option<&mut Program>) {
     let response = match (request.method(), request.url()) {
         (Method::Get, "/") | (Method::Get, "/index.html") => {
-            Response::from_string(super::PAGE).with_header(header("text/html; charset=utf-8"))
+            Response::from_string(super::page()).with_header(header("text/html; charset=utf-8"))
         }
         (Method::Get, "/api/info") => json(
             200,

@@ -50,6 +50,16 @@ pub fn triangle_backends() -> &'static [&'static dyn TriangleRasterizer] {
     &TRIANGLE_BACKENDS
 }
 
+/// The reference every triangle back-end is compared with: the one that
+/// says it [is](TriangleRasterizer::is_reference) (`naive`).
+pub fn reference_triangle_backend() -> &'static dyn TriangleRasterizer {
+    triangle_backends()
+        .iter()
+        .copied()
+        .find(|b| b.is_reference())
+        .expect("the registry holds the reference back-end")
+}
+
 /// The triangle back-end called `name`.
 pub fn triangle_backend(name: &str) -> Result<&'static dyn TriangleRasterizer> {
     triangle_backends()

@@ -1,15 +1,60 @@
-//! Built-in fragment shaders.
+//! Fragment shaders: the trait the shared stage calls, colour conversions,
+//! and the built-in shaders.
 //!
 //! A fragment shader calculates the colour of a fragment (the course chapter, step 5).
 //! [`Flat`] colours the whole primitive with its first (provoking)
 //! vertex's colour; [`Gouraud`] interpolates the vertex colours with the
 //! barycentric coordinates (the line-drawing slides: `c = alpha c_a + beta c_b + gamma c_c`).
-//! [`Diffuse`] lights each fragment with its interpolated normal (seed
-//! 003), [`Textured`] samples a [`Texture`] at the interpolated UV (nearest
+//! [`Diffuse`] lights each fragment with its interpolated normal (the
+//! software-rasterizer article), [`Textured`] samples a [`Texture`] at the interpolated UV (nearest
 //! or bilinear), and [`NormalColors`] shows the normals themselves.
 
-use crate::raster::stage::{FragmentInput, FragmentShader};
+use crate::raster::stage::Varyings;
 use glam::{Vec2, Vec3, Vec4};
+
+/// What a fragment shader is given.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct FragmentInput {
+    /// Pixel column.
+    pub x: u32,
+    /// Pixel row.
+    pub y: u32,
+    /// Interpolated depth (already tested).
+    pub depth: f32,
+    /// Interpolated varyings.
+    pub varyings: Varyings,
+    /// The provoking (first) vertex's varyings, for flat shading.
+    pub flat: Varyings,
+    /// Index of the primitive in its draw.
+    pub primitive: u32,
+}
+
+/// Computes a fragment's colour (the course chapter, step 5).
+pub trait FragmentShader: Sync {
+    /// The fragment's linear RGBA colour; components are clamped to `[0, 1]`.
+    fn shade(&self, input: &FragmentInput) -> Vec4;
+
+    /// True when the colour depends only on the primitive (`flat` and
+    /// `primitive`), never on the pixel: the stage then shades a span once
+    /// and writes that colour to every pixel of the span that passes the
+    /// depth test. The default, `false`, shades every fragment.
+    fn uniform_per_primitive(&self) -> bool {
+        false
+    }
+}
+
+/// Converts a colour in `[0, 1]` to RGBA8 (clamped, rounded).
+#[inline]
+pub fn to_rgba8(c: Vec4) -> [u8; 4] {
+    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    [q(c.x), q(c.y), q(c.z), q(c.w)]
+}
+
+/// Converts RGBA8 to a colour in `[0, 1]`.
+#[inline]
+pub fn from_rgba8(c: [u8; 4]) -> Vec4 {
+    Vec4::new(c[0] as f32, c[1] as f32, c[2] as f32, c[3] as f32) / 255.0
+}
 
 /// A directional light for diffuse (Lambert) shading: intensity
 /// `ambient + diffuse * max(0, n . l)`.

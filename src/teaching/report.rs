@@ -14,8 +14,8 @@
 //!   rough idea; `rasterlab bench` and `cargo bench` measure properly);
 //! * the **fill-rule pictures**: the input drawn under every fill rule, as
 //!   heat maps of each pixel's fragment count against the watertight
-//!   rules ([`GridPicture::coverage_heat_map`]), then the same for seed
-//!   004's edge-drawing problem (the pinwheel);
+//!   rules ([`GridPicture::coverage_heat_map`]), then the same for the line-drawing
+//!   slides' edge-drawing problem (the pinwheel);
 //! * for small targets, the **zoomed grid pictures** of each back-end
 //!   ([`GridPicture`]): which pixels it tested, which it emitted.
 //!
@@ -36,7 +36,9 @@ use crate::geometry::render::{MeshRenderer, RenderSettings};
 use crate::geometry::scene::Scene2D;
 use crate::measure::benchmark::median_time;
 use crate::measure::workload::LineWorkload;
-use crate::raster::backend::{line_backends, triangle_backend, triangle_backends};
+use crate::raster::backend::{
+    line_backends, reference_triangle_backend, triangle_backend, triangle_backends,
+};
 use crate::raster::edge::FillRule;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::LineSetup;
@@ -350,9 +352,10 @@ impl Report {
                 "{}, the first line back-end; lines have no single exact answer, so the others' differences are their algorithms'",
                 reference.name
             ),
-            _ if reference.name == "naive" => {
-                "naive, the course's loop over every pixel for every triangle".to_string()
-            }
+            _ if reference.name == reference_triangle_backend().name() => format!(
+                "{}, the course's loop over every pixel for every triangle",
+                reference.name
+            ),
             _ => format!(
                 "{}: naive was left out, as its {triangles_in} triangles x {pixels} pixels = {} tests are beyond the report's budget of {NAIVE_TEST_BUDGET}",
                 reference.name,

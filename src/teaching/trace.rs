@@ -38,15 +38,16 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
+use crate::raster::backend::{line_backend, triangle_backend};
 use crate::raster::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::line::bresenham::Bresenham;
 use crate::raster::line::dda::Dda;
-use crate::raster::line::OctantFrame;
+use crate::raster::line::{LineRasterizer, LineWalk, OctantFrame};
 use crate::raster::shader::Flat;
 use crate::raster::target::{DepthState, DepthTest, RenderTarget};
 use crate::raster::triangle::scanline::{active_edges, row_range, row_span, sorted_by_y, Span};
-use crate::raster::triangle::TriangleRasterizer;
+use crate::raster::triangle::{TriangleRasterizer, TriangleWalk};
 use std::fmt::Write;
 
 /// The most pixel lines a triangle trace prints, and the most depth-buffer
@@ -188,6 +189,37 @@ pub fn bresenham_trace(ends: &LineEnds) -> String {
     out
 }
 
+/// The step-by-step trace of a triangle back-end on one triangle given in
+/// screen pixels, on a `width` x `height` grid: the trace of the way it
+/// [walks](TriangleRasterizer::walk) the pixels.
+pub fn of_triangle_backend(
+    backend: &dyn TriangleRasterizer,
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    match backend.walk() {
+        TriangleWalk::EveryPixel | TriangleWalk::BoundingBox => {
+            triangle_trace(backend.name(), vertices, rule, width, height)
+        }
+        TriangleWalk::Scanline => scanline_trace(vertices, rule, width, height),
+        TriangleWalk::IncrementalEdges => incremental_trace(vertices, rule, width, height),
+        TriangleWalk::Blocks => tiled_trace(vertices, rule, width, height),
+    }
+}
+
+/// The step-by-step trace of a line back-end on one segment: the trace of
+/// the way it [chooses](LineRasterizer::walk) its pixels.
+pub fn of_line_backend(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String> {
+    match backend.walk() {
+        LineWalk::DirectEvaluation | LineWalk::Incremental => line_trace(backend.name(), ends),
+        LineWalk::Midpoint => Ok(bresenham_trace(ends)),
+        LineWalk::AntiAliased => Ok(wu_trace(ends)),
+        LineWalk::DiamondExit => diamond_trace(ends),
+    }
+}
+
 /// Direct evaluation (`y = m x + b`, rounded) or DDA (`y += m`, rounded)
 /// on one line: each column's exact and rounded `y`.
 pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
@@ -200,12 +232,17 @@ pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
         0.0
     };
     let mut out = String::new();
-    let how = match backend {
-        "direct" => "y = m (x - x0) + y0, evaluated exactly per column, then rounded",
-        "dda" => "y starts at y0 and grows by m per column (y = y + m), then rounded",
+    let walk = line_backend(backend)?.walk();
+    let how = match walk {
+        LineWalk::DirectEvaluation => {
+            "y = m (x - x0) + y0, evaluated exactly per column, then rounded"
+        }
+        LineWalk::Incremental => {
+            "y starts at y0 and grows by m per column (y = y + m), then rounded"
+        }
         _ => {
             return Err(Error::InvalidArgument(format!(
-                "no line trace for `{backend}` (traces: direct, dda, bresenham)"
+                "no column trace for `{backend}` (it is for direct evaluation and the DDA)"
             )))
         }
     };
@@ -220,8 +257,8 @@ pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
         "{:>4} {:>10} {:>6} {:>6}",
         "x", "exact y", "y", "pixel"
     );
-    let columns: Vec<(i64, f64, i64)> = match backend {
-        "direct" => (frame.i0..=frame.i1)
+    let columns: Vec<(i64, f64, i64)> = match walk {
+        LineWalk::DirectEvaluation => (frame.i0..=frame.i1)
             .map(|i| {
                 let exact = frame.scaled_v_at(i) as f64 / (du.max(1.0) * scale);
                 (i, exact, frame.nearest_row(i))
@@ -267,13 +304,14 @@ pub fn triangle_trace(
     else {
         return Ok(out);
     };
-    let region = match backend {
-        "bbox" => t.bounds_within(grid),
-        "naive" => grid,
+    let walk = triangle_backend(backend)?.walk();
+    let region = match walk {
+        TriangleWalk::BoundingBox => t.bounds_within(grid),
+        TriangleWalk::EveryPixel => grid,
         _ => {
             return Err(Error::InvalidArgument(format!(
-                "no triangle trace for `{backend}` (traces: naive, bbox)"
-            )))
+            "no per-pixel trace for `{backend}` (it is for the loops that test pixels one by one)"
+        )))
         }
     };
     check_trace_length(region.area(), "pixel lines")?;
@@ -289,7 +327,7 @@ pub fn triangle_trace(
             "clockwise on screen (edges flipped so inside is positive)"
         }
     );
-    if backend == "bbox" {
+    if walk == TriangleWalk::BoundingBox {
         let _ = writeln!(
             out,
             "bounding box: pixels x {}..={}, y {}..={}",

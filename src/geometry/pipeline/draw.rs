@@ -34,9 +34,8 @@ use super::geometry::Geometry;
 use super::Viewport;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::WorkCounters;
-use crate::raster::stage::{
-    FragmentShader, FragmentStage, Interpolation, ShadedTriangle, TriangleData,
-};
+use crate::raster::shader::FragmentShader;
+use crate::raster::stage::{FragmentStage, Interpolation, ShadedTriangle, TriangleData};
 use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::{TriangleRasterizer, TriangleSelection};
 use rayon::prelude::*;

@@ -21,7 +21,7 @@
 //! start). Other octants by symmetry ([`super::OctantFrame`]).
 
 use super::{
-    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup,
+    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup, LineWalk,
     OctantFrame,
 };
 use crate::raster::edge::PixelRect;
@@ -79,6 +79,10 @@ impl Bresenham {
 }
 
 impl LineRasterizer for Bresenham {
+    fn walk(&self) -> LineWalk {
+        LineWalk::Midpoint
+    }
+
     fn name(&self) -> &'static str {
         "bresenham"
     }

@@ -16,7 +16,7 @@
 //! the ideal line, which the property tests check.
 
 use super::{
-    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup,
+    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup, LineWalk,
     OctantFrame,
 };
 use crate::raster::edge::PixelRect;
@@ -57,6 +57,10 @@ impl Dda {
 }
 
 impl LineRasterizer for Dda {
+    fn walk(&self) -> LineWalk {
+        LineWalk::Incremental
+    }
+
     fn name(&self) -> &'static str {
         "dda"
     }

@@ -24,7 +24,7 @@
 //! column (or row), and the tests check it against applying it to every
 //! pixel.
 
-use super::{emit_pixels, LineOptions, LineRasterizer, LineSetup};
+use super::{emit_pixels, LineOptions, LineRasterizer, LineSetup, LineWalk};
 use crate::error::{Error, Result};
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
@@ -223,6 +223,10 @@ impl Diamond {
 }
 
 impl LineRasterizer for Diamond {
+    fn walk(&self) -> LineWalk {
+        LineWalk::DiamondExit
+    }
+
     fn name(&self) -> &'static str {
         "diamond"
     }

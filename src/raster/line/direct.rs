@@ -15,7 +15,9 @@
 //! pixel for pixel the same as `bresenham`'s. Other octants by symmetry
 //! ([`super::OctantFrame`]).
 
-use super::{finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup};
+use super::{
+    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup, LineWalk,
+};
 use crate::raster::edge::PixelRect;
 use crate::raster::fragment::{FragmentSink, WorkCounters};
 
@@ -35,6 +37,10 @@ impl Direct {
 }
 
 impl LineRasterizer for Direct {
+    fn walk(&self) -> LineWalk {
+        LineWalk::DirectEvaluation
+    }
+
     fn name(&self) -> &'static str {
         "direct"
     }

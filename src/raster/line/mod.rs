@@ -144,12 +144,30 @@ impl FromStr for Endpoints {
     }
 }
 
+/// How a line back-end chooses its pixels: what its step-by-step trace
+/// ([`crate::teaching::trace::of_line_backend`]) shows.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum LineWalk {
+    /// `y = m x + b` evaluated per column, then rounded.
+    DirectEvaluation,
+    /// `y` grown by `m` per column (the DDA), then rounded.
+    Incremental,
+    /// The midpoint decision variable, in integers (Bresenham).
+    Midpoint,
+    /// Two pixels per column, shaded by their distance to the line (Wu).
+    AntiAliased,
+    /// The pixels whose diamond the segment leaves (Direct3D, Vulkan).
+    DiamondExit,
+}
+
 /// A line rasterization algorithm.
 pub trait LineRasterizer: Send + Sync {
     /// Short name used on the command line.
     fn name(&self) -> &'static str;
     /// One-line description.
     fn description(&self) -> &'static str;
+    /// How it chooses its pixels, which its trace shows.
+    fn walk(&self) -> LineWalk;
     /// True for an anti-aliased back-end, whose fragments carry a coverage
     /// weight below 1 (`rasterlab fragments` prints it as a fourth column).
     fn anti_aliased(&self) -> bool {
@@ -322,7 +340,7 @@ fn major_minor(p: FixedPoint, swap: bool) -> (i64, i64) {
 /// The frame an algorithm of the line-drawing slides walks, given the options: from `from`, or
 /// for the symmetric variant from the endpoint with the smaller major
 /// coordinate (the pixels are then re-ordered into the direction of travel).
-pub fn walk_frame(line: &LineSetup, options: &LineOptions) -> (OctantFrame, bool) {
+pub(crate) fn walk_frame(line: &LineSetup, options: &LineOptions) -> (OctantFrame, bool) {
     let forward = OctantFrame::new(line.from, line.to);
     if options.symmetric && forward.flip_major {
         (OctantFrame::new(line.to, line.from), true)
@@ -334,7 +352,7 @@ pub fn walk_frame(line: &LineSetup, options: &LineOptions) -> (OctantFrame, bool
 /// Turns a frame's column-by-column rows into screen pixels in the order of
 /// travel: adds 4-connected corners, reverses walks made backwards by the
 /// symmetric variant, drops the end pixel when half-open.
-pub fn finish_pixels(
+pub(crate) fn finish_pixels(
     frame: &OctantFrame,
     rows: &[(i64, i64)],
     reversed: bool,
@@ -374,7 +392,7 @@ pub fn finish_pixels(
 /// The `rasterize` of an aliased algorithm of the line-drawing slides given its pixel
 /// function: each segment's pixels, in the order of travel, clipped to the
 /// viewport.
-pub fn rasterize_aliased(
+pub(crate) fn rasterize_aliased(
     lines: &[LineSetup],
     options: &LineOptions,
     viewport: PixelRect,
@@ -392,7 +410,7 @@ pub fn rasterize_aliased(
 }
 
 /// Emits aliased pixels (coverage 1) that lie in the viewport.
-pub fn emit_pixels(
+pub(crate) fn emit_pixels(
     line: &LineSetup,
     pixels: &[(i64, i64)],
     viewport: PixelRect,

@@ -9,7 +9,7 @@
 //! Fragments of zero coverage are not emitted. The columns are those of the
 //! aliased algorithms; endpoints get no special weighting.
 
-use super::{walk_frame, Endpoints, LineOptions, LineRasterizer, LineSetup};
+use super::{walk_frame, Endpoints, LineOptions, LineRasterizer, LineSetup, LineWalk};
 use crate::error::{Error, Result};
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::SUBPIXEL_SCALE;
@@ -58,6 +58,10 @@ impl Wu {
 }
 
 impl LineRasterizer for Wu {
+    fn walk(&self) -> LineWalk {
+        LineWalk::AntiAliased
+    }
+
     fn anti_aliased(&self) -> bool {
         true
     }

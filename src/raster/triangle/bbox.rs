@@ -1,7 +1,7 @@
 //! `bbox`: bounding box, then the edge-function test per pixel (the rasterization slides).
 //!
-//! Testing every pixel of the screen wastes work on small triangles. Seed
-//! 002's answer is the **axis-aligned bounding box**: only the pixels whose
+//! Testing every pixel of the screen wastes work on small triangles. The
+//! rasterization slides' answer is the **axis-aligned bounding box**: only the pixels whose
 //! sample points lie between the triangle's smallest and largest vertex
 //! coordinates can be inside, so only those are tested. For each of them
 //! the three edge functions (the course chapter's implicit line equation, which give
@@ -14,7 +14,7 @@
 //!     if p is inside t: emit a fragment
 //! ```
 
-use super::{emit, TriangleRasterizer, TriangleSelection};
+use super::{emit, TriangleRasterizer, TriangleSelection, TriangleWalk};
 use crate::raster::edge::PixelRect;
 use crate::raster::fragment::{FragmentSink, WorkCounters};
 
@@ -23,6 +23,10 @@ use crate::raster::fragment::{FragmentSink, WorkCounters};
 pub struct BoundingBox;
 
 impl TriangleRasterizer for BoundingBox {
+    fn walk(&self) -> TriangleWalk {
+        TriangleWalk::BoundingBox
+    }
+
     fn name(&self) -> &'static str {
         "bbox"
     }

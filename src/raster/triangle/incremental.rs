@@ -20,7 +20,7 @@
 //!   row += step_y
 //! ```
 
-use super::{emit_span, TriangleRasterizer, TriangleSelection};
+use super::{emit_span, TriangleRasterizer, TriangleSelection, TriangleWalk};
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
 
@@ -29,6 +29,10 @@ use crate::raster::fragment::{FragmentSink, WorkCounters};
 pub struct Incremental;
 
 impl TriangleRasterizer for Incremental {
+    fn walk(&self) -> TriangleWalk {
+        TriangleWalk::IncrementalEdges
+    }
+
     fn name(&self) -> &'static str {
         "incremental"
     }

@@ -29,12 +29,37 @@ pub mod tiled;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, TriangleFragment, TriangleSpan, WorkCounters};
 
+/// How a triangle back-end walks the pixels: what its step-by-step trace
+/// ([`crate::teaching::trace::of_triangle_backend`]) shows.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum TriangleWalk {
+    /// Every pixel of the target, each tested on its own (the course's
+    /// per-pixel loop).
+    EveryPixel,
+    /// Every pixel of the triangle's bounding box, each tested on its own.
+    BoundingBox,
+    /// Row by row, between the edges active on the row.
+    Scanline,
+    /// Pixel by pixel, the edge values stepped by adding constants.
+    IncrementalEdges,
+    /// Blocks classified as a whole, partial blocks pixel by pixel.
+    Blocks,
+}
+
 /// A triangle rasterization algorithm.
 pub trait TriangleRasterizer: Send + Sync {
     /// Short name used on the command line.
     fn name(&self) -> &'static str;
     /// One-line description.
     fn description(&self) -> &'static str;
+    /// How it walks the pixels, which its trace shows.
+    fn walk(&self) -> TriangleWalk;
+    /// Whether it is the reference the others are compared with: the
+    /// course's loop, testing every sample on its own. One back-end of the
+    /// registry says so ([`reference_triangle_backend`](crate::raster::backend::reference_triangle_backend)).
+    fn is_reference(&self) -> bool {
+        false
+    }
     /// Emits every fragment of the selected triangles whose pixel lies in
     /// `viewport`, and returns the work done.
     fn rasterize_selection(

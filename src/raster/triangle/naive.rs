@@ -14,7 +14,7 @@
 //! reference every other back-end is checked against, and the red/green
 //! picture of the rasterization slides' "checking every pixel" slide.
 
-use super::{emit, TriangleRasterizer, TriangleSelection};
+use super::{emit, TriangleRasterizer, TriangleSelection, TriangleWalk};
 use crate::raster::edge::PixelRect;
 use crate::raster::fragment::{FragmentSink, WorkCounters};
 
@@ -23,6 +23,14 @@ use crate::raster::fragment::{FragmentSink, WorkCounters};
 pub struct Naive;
 
 impl TriangleRasterizer for Naive {
+    fn walk(&self) -> TriangleWalk {
+        TriangleWalk::EveryPixel
+    }
+
+    fn is_reference(&self) -> bool {
+        true
+    }
+
     fn name(&self) -> &'static str {
         "naive"
     }

@@ -28,7 +28,7 @@
 //! is tested: the work is one solve per active edge per row, and each
 //! row's pixels go to the fragment stage as one span.
 
-use super::{emit_span, TriangleRasterizer, TriangleSelection};
+use super::{emit_span, TriangleRasterizer, TriangleSelection, TriangleWalk};
 use crate::raster::edge::{EdgeFunction, PixelRect, TriangleSetup};
 use crate::raster::fixed::{
     first_sample_at_or_after, last_sample_at_or_before, HALF_PIXEL, SUBPIXEL_SCALE,
@@ -41,7 +41,7 @@ pub struct Scanline;
 
 /// The pixel range `[first, last]` of one row, narrowed edge by edge.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub struct Span {
+pub(crate) struct Span {
     /// First pixel column inside.
     pub first: i64,
     /// Last pixel column inside (empty when `last < first`).
@@ -75,7 +75,7 @@ impl Span {
 }
 
 /// The vertex indices of a triangle sorted by (y, x): top, mid, bottom.
-pub fn sorted_by_y(t: &TriangleSetup) -> [usize; 3] {
+pub(crate) fn sorted_by_y(t: &TriangleSetup) -> [usize; 3] {
     let mut order = [0, 1, 2];
     order.sort_by_key(|&i| (t.vertices[i].y, t.vertices[i].x));
     order
@@ -84,7 +84,7 @@ pub fn sorted_by_y(t: &TriangleSetup) -> [usize; 3] {
 /// The edges bounding row sample `y`, as indices into `t.edges`
 /// (edge `k` is opposite vertex `k`): the long edge, and the short edge(s)
 /// spanning `y`.
-pub fn active_edges(t: &TriangleSetup, order: [usize; 3], y: i64) -> impl Iterator<Item = usize> {
+pub(crate) fn active_edges(t: &TriangleSetup, order: [usize; 3], y: i64) -> impl Iterator<Item = usize> {
     let [top, mid, bottom] = order;
     let y_mid = t.vertices[mid].y.raw();
     [
@@ -97,7 +97,7 @@ pub fn active_edges(t: &TriangleSetup, order: [usize; 3], y: i64) -> impl Iterat
 }
 
 /// The span of row `j` (clipped to `viewport` columns).
-pub fn row_span(t: &TriangleSetup, order: [usize; 3], j: i64, viewport: PixelRect) -> Span {
+pub(crate) fn row_span(t: &TriangleSetup, order: [usize; 3], j: i64, viewport: PixelRect) -> Span {
     let y = j * SUBPIXEL_SCALE + HALF_PIXEL;
     let mut span = Span {
         first: viewport.x0,
@@ -111,7 +111,7 @@ pub fn row_span(t: &TriangleSetup, order: [usize; 3], j: i64, viewport: PixelRec
 
 /// The rows of `viewport` whose sample line lies within the triangle's
 /// vertical extent.
-pub fn row_range(t: &TriangleSetup, order: [usize; 3], viewport: PixelRect) -> (i64, i64) {
+pub(crate) fn row_range(t: &TriangleSetup, order: [usize; 3], viewport: PixelRect) -> (i64, i64) {
     let y_top = t.vertices[order[0]].y.raw();
     let y_bottom = t.vertices[order[2]].y.raw();
     (
@@ -121,6 +121,10 @@ pub fn row_range(t: &TriangleSetup, order: [usize; 3], viewport: PixelRect) -> (
 }
 
 impl TriangleRasterizer for Scanline {
+    fn walk(&self) -> TriangleWalk {
+        TriangleWalk::Scanline
+    }
+
     fn name(&self) -> &'static str {
         "scanline"
     }

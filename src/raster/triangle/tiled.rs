@@ -43,7 +43,7 @@
 //! ```
 
 use super::incremental::{report_tested, run_in_row, step_over, Run};
-use super::{emit_span, TriangleRasterizer, TriangleSelection};
+use super::{emit_span, TriangleRasterizer, TriangleSelection, TriangleWalk};
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
 
@@ -73,7 +73,7 @@ pub enum BlockClass {
 /// lines, clipped to the box) with their classes, block by block, for
 /// traces and pictures; empty when the box fits in one block, which the
 /// back-end tests pixel by pixel.
-pub fn blocks(t: &TriangleSetup, viewport: PixelRect) -> Vec<(PixelRect, BlockClass)> {
+pub(crate) fn blocks(t: &TriangleSetup, viewport: PixelRect) -> Vec<(PixelRect, BlockClass)> {
     let r = t.bounds_within(viewport);
     if r.is_empty() || (r.x1 - r.x0 < BLOCK && r.y1 - r.y0 < BLOCK) {
         return Vec::new();
@@ -95,7 +95,7 @@ pub fn blocks(t: &TriangleSetup, viewport: PixelRect) -> Vec<(PixelRect, BlockCl
 
 /// Classifies the pixels of `r` against triangle `t` from the edge values
 /// at `r`'s four corner samples.
-pub fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
+pub(crate) fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
     let (step_x, step_y) = t.pixel_steps();
     let top_left = t.edge_values_at_pixel(r.x0, r.y0);
     classify_from_corner(t, top_left, step_x, step_y, r.x1 - r.x0, r.y1 - r.y0)
@@ -134,6 +134,10 @@ fn classify_from_corner(
 }
 
 impl TriangleRasterizer for Tiled {
+    fn walk(&self) -> TriangleWalk {
+        TriangleWalk::Blocks
+    }
+
     fn blocks(&self, t: &TriangleSetup, viewport: PixelRect) -> Vec<(PixelRect, BlockClass)> {
         blocks(t, viewport)
     }
