@@ -450,8 +450,7 @@ fn a_tie_shows_the_asymmetry_and_the_symmetric_variant_removes_it() {
 fn line_backends_clip_to_the_viewport_and_reject_options_they_cannot_honour() {
     let line = seg(snap(-50.0, 2.5), snap(50.0, 2.5));
     let vp = PixelRect::of_target(10, 5);
-    let backends: [&dyn LineRasterizer; 5] = [&Direct, &Dda, &Bresenham, &Wu, &Diamond];
-    for b in backends {
+    for &b in rasterlab::line_backends() {
         let mut list = FragmentList::default();
         b.rasterize(&[line], &LineOptions::DEFAULT, vp, &mut list);
         assert_eq!(list.lines.len(), 10, "{}", b.name());

@@ -84,7 +84,11 @@ pub(crate) fn sorted_by_y(t: &TriangleSetup) -> [usize; 3] {
 /// The edges bounding row sample `y`, as indices into `t.edges`
 /// (edge `k` is opposite vertex `k`): the long edge, and the short edge(s)
 /// spanning `y`.
-pub(crate) fn active_edges(t: &TriangleSetup, order: [usize; 3], y: i64) -> impl Iterator<Item = usize> {
+pub(crate) fn active_edges(
+    t: &TriangleSetup,
+    order: [usize; 3],
+    y: i64,
+) -> impl Iterator<Item = usize> {
     let [top, mid, bottom] = order;
     let y_mid = t.vertices[mid].y.raw();
     [
