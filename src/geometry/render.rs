@@ -3,14 +3,14 @@
 //! `rasterlab demo` run.
 //!
 //! ```
-//! use rasterlab::{backend, mesh::Mesh, render::{MeshRenderer, RenderSettings}};
+//! use rasterlab::{triangle_backend, Mesh, MeshRenderer, RenderSettings};
 //! use std::path::Path;
 //!
 //! let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
 //! let settings = RenderSettings { width: 64, height: 48, ..RenderSettings::default() };
 //! let renderer = MeshRenderer::new(&bunny, settings).unwrap();
-//! let a = renderer.render(backend::triangle_backend("scanline").unwrap()).unwrap();
-//! let b = renderer.render(backend::triangle_backend("incremental").unwrap()).unwrap();
+//! let a = renderer.render(triangle_backend("scanline").unwrap()).unwrap();
+//! let b = renderer.render(triangle_backend("incremental").unwrap()).unwrap();
 //! assert_eq!(a.target, b.target); // bit-identical colour, depth and coverage
 //! assert!(a.stats.work.fragments > 0);
 //! ```
