@@ -4,9 +4,13 @@
 //!   at 1920x1080, back faces culled, depth test, Gouraud shading (lit per
 //!   vertex), against `euc` doing the same; rasterlab on one thread per
 //!   back-end, and `tiled` on two;
+//!   The full dragon is also drawn zoomed 2.5x (`dragon_zoom2.5`, the
+//!   camera of `render --zoom 2.5`), about 1.5 M fragments;
 //! * `fill`, `size`, `sliver`: 2D triangles with depth test and colour
 //!   write (see `rasterlab::measure::workload`), against `tiny-skia` filling the same
-//!   triangles without anti-aliasing (colour only, no depth buffer);
+//!   triangles without anti-aliasing (colour only, no depth buffer); the
+//!   two-triangle fills are also drawn colour only (`*-colour-only`:
+//!   colour cleared, `DepthState::OFF`), the very work tiny-skia does;
 //! * `lines`: a million short and ten thousand long lines, every line
 //!   back-end through the stage and the fast path, against the
 //!   `line_drawing` crate's Bresenham writing into a colour buffer.
@@ -78,12 +82,18 @@ fn dragon(c: &mut Criterion) {
         meshes.push(("dragon_res2", shared.join("dragon_vrip_res2.ply.gz")));
         meshes.push(("dragon", shared.join("dragon_vrip.ply.gz")));
     }
-    for (name, path) in meshes {
+    let meshes = meshes.into_iter().flat_map(|(name, path)| {
+        // The full dragon also zoomed 2.5x: 1.5 M fragments, larger triangles.
+        let zoomed = (name == "dragon").then(|| ("dragon_zoom2.5".to_string(), path.clone(), 2.5));
+        std::iter::once((name.to_string(), path, 1.0)).chain(zoomed)
+    });
+    for (name, path, zoom) in meshes {
         let mesh = Mesh::load(&path).unwrap();
         let mut settings = RenderSettings {
             width: W,
             height: H,
             azimuth: 30.0,
+            zoom,
             shading: Shading::Gouraud,
             ..RenderSettings::default()
         };
@@ -203,6 +213,15 @@ fn triangles(c: &mut Criterion) {
             group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
                 bench.iter(|| one.install(|| work.run(*b, &mut target)))
             });
+        }
+        // The same work as tiny-skia's: clear the colour, fill, no depth.
+        if work.name.starts_with("fill") {
+            for b in triangle_backends().iter().filter(|b| work.suits(**b)) {
+                let id = format!("{}-colour-only", b.name());
+                group.bench_function(BenchmarkId::from_parameter(id), |bench| {
+                    bench.iter(|| one.install(|| work.run_colour_only(*b, &mut target)))
+                });
+            }
         }
         group.bench_function(BenchmarkId::from_parameter("peer-tiny-skia"), |bench| {
             bench.iter(|| {

@@ -265,6 +265,31 @@ proptest! {
         }
     }
 
+    /// With no depth buffer (`DepthState::OFF`, which skips every depth
+    /// read and write), every back-end draws what a test that every
+    /// fragment passes draws through the full depth path (`less-equal`
+    /// against a buffer of 2.0, without writes), and the buffer is left
+    /// as it was.
+    #[test]
+    fn no_depth_buffer_equals_a_test_every_fragment_passes(
+        soup in common::triangle_soup(16),
+        depths in proptest::collection::vec(0.0f32..1.0, 1..8),
+        backend in 0..rasterlab::triangle_backends().len(),
+    ) {
+        let geometry = soup_geometry(&soup, &depths);
+        let b = triangle_backends()[backend];
+        let passes = DepthState { test: DepthTest::LessEqual, write: false };
+        for shader in [&Flat as &dyn FragmentShader, &Gouraud] {
+            let mut off = RenderTarget::new(common::SIZE, common::SIZE).unwrap();
+            off.depth.fill(2.0);
+            let mut tested = off.clone();
+            draw(&geometry, b, shader, DepthState::OFF, Interpolation::PerspectiveCorrect, &mut off);
+            draw(&geometry, b, shader, passes, Interpolation::PerspectiveCorrect, &mut tested);
+            prop_assert!(off == tested, "{}", b.name());
+            prop_assert!(off.depth.iter().all(|&d| d == 2.0));
+        }
+    }
+
     /// The stage's span path (one shading per span for uniform shaders,
     /// one loop per depth comparison) writes what the fragment-by-fragment
     /// path writes, for every depth comparison, with and without depth writes.

@@ -15,7 +15,7 @@ use rasterlab::raster::fragment::FragmentList;
 use rasterlab::raster::fragment::WorkCounters;
 use rasterlab::raster::line::{Connectivity, Endpoints, LineOptions, LineSetup};
 use rasterlab::raster::shader::Flat;
-use rasterlab::raster::target::{DepthState, DepthTest, RenderTarget};
+use rasterlab::raster::target::{DepthState, RenderTarget};
 use rasterlab::raster::triangle::TriangleRasterizer;
 use rasterlab::teaching::grid_picture::GridPicture;
 use rasterlab::teaching::report::{CompareInput, Report};
@@ -192,7 +192,9 @@ pub struct RenderArgs {
     /// Fill rule: top-left, bottom-right, offscreen-point, inclusive, exclusive.
     #[arg(long, default_value = "top-left")]
     rule: String,
-    /// Depth test: never, less, equal, less-equal, greater, not-equal, greater-equal, always.
+    /// Depth test: never, less, equal, less-equal, greater, not-equal,
+    /// greater-equal, always (each with depth writes), or off (no depth
+    /// buffer: nothing read or written, the fastest colour-only fill).
     #[arg(long, default_value = "less")]
     depth_test: String,
     /// Built-in 2D scene instead of a file: depth-example, split-square, pinwheel, fan.
@@ -307,10 +309,7 @@ impl MeshArgs {
 pub fn render(args: &RenderArgs) -> Result<()> {
     rasterlab::output::check_file(&args.out, &["png"])?;
     let rule: FillRule = args.rule.parse()?;
-    let depth = DepthState {
-        test: args.depth_test.parse::<DepthTest>()?,
-        write: true,
-    };
+    let depth = DepthState::from_name(&args.depth_test)?;
     let named = |default: &str| backend(args.backend.as_deref().unwrap_or(default));
     if let Some(path) = args.input.as_deref().filter(|p| Mesh::is_mesh_path(p)) {
         if args.scale != 1 {

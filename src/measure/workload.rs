@@ -86,6 +86,26 @@ impl TriangleWorkload {
         )
         .fragments
     }
+
+    /// Clears `target`'s colour and draws the workload with `backend` and
+    /// no depth buffer ([`DepthState::OFF`]): the colour-only fill a 2D
+    /// library does. Returns the fragments drawn.
+    pub fn run_colour_only(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        target: &mut RenderTarget,
+    ) -> u64 {
+        target.clear_color(RenderTarget::BLACK);
+        draw(
+            &self.geometry,
+            backend,
+            &Constant(COLOR),
+            DepthState::OFF,
+            Interpolation::PerspectiveCorrect,
+            target,
+        )
+        .fragments
+    }
 }
 
 /// Line segments ready to draw: set-up and stage data.

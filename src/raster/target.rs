@@ -119,6 +119,37 @@ impl DepthState {
         test: DepthTest::Less,
         write: true,
     };
+
+    /// No depth buffer: every fragment passes and nothing is written, so
+    /// the stage neither evaluates depth for a span nor reads or writes
+    /// the depth buffer (`--depth-test off`). The image is the one
+    /// `always` without writes gives.
+    pub const OFF: DepthState = DepthState {
+        test: DepthTest::Always,
+        write: false,
+    };
+
+    /// Whether the depth buffer is left alone ([`Self::OFF`]).
+    pub fn is_off(self) -> bool {
+        self == Self::OFF
+    }
+
+    /// The state `--depth-test NAME` asks for: `off` ([`Self::OFF`]), or
+    /// a comparison with writes on.
+    pub fn from_name(name: &str) -> Result<DepthState> {
+        if name == "off" {
+            return Ok(Self::OFF);
+        }
+        let test = name.parse::<DepthTest>().map_err(|e| match e {
+            Error::UnknownName { what, name, known } => Error::UnknownName {
+                what,
+                name,
+                known: format!("off, {known}"),
+            },
+            other => other,
+        })?;
+        Ok(DepthState { test, write: true })
+    }
 }
 
 impl Default for DepthState {

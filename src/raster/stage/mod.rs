@@ -183,6 +183,9 @@ impl<'a> FragmentStage<'a> {
         if self.target.counts_coverage() {
             self.target.coverage[idx] = self.target.coverage[idx].saturating_add(1);
         }
+        if self.depth.is_off() {
+            return Some(idx);
+        }
         self.depth
             .test
             .passes(z, self.target.depth[idx])
@@ -335,6 +338,14 @@ impl FragmentSink for FragmentStage<'_> {
                 &mut []
             },
         };
+        if self.depth.is_off() {
+            // No depth buffer: the colour goes to every pixel of the span.
+            for c in rows.coverage.iter_mut() {
+                *c = c.saturating_add(1);
+            }
+            rows.color.fill(color);
+            return;
+        }
         let (row, x0) = (plane.row(span.y), span.x0);
         let write = self.depth.write;
         // One monomorphic loop per comparison, so the compare is not
