@@ -55,6 +55,10 @@ pub struct FragmentStage<'a> {
     /// Added to every line fragment's depth, so a wireframe drawn over its
     /// own surface with `less-equal` wins (negative values pull it nearer).
     pub line_depth_offset: f32,
+    /// For a shader whose colour is uniform per primitive: the last
+    /// triangle whose span was shaded, and its colour, so the next spans
+    /// of the same triangle are not shaded again.
+    span_colour: Option<(u32, [u8; 4])>,
 }
 
 impl<'a> FragmentStage<'a> {
@@ -76,6 +80,7 @@ impl<'a> FragmentStage<'a> {
             depth: DepthState::DEFAULT,
             interpolation: Interpolation::PerspectiveCorrect,
             line_depth_offset: 0.0,
+            span_colour: None,
         }
     }
 
@@ -83,6 +88,7 @@ impl<'a> FragmentStage<'a> {
     pub fn with_triangles(mut self, data: &'a TriangleData) -> Self {
         self.triangles = &data.triangles;
         self.vertices = &data.vertices;
+        self.span_colour = None;
         self
     }
 
@@ -90,6 +96,7 @@ impl<'a> FragmentStage<'a> {
     /// now index `triangles` (see [`crate::geometry::pipeline::Geometry`]).
     pub(crate) fn use_triangles(&mut self, triangles: &'a [ShadedTriangle]) {
         self.triangles = triangles;
+        self.span_colour = None;
     }
 
     /// Vertex data of the line segments, indexed by line id.
@@ -312,20 +319,28 @@ impl FragmentSink for FragmentStage<'_> {
             }
             return;
         }
-        // The colour is the same for every pixel: shade the first one.
-        let first = TriangleFragment {
-            x: span.x0,
-            y: span.y,
-            triangle: span.triangle,
-            edges: span.edges,
-        };
-        let Some(vertices) = self.vertices_of(t) else {
-            return;
-        };
+        // The colour is the same for every pixel of the triangle: shade the
+        // first pixel of its first span, and keep the colour for the rest.
         let plane = t.depth;
-        let depth = plane.at(first.x, first.y);
-        let input = self.fragment_input(&Sample::of_triangle(depth, vertices, &first));
-        let color = to_rgba8(self.color_of(&input));
+        let color = match self.span_colour {
+            Some((id, color)) if id == span.triangle => color,
+            _ => {
+                let first = TriangleFragment {
+                    x: span.x0,
+                    y: span.y,
+                    triangle: span.triangle,
+                    edges: span.edges,
+                };
+                let Some(vertices) = self.vertices_of(t) else {
+                    return;
+                };
+                let depth = plane.at(first.x, first.y);
+                let input = self.fragment_input(&Sample::of_triangle(depth, vertices, &first));
+                let color = to_rgba8(self.color_of(&input));
+                self.span_colour = Some((span.triangle, color));
+                color
+            }
+        };
         let start = self.target.index(span.x0, span.y);
         let end = start + (span.x1 - span.x0) as usize + 1;
         let counts = self.target.counts_coverage();
