@@ -136,6 +136,34 @@ pub struct Frame {
     pub stats: FrameStats,
 }
 
+/// New vertex numbers in the order the triangles first use the vertices
+/// (unused vertices after them, in their order): `new_index[old]`.
+///
+/// Drawing then reads the vertex data nearly in order: the vertex shader
+/// pass as before, and the fragment stage, which fetches a fragment's
+/// three vertices, finds those of consecutive triangles side by side
+/// instead of scattered over the mesh. Nothing computed changes (each
+/// vertex is shaded by itself, the triangles keep their order), so the
+/// image is the same bits. `None` when an index is out of range: the
+/// pipeline then reports it as it stands.
+fn first_use_order(vertex_count: usize, triangles: &[[u32; 3]]) -> Option<Vec<u32>> {
+    const UNSEEN: u32 = u32::MAX;
+    let mut new_index = vec![UNSEEN; vertex_count];
+    let mut next = 0u32;
+    for &i in triangles.iter().flatten() {
+        let slot = new_index.get_mut(i as usize)?;
+        if *slot == UNSEEN {
+            *slot = next;
+            next += 1;
+        }
+    }
+    for slot in new_index.iter_mut().filter(|s| **s == UNSEEN) {
+        *slot = next;
+        next += 1;
+    }
+    Some(new_index)
+}
+
 /// A mesh prepared for rendering from one view.
 pub struct MeshRenderer {
     settings: RenderSettings,
@@ -190,7 +218,7 @@ impl MeshRenderer {
             transform = transform.with_vertex_light(settings.light);
         }
         let uvs = (settings.shading == Shading::Texture).then(|| mesh.uvs_or_generated());
-        let vertices = (0..mesh.positions.len())
+        let vertices: Vec<MeshVertex> = (0..mesh.positions.len())
             .map(|i| MeshVertex {
                 position: mesh.positions[i],
                 normal: mesh.normals[i],
@@ -209,15 +237,33 @@ impl MeshRenderer {
                 light: Some(settings.light),
             }),
         };
-        let edges = if settings.wireframe.is_some() {
+        let mut edges = if settings.wireframe.is_some() {
             unique_edges(&mesh.triangles)
         } else {
             Vec::new()
         };
+        let mut triangles = mesh.triangles.clone();
+        let vertices = match first_use_order(vertices.len(), &triangles) {
+            Some(new_index) => {
+                for i in triangles
+                    .iter_mut()
+                    .flatten()
+                    .chain(edges.iter_mut().flatten())
+                {
+                    *i = new_index[*i as usize];
+                }
+                let mut reordered = vertices.clone();
+                for (old, &new) in new_index.iter().enumerate() {
+                    reordered[new as usize] = vertices[old];
+                }
+                reordered
+            }
+            None => vertices,
+        };
         Ok(MeshRenderer {
             settings,
             vertices,
-            triangles: mesh.triangles.clone(),
+            triangles,
             edges,
             transform,
             shader,
@@ -372,4 +418,73 @@ pub fn unique_edges(triangles: &[[u32; 3]]) -> Vec<[u32; 2]> {
         }
     }
     edges
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::backend::triangle_backends;
+    use std::path::Path;
+
+    #[test]
+    fn first_use_order_is_a_permutation_in_order_of_use() {
+        let order = first_use_order(6, &[[4, 2, 4], [0, 2, 3]]).unwrap();
+        assert_eq!(order, vec![2, 4, 1, 3, 0, 5]);
+        assert_eq!(first_use_order(3, &[[0, 1, 3]]), None);
+    }
+
+    /// The renderer's vertex renumbering changes no bit: each back-end
+    /// draws the bunny as the pipeline draws it in the file's order.
+    #[test]
+    fn renumbered_vertices_draw_the_same_image() {
+        let mesh = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
+        let settings = RenderSettings {
+            width: 96,
+            height: 72,
+            shading: Shading::Gouraud,
+            ..RenderSettings::default()
+        };
+        let renderer = MeshRenderer::new(&mesh, settings).unwrap();
+        let in_file_order: Vec<MeshVertex> = (0..mesh.positions.len())
+            .map(|i| MeshVertex {
+                position: mesh.positions[i],
+                normal: mesh.normals[i],
+                uv: glam::Vec2::ZERO,
+                color: settings.color,
+            })
+            .collect();
+        let viewport = Viewport {
+            width: settings.width,
+            height: settings.height,
+        };
+        let geometry = pipeline::process_triangles(
+            &in_file_order,
+            &mesh.triangles,
+            renderer.transform(),
+            viewport,
+            &settings.pipeline,
+        )
+        .unwrap();
+        assert_ne!(
+            renderer.triangles, mesh.triangles,
+            "the bunny was renumbered"
+        );
+        for &b in triangle_backends() {
+            let mut expected = RenderTarget::new(settings.width, settings.height).unwrap();
+            expected.clear_color(settings.background);
+            pipeline::draw(
+                &geometry,
+                b,
+                &Gouraud,
+                settings.depth,
+                settings.interpolation,
+                &mut expected,
+            );
+            assert!(
+                renderer.render(b).unwrap().target == expected,
+                "{}",
+                b.name()
+            );
+        }
+    }
 }

@@ -369,9 +369,14 @@ impl TriangleSetup {
         // counter-clockwise as seen on screen.
         let winding = if signed_area > 0 { 1 } else { -1 };
         if signed_area < 0 {
-            edges = edges.map(EdgeFunction::negated);
+            for e in &mut edges {
+                *e = e.negated();
+            }
         }
-        let bias = edges.map(|e| if rule.owns_ties(&e) { 0 } else { -1 });
+        // Written out rather than with `map`: this runs for every triangle
+        // of a mesh, and the compiler left `map` here as a call.
+        let bias_of = |e: &EdgeFunction| if rule.owns_ties(e) { 0 } else { -1 };
+        let bias = [bias_of(&edges[0]), bias_of(&edges[1]), bias_of(&edges[2])];
         Some(TriangleSetup {
             id,
             vertices,

@@ -45,6 +45,24 @@ pub const GUARD_BAND: i64 = 1 << 15;
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Fixed(i32);
 
+/// `x` rounded to the nearest integer, ties to even: `f64::round_ties_even`,
+/// which the baseline x86-64 target (no SSE4.1 `roundsd`) compiles to a
+/// call into the C library, once per coordinate of every vertex. Below
+/// 2^51, adding and subtracting 1.5 * 2^52 rounds the same way in two
+/// additions (the sum has no bits below 1, and IEEE addition rounds to
+/// nearest, ties to even); larger values, far beyond the guard band, take
+/// the library's path.
+#[inline]
+fn round_ties_even(x: f64) -> f64 {
+    const SHIFT: f64 = 6_755_399_441_055_744.0; // 1.5 * 2^52
+    if x.abs() < 2_251_799_813_685_248.0 {
+        // 2^51
+        (x + SHIFT) - SHIFT
+    } else {
+        x.round_ties_even()
+    }
+}
+
 impl Fixed {
     /// Snaps a coordinate in pixels: round to nearest, ties to even.
     ///
@@ -59,7 +77,7 @@ impl Fixed {
             return Err(Error::NonFinite { value: pixels });
         }
         // Exact for every f32 input: multiplying by a power of two.
-        let scaled = (pixels * SUBPIXEL_SCALE as f64).round_ties_even();
+        let scaled = round_ties_even(pixels * SUBPIXEL_SCALE as f64);
         let limit = (GUARD_BAND * SUBPIXEL_SCALE) as f64;
         if scaled.abs() >= limit {
             return Err(Error::OutsideGuardBand {
@@ -165,6 +183,30 @@ pub fn last_sample_at_or_before(raw: i64) -> i64 {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn two_additions_round_as_round_ties_even() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            2.5,
+            -2.5,
+            1e15 + 0.5,
+            2f64.powi(51) - 0.5,
+        ];
+        for k in -2000..2000 {
+            let x = f64::from(k);
+            values.extend([x + 0.5, x + 0.25, x - 0.25, x + 0.4999999999, x * 1234.5678]);
+        }
+        let mut rng = fastrand::Rng::with_seed(7);
+        values.extend((0..100_000).map(|_| (rng.f64() - 0.5) * 2f64.powi(rng.i32(0..60))));
+        for x in values {
+            assert_eq!(super::round_ties_even(x), x.round_ties_even(), "{x}");
+        }
+    }
+
     use super::*;
 
     #[test]
