@@ -75,9 +75,17 @@ impl Span {
 }
 
 /// The vertex indices of a triangle sorted by (y, x): top, mid, bottom.
+///
+/// Three compare-and-swaps (a sorting network), each swapping only on a
+/// strict `<`, so equal keys keep their order as a stable sort keeps them.
 pub(crate) fn sorted_by_y(t: &TriangleSetup) -> [usize; 3] {
+    let key = |i: usize| (t.vertices[i].y, t.vertices[i].x);
     let mut order = [0, 1, 2];
-    order.sort_by_key(|&i| (t.vertices[i].y, t.vertices[i].x));
+    for (a, b) in [(0, 1), (1, 2), (0, 1)] {
+        if key(order[b]) < key(order[a]) {
+            order.swap(a, b);
+        }
+    }
     order
 }
 
@@ -165,5 +173,31 @@ impl TriangleRasterizer for Scanline {
             }
         }
         work
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::edge::FillRule;
+    use crate::raster::fixed::FixedPoint;
+
+    #[test]
+    fn the_sorting_network_sorts_as_a_stable_sort() {
+        let coords = [0, 256, 512];
+        for a in 0..9 {
+            for b in 0..9 {
+                for c in 0..9 {
+                    let p = |k: usize| FixedPoint::from_raw(coords[k % 3], coords[k / 3]).unwrap();
+                    let Some(t) = TriangleSetup::new(0, [p(a), p(b), p(c)], FillRule::TopLeft)
+                    else {
+                        continue;
+                    };
+                    let mut stable = [0, 1, 2];
+                    stable.sort_by_key(|&i| (t.vertices[i].y, t.vertices[i].x));
+                    assert_eq!(sorted_by_y(&t), stable, "{:?}", t.vertices);
+                }
+            }
+        }
     }
 }
