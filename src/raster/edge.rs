@@ -352,7 +352,10 @@ pub struct TriangleSetup {
 
 impl TriangleSetup {
     /// Sets up a triangle; `None` when its snapped area is zero.
-    #[inline]
+    ///
+    /// Always inlined: the pipeline sets up every triangle of a mesh, and
+    /// as a call its result was built on the stack and copied.
+    #[inline(always)]
     pub fn new(id: u32, vertices: [FixedPoint; 3], rule: FillRule) -> Option<TriangleSetup> {
         let [v0, v1, v2] = vertices;
         let mut edges = [
