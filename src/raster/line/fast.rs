@@ -116,6 +116,30 @@ fn first_column_where(mut lo: i64, mut hi: i64, pred: impl Fn(i64) -> bool) -> i
     lo
 }
 
+/// `frame.nearest_row(first)` without its division when `first` is the
+/// start's own column (a segment that starts on the target, the common
+/// case), which matters when lines are short.
+///
+/// The start's column centre lies within half a pixel of the start along
+/// the major axis and the slope is at most 1, so the ideal line's `v`
+/// there is within 128 units of `v0`, and its nearest row,
+/// `ceil((v - 128) / 256)`, is `k = ceil((v0 - 256) / 256)` or `k + 1`:
+/// `k` when `256 k + 128 >= v`, an exact comparison once multiplied by
+/// `du`.
+#[inline]
+fn first_row(frame: &OctantFrame, first: i64) -> i64 {
+    let du = frame.du();
+    if first != frame.i0 || du == 0 {
+        return frame.nearest_row(first);
+    }
+    let k = -(SUBPIXEL_SCALE - frame.v0).div_euclid(SUBPIXEL_SCALE);
+    if du * (SUBPIXEL_SCALE * k + HALF_PIXEL) >= frame.scaled_v_at(first) {
+        k
+    } else {
+        k + 1
+    }
+}
+
 /// The midpoint walk over columns `first..=last`, all on the target.
 ///
 /// The pixel is tracked as a buffer index: a column step moves it by
@@ -128,7 +152,7 @@ fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, c
     // i64 is exact here, as in OctantFrame::scaled_v_at: |d| < 2^58.
     let s = SUBPIXEL_SCALE;
     let (du, dv) = (frame.du(), frame.dv());
-    let k = frame.nearest_row(first);
+    let k = first_row(frame, first);
     let mut d = du * (s * k + HALF_PIXEL) - frame.scaled_v_at(first + 1);
     let (up, flat) = (s * (du - dv), s * dv);
     let (along_major, along_minor) = if frame.swap { (width, 1) } else { (1, width) };
@@ -154,5 +178,30 @@ fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, c
         let step_up = d < 0;
         at += major + if step_up { minor } else { 0 };
         d += if step_up { up } else { -flat };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::fixed::FixedPoint;
+
+    #[test]
+    fn the_first_row_is_the_nearest_row_without_a_division() {
+        let mut rng = fastrand::Rng::with_seed(3);
+        let mut coordinate = |span: i64| rng.i64(-span..span);
+        for n in 0..200_000 {
+            let span = if n % 2 == 0 { 1 << 11 } else { 1 << 20 };
+            let (a, b) = (
+                FixedPoint::from_raw(coordinate(span), coordinate(span)).unwrap(),
+                FixedPoint::from_raw(coordinate(span), coordinate(span)).unwrap(),
+            );
+            let frame = OctantFrame::new(a, b);
+            assert_eq!(
+                first_row(&frame, frame.i0),
+                frame.nearest_row(frame.i0),
+                "{a:?} {b:?}"
+            );
+        }
     }
 }
