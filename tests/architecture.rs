@@ -105,3 +105,123 @@ fn the_check_sees_a_use_against_the_map() {
     let used = rooms_used("use crate::teaching::trace; // crate::lab in a comment\n");
     assert_eq!(used, vec![(1, "teaching".to_string())]);
 }
+
+/// The module a file of `src/` is: `raster::triangle::tiled` for
+/// `raster/triangle/tiled.rs`, `raster::triangle` for its `mod.rs`.
+fn module_of(relative: &Path) -> Vec<String> {
+    let mut parts: Vec<String> = relative
+        .with_extension("")
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
+    if parts.last().is_some_and(|p| p == "mod") {
+        parts.pop();
+    }
+    parts
+}
+
+/// The paths, from the crate root, that the code (not the comments) of
+/// `module` names as `crate::a::b` or `super::a` (`super` is the module's
+/// parent, for a `mod.rs` as for any other file).
+fn paths_used(text: &str, module: &[String]) -> Vec<Vec<String>> {
+    let parent = module[..module.len().saturating_sub(1)].to_vec();
+    let mut used = Vec::new();
+    for line in text.lines() {
+        let code = line.split("//").next().unwrap();
+        for (prefix, base) in [("crate::", Vec::new()), ("super::", parent.clone())] {
+            let mut rest = code;
+            while let Some(i) = rest.find(prefix) {
+                let before = rest[..i].chars().last();
+                let after = &rest[i + prefix.len()..];
+                rest = after;
+                // `$crate::` and the second `super::` of `super::super::`.
+                if before
+                    .is_some_and(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$' || c == ':')
+                {
+                    continue;
+                }
+                let path: String = after
+                    .chars()
+                    .take_while(|c| c.is_ascii_alphanumeric() || *c == '_' || *c == ':')
+                    .collect();
+                let mut full = base.clone();
+                full.extend(path.split("::").filter(|s| !s.is_empty()).map(String::from));
+                used.push(full);
+            }
+        }
+    }
+    used
+}
+
+/// Modules that use each other, directly or through others: every cycle
+/// of the graph of uses between modules neither of which contains the
+/// other (a module using its ancestors is how Rust nests).
+fn cycles_between_modules() -> (usize, Vec<String>) {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut modules: Vec<(Vec<String>, String)> = Vec::new();
+    for file in &files {
+        let relative = file.strip_prefix(&src).unwrap();
+        if ["main", "cli", "lib"].contains(&room_of(relative).as_str()) {
+            continue;
+        }
+        modules.push((module_of(relative), std::fs::read_to_string(file).unwrap()));
+    }
+    let names: Vec<&Vec<String>> = modules.iter().map(|m| &m.0).collect();
+    // The longest module that is a prefix of `path`.
+    let target = |path: &[String]| {
+        (0..names.len())
+            .filter(|&k| path.starts_with(names[k]))
+            .max_by_key(|&k| names[k].len())
+    };
+    let mut edges = vec![std::collections::BTreeSet::new(); names.len()];
+    for (i, (module, text)) in modules.iter().enumerate() {
+        for path in paths_used(text, module) {
+            if let Some(j) = target(&path) {
+                if !module.starts_with(names[j]) && !names[j].starts_with(module) {
+                    edges[i].insert(j);
+                }
+            }
+        }
+    }
+    let uses = edges.iter().map(|e| e.len()).sum();
+    // A cycle through i -> j exists when i is reachable back from j.
+    let reaches = |from: usize, to: usize| {
+        let mut seen = vec![false; names.len()];
+        let mut todo = vec![from];
+        while let Some(k) = todo.pop() {
+            if k == to {
+                return true;
+            }
+            if !std::mem::replace(&mut seen[k], true) {
+                todo.extend(edges[k].iter().copied());
+            }
+        }
+        false
+    };
+    let mut cycles = Vec::new();
+    for i in 0..names.len() {
+        for &j in &edges[i] {
+            if reaches(j, i) {
+                cycles.push(format!(
+                    "{} uses {}, which leads back",
+                    names[i].join("::"),
+                    names[j].join("::")
+                ));
+            }
+        }
+    }
+    (uses, cycles)
+}
+
+#[test]
+fn no_two_modules_use_each_other() {
+    let (uses, cycles) = cycles_between_modules();
+    assert!(uses > 80, "only {uses} uses between modules were found");
+    assert!(
+        cycles.is_empty(),
+        "modules in a cycle:\n{}",
+        cycles.join("\n")
+    );
+}

@@ -471,8 +471,9 @@ fn lines_are_depth_tested_against_triangles_in_the_shared_stage() {
     use rasterlab::geometry::scene::Scene2D;
     use rasterlab::raster::backend::triangle_backends;
     use rasterlab::raster::edge::FillRule;
+    use rasterlab::raster::primitive::{ShadedLine, ShadedVertex};
     use rasterlab::raster::shader::Gouraud;
-    use rasterlab::raster::stage::{FragmentStage, ShadedLine, ShadedVertex};
+    use rasterlab::raster::stage::FragmentStage;
     use rasterlab::raster::target::{DepthState, RenderTarget};
 
     // A square at depth 0.5, and a horizontal line across it whose depth

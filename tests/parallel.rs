@@ -17,9 +17,10 @@ use rasterlab::raster::backend::triangle_backends;
 use rasterlab::raster::edge::FillRule;
 use rasterlab::raster::fixed::FixedPoint;
 use rasterlab::raster::fragment::{FragmentList, FragmentSink};
+use rasterlab::raster::primitive::ShadedVertex;
 use rasterlab::raster::shader::FragmentShader;
 use rasterlab::raster::shader::{Constant, Flat, Gouraud};
-use rasterlab::raster::stage::{FragmentStage, Interpolation, ShadedVertex};
+use rasterlab::raster::stage::{FragmentStage, Interpolation};
 use rasterlab::raster::target::{DepthState, DepthTest, RenderTarget};
 use std::path::Path;
 

@@ -73,7 +73,7 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
     // Work table, the input's fill rules, the pinwheel's.
     assert_eq!(body_data(&dom, "tables"), 3);
     // One grid picture per back-end.
-    assert_eq!(body_data(&dom, "svgs"), 5);
+    assert_eq!(body_data(&dom, "svgs"), backends);
 
     let shot = dir.join("shot.png");
     run_chromium(

@@ -194,8 +194,8 @@ mod images {
     use rasterlab::geometry::scene::Scene2D;
     use rasterlab::raster::backend::triangle_backends;
     use rasterlab::raster::edge::FillRule;
+    use rasterlab::raster::primitive::ShadedVertex;
     use rasterlab::raster::shader::Gouraud;
-    use rasterlab::raster::stage::ShadedVertex;
     use rasterlab::raster::target::{DepthState, DepthTest, RenderTarget};
 
     proptest! {

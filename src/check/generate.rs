@@ -22,126 +22,13 @@
 //! far outside the target, half-subpixel ends, zero-length segments.
 //!
 //! A [`Case`] is written and read as the text `rasterlab fragments` reads,
-//! with a first line `# size WxH`.
+//! with a first line `# size WxH` (see [`super::case`]).
 
+use super::case::{snap, Case, Point};
 use super::judge::Property;
-use crate::error::{Error, Result};
 use crate::raster::fixed::{FixedPoint, GUARD_BAND};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 use std::f64::consts::TAU;
-use std::fmt::Write;
-
-/// A point in screen pixels, as written in the input file.
-pub type Point = (f64, f64);
-
-/// One input: a target size and triangles or line segments, in screen
-/// pixels (snapped by whoever reads them).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Case {
-    /// Target width in pixels.
-    pub width: u32,
-    /// Target height in pixels.
-    pub height: u32,
-    /// Triangles (empty for a line case).
-    pub triangles: Vec<[Point; 3]>,
-    /// Line segments (empty for a triangle case).
-    pub lines: Vec<[Point; 2]>,
-}
-
-impl Case {
-    /// How many primitives the case holds.
-    pub fn len(&self) -> usize {
-        self.triangles.len() + self.lines.len()
-    }
-
-    /// True when the case holds no primitive.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// The triangles snapped to 1/256 pixel.
-    pub fn snapped_triangles(&self) -> Vec<[FixedPoint; 3]> {
-        self.triangles.iter().map(|t| t.map(snap)).collect()
-    }
-
-    /// The segments snapped to 1/256 pixel.
-    pub fn snapped_lines(&self) -> Vec<[FixedPoint; 2]> {
-        self.lines.iter().map(|l| l.map(snap)).collect()
-    }
-
-    /// The input file: `# size WxH`, then one primitive per line (`-0`
-    /// written as `0`).
-    pub fn to_text(&self) -> String {
-        let clean = self.without_negative_zeros();
-        let mut out = format!("# size {}x{}\n", clean.width, clean.height);
-        for t in &clean.triangles {
-            let _ = writeln!(
-                out,
-                "{} {} {} {} {} {}",
-                t[0].0, t[0].1, t[1].0, t[1].1, t[2].0, t[2].1
-            );
-        }
-        for l in &clean.lines {
-            let _ = writeln!(out, "{} {} {} {}", l[0].0, l[0].1, l[1].0, l[1].1);
-        }
-        out
-    }
-
-    /// The same case with every `-0.0` made `0.0` (adding zero does it).
-    fn without_negative_zeros(&self) -> Case {
-        let fix = |p: Point| (p.0 + 0.0, p.1 + 0.0);
-        Case {
-            width: self.width,
-            height: self.height,
-            triangles: self.triangles.iter().map(|t| t.map(fix)).collect(),
-            lines: self.lines.iter().map(|l| l.map(fix)).collect(),
-        }
-    }
-
-    /// Reads a case written by [`Case::to_text`] (a counterexample file),
-    /// or any soup or line set with a `# size WxH` line.
-    pub fn from_text(text: &str) -> Result<Case> {
-        let mut case = Case::default();
-        for (i, line) in text.lines().enumerate() {
-            let bad = |m: String| Error::InvalidArgument(format!("line {}: {m}", i + 1));
-            if let Some(size) = line.trim().strip_prefix("# size ") {
-                let (w, h) = size
-                    .split_once('x')
-                    .ok_or_else(|| bad("expected # size WxH".into()))?;
-                case.width = w.trim().parse().map_err(|_| bad("bad width".into()))?;
-                case.height = h.trim().parse().map_err(|_| bad("bad height".into()))?;
-                continue;
-            }
-            let content = line.split('#').next().unwrap_or("").trim();
-            if content.is_empty() {
-                continue;
-            }
-            let v = content
-                .split_whitespace()
-                .map(|t| {
-                    t.parse::<f64>()
-                        .map_err(|_| bad(format!("`{t}` is not a number")))
-                })
-                .collect::<Result<Vec<f64>>>()?;
-            match v.len() {
-                6 => case
-                    .triangles
-                    .push([(v[0], v[1]), (v[2], v[3]), (v[4], v[5])]),
-                4 => case.lines.push([(v[0], v[1]), (v[2], v[3])]),
-                n => return Err(bad(format!("expected 6 or 4 numbers, found {n}"))),
-            }
-        }
-        if case.width == 0 || case.height == 0 {
-            return Err(Error::InvalidArgument("no `# size WxH` line".into()));
-        }
-        Ok(case)
-    }
-}
-
-/// Snaps a generated point (always finite and inside the guard band).
-pub(crate) fn snap(p: Point) -> FixedPoint {
-    FixedPoint::snap_f64(p.0, p.1).unwrap_or_default()
-}
 
 /// A coordinate on the 1/256 grid: what the generators produce, unless a
 /// family wants ties.

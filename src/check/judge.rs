@@ -10,7 +10,7 @@
 //! the union's boundary at most once; a triangle may only draw centres in
 //! its closed area.
 
-use super::generate::Case;
+use super::case::Case;
 use super::{reference, Fragment};
 use crate::raster::edge::{FillRule, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};

@@ -40,13 +40,14 @@
 //! assert!(matches!(verdict, Verdict::Pass { cases: 50 }));
 //! ```
 
+pub mod case;
 pub mod generate;
 pub mod judge;
 pub mod program;
 mod report;
 pub mod shrink;
 
-pub use generate::Case;
+pub use case::Case;
 pub use judge::{Finding, Property};
 pub use program::Program;
 

@@ -14,7 +14,7 @@
 //! as a pixel far off the target (a defect the check reports), not as a
 //! crash of the check.
 
-use super::generate::Case;
+use super::case::Case;
 use super::{Fragment, Subject, SubjectError};
 use std::io::Read;
 use std::path::PathBuf;

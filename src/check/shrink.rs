@@ -19,7 +19,7 @@
 //! two triangles overlap), so the counterexample is never the input's
 //! fault.
 
-use super::generate::{Case, Point};
+use super::case::{Case, Point};
 use super::judge::{judge, Finding, Property};
 use super::{reference, Subject, SubjectError};
 use crate::raster::fixed::GUARD_BAND;

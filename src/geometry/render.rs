@@ -24,10 +24,11 @@ use crate::geometry::pipeline::{
 };
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
+use crate::raster::primitive::ShadedLine;
 use crate::raster::shader::DirectionalLight;
 use crate::raster::shader::FragmentShader;
 use crate::raster::shader::{Diffuse, Filter, Flat, Gouraud, NormalColors, Texture, Textured};
-use crate::raster::stage::{FragmentStage, Interpolation, ShadedLine};
+use crate::raster::stage::{FragmentStage, Interpolation};
 use crate::raster::target::{DepthState, DepthTest, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use glam::{Mat4, Vec4};

@@ -12,8 +12,10 @@
 //! * [`backend`]: the registry of back-ends by name;
 //! * [`fragment`]: fragments, the [`FragmentSink`](fragment::FragmentSink)
 //!   they go into, work counters;
+//! * [`primitive`]: what the stage reads of a draw (per vertex depth,
+//!   `1 / w` and varyings; per triangle its vertices and depth plane);
 //! * [`stage`]: the shared fragment stage (depth test, interpolation,
-//!   shading, writes) and the per-vertex data it reads;
+//!   shading, writes);
 //! * [`shader`]: fragment shaders and lights;
 //! * [`target`]: colour, depth and coverage buffers.
 //!
@@ -25,6 +27,7 @@ pub mod edge;
 pub mod fixed;
 pub mod fragment;
 pub mod line;
+pub mod primitive;
 pub mod shader;
 pub mod stage;
 pub mod target;

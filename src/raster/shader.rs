@@ -9,7 +9,7 @@
 //! software-rasterizer article), [`Textured`] samples a [`Texture`] at the interpolated UV (nearest
 //! or bilinear), and [`NormalColors`] shows the normals themselves.
 
-use crate::raster::stage::Varyings;
+use crate::raster::primitive::Varyings;
 use glam::{Vec2, Vec3, Vec4};
 
 /// What a fragment shader is given.

@@ -3,7 +3,6 @@
 //! set-up triangle binned into the bands its bounding box meets, and the
 //! chunks a list is cut into to share it between threads.
 
-use super::draw::TriangleRun;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use rayon::prelude::*;
 
@@ -94,19 +93,18 @@ pub(crate) struct Bins {
 }
 
 impl Bins {
-    /// Bins the triangles of `runs` into the `bands` of a `width` x
-    /// `height` target, in parallel.
-    pub fn new(runs: &[TriangleRun<'_>], width: u32, height: u32, bands: Bands) -> Bins {
+    /// Bins the triangles of `runs` (the set-ups of each run, in id order)
+    /// into the `bands` of a `width` x `height` target, in parallel.
+    pub fn new(runs: &[&[TriangleSetup]], width: u32, height: u32, bands: Bands) -> Bins {
         let viewport = PixelRect::of_target(width, height);
-        let total = runs.iter().map(|r| r.setups.len()).sum();
+        let total = runs.iter().map(|r| r.len()).sum();
         let chunk = chunk_len(total, 4, MIN_CHUNK);
         // (run, first index in the run, the chunk's set-ups)
         let work: Vec<(usize, usize, &[TriangleSetup])> = runs
             .iter()
             .enumerate()
             .flat_map(|(r, run)| {
-                run.setups
-                    .chunks(chunk)
+                run.chunks(chunk)
                     .enumerate()
                     .map(move |(c, setups)| (r, c * chunk, setups))
             })

@@ -27,7 +27,7 @@
 //! its first vertex.
 
 use crate::raster::fixed::GUARD_BAND;
-use crate::raster::stage::Varyings;
+use crate::raster::primitive::Varyings;
 use glam::Vec4;
 
 /// The smallest `w` kept by clipping.

@@ -30,43 +30,15 @@
 //! met by three bands counts three primitives.
 
 use super::bands::{Bands, Bins};
-use super::geometry::Geometry;
+use super::geometry::{Geometry, Runs};
 use super::Viewport;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::WorkCounters;
 use crate::raster::shader::FragmentShader;
-use crate::raster::stage::{FragmentStage, Interpolation, ShadedTriangle, TriangleData};
+use crate::raster::stage::{FragmentStage, Interpolation};
 use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::{TriangleRasterizer, TriangleSelection};
 use rayon::prelude::*;
-
-/// A run of set-up triangles and their stage data: the set-up with id `i`
-/// in the run belongs to `triangles[i]`.
-#[derive(Copy, Clone, Debug)]
-pub(crate) struct TriangleRun<'a> {
-    pub setups: &'a [TriangleSetup],
-    pub triangles: &'a [ShadedTriangle],
-}
-
-/// What a draw reads: the stage's vertices, the triangles in runs in id
-/// order (one for a [`Geometry`], one per part for a geometry left in its
-/// parts), and the parts' bins when they binned their triangles.
-pub(crate) struct Runs<'a> {
-    pub shaded: &'a TriangleData,
-    pub runs: Vec<TriangleRun<'a>>,
-    /// The parts' bins, when they binned their triangles.
-    pub bins: Option<PartBins<'a>>,
-}
-
-/// The bins the pipeline's parts filled as they kept their triangles.
-pub(crate) struct PartBins<'a> {
-    /// The bands they binned into.
-    pub bands: Bands,
-    /// The viewport the bands cut.
-    pub viewport: Viewport,
-    /// Per run, per band, the indices of the run's triangles meeting it.
-    pub per_run: Vec<&'a [Vec<u32>]>,
-}
 
 /// Rasterizes `geometry` with `backend` into `target` through the shared
 /// fragment stage.
@@ -155,7 +127,8 @@ pub(crate) fn draw_runs_binned(
             b.per_run.iter().copied().enumerate().collect()
         }
         _ => {
-            computed = Bins::new(runs, width, height, bands);
+            let setups: Vec<&[TriangleSetup]> = runs.iter().map(|r| r.setups).collect();
+            computed = Bins::new(&setups, width, height, bands);
             computed.chunks.iter().map(|(r, b)| (*r, &b[..])).collect()
         }
     };

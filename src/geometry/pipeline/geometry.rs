@@ -8,51 +8,11 @@
 //! triangles in their parts, which a binned draw reads one after the other.
 
 use super::bands::Bands;
-use super::draw::{PartBins, Runs, TriangleRun};
-use super::process::Scratch;
-use super::setup::Part;
+use super::setup::{GeometryStats, Part, ScreenPoint};
 use super::Viewport;
 use crate::raster::edge::TriangleSetup;
-use crate::raster::stage::{ShadedTriangle, ShadedVertex, TriangleData};
+use crate::raster::primitive::{ShadedTriangle, ShadedVertex, TriangleData};
 use rayon::prelude::*;
-
-/// What happened to the primitives of a draw.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub struct GeometryStats {
-    /// Triangles assembled.
-    pub primitives: u64,
-    /// Of those, entirely outside the clip volume.
-    pub rejected: u64,
-    /// Of those, cut by a clip plane (each may give several triangles).
-    pub clipped: u64,
-    /// Triangles removed by back-face culling.
-    pub culled: u64,
-    /// Triangles of zero area after snapping.
-    pub degenerate: u64,
-    /// Cut triangles dropped because their coordinates span more orders of
-    /// magnitude than `f64` can intersect exactly enough (e.g. 1e30 and 1e-5).
-    pub unresolvable: u64,
-    /// Triangles whose bounding box holds no pixel centre of the viewport
-    /// (too small to cover a sample, or off-screen): dropped, as they
-    /// could not produce a fragment.
-    pub empty_bounds: u64,
-    /// Triangles handed to the rasterizer.
-    pub triangles: u64,
-}
-
-impl GeometryStats {
-    /// Adds another set of counts to these.
-    pub fn add(&mut self, other: &GeometryStats) {
-        self.primitives += other.primitives;
-        self.rejected += other.rejected;
-        self.clipped += other.clipped;
-        self.culled += other.culled;
-        self.degenerate += other.degenerate;
-        self.unresolvable += other.unresolvable;
-        self.empty_bounds += other.empty_bounds;
-        self.triangles += other.triangles;
-    }
-}
 
 /// Triangles ready for a back-end, and their data for the fragment stage.
 ///
@@ -265,4 +225,41 @@ impl GeometryInParts {
             }),
         }
     }
+}
+
+/// The working buffers of [`process_triangles_into`](super::process_triangles_into).
+#[derive(Clone, Debug, Default)]
+pub(super) struct Scratch {
+    /// Per vertex: its snapped screen position and clip out-code.
+    pub(super) screen: Vec<ScreenPoint>,
+    /// What each task made of its chunk of the triangles.
+    pub(super) parts: Vec<Part>,
+}
+
+/// A run of set-up triangles and their stage data: the set-up with id `i`
+/// in the run belongs to `triangles[i]`.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct TriangleRun<'a> {
+    pub setups: &'a [TriangleSetup],
+    pub triangles: &'a [ShadedTriangle],
+}
+
+/// What a draw reads: the stage's vertices, the triangles in runs in id
+/// order (one for a [`Geometry`], one per part for a geometry left in its
+/// parts), and the parts' bins when they binned their triangles.
+pub(crate) struct Runs<'a> {
+    pub shaded: &'a TriangleData,
+    pub runs: Vec<TriangleRun<'a>>,
+    /// The parts' bins, when they binned their triangles.
+    pub bins: Option<PartBins<'a>>,
+}
+
+/// The bins the pipeline's parts filled as they kept their triangles.
+pub(crate) struct PartBins<'a> {
+    /// The bands they binned into.
+    pub bands: Bands,
+    /// The viewport the bands cut.
+    pub viewport: Viewport,
+    /// Per run, per band, the indices of the run's triangles meeting it.
+    pub per_run: Vec<&'a [Vec<u32>]>,
 }

@@ -43,9 +43,10 @@ mod setup;
 mod viewport;
 
 pub use draw::{draw, draw_binned};
-pub use geometry::{Geometry, GeometryStats};
+pub use geometry::Geometry;
 pub use options::{CullMode, FrontFace, PipelineOptions};
 pub use process::{process_lines, process_triangles, process_triangles_into};
+pub use setup::GeometryStats;
 pub use viewport::Viewport;
 
 pub(crate) use draw::draw_runs_binned;

@@ -5,34 +5,16 @@
 
 use super::bands::{chunk_len, Bands};
 use super::clip::{ClipVertex, ClipVolume};
-use super::geometry::{Geometry, GeometryInParts, GeometryStats};
-use super::setup::{AssemblyInput, Part, MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNKS_PER_THREAD};
+use super::geometry::{Geometry, GeometryInParts, Scratch};
+use super::setup::{
+    AssemblyInput, GeometryStats, Part, ScreenPoint, MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNKS_PER_THREAD,
+};
 use super::vertex::VertexShader;
 use super::viewport::to_screen_vertex;
 use super::{PipelineOptions, Viewport};
 use crate::error::{Error, Result};
-use crate::raster::fixed::FixedPoint;
-use crate::raster::stage::{ShadedLine, ShadedVertex};
+use crate::raster::primitive::{ShadedLine, ShadedVertex};
 use rayon::prelude::*;
-
-/// The working buffers of [`process_triangles_into`].
-#[derive(Clone, Debug, Default)]
-pub(super) struct Scratch {
-    /// Per vertex: its snapped screen position and clip out-code.
-    screen: Vec<ScreenPoint>,
-    /// What each task made of its chunk of the triangles.
-    pub(super) parts: Vec<Part>,
-}
-
-/// A vertex's place after the vertex shader: out-code, and when that is 0
-/// (inside every clip plane) its snapped screen position and depth (kept
-/// here too, so that assembly reads only these 16 bytes per vertex).
-#[derive(Copy, Clone, Debug, Default)]
-pub(super) struct ScreenPoint {
-    pub(super) point: FixedPoint,
-    pub(super) depth: f32,
-    pub(super) outcode: u8,
-}
 
 /// Out-code bit for a vertex the pipeline refuses (the seven clip planes
 /// use the bits below): a vertex shader output that is not finite, or one

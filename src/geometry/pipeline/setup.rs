@@ -5,15 +5,61 @@
 
 use super::bands::Bands;
 use super::clip::{ClipResult, ClipVolume};
-use super::geometry::GeometryStats;
-use super::process::ScreenPoint;
 use super::vertex::VertexShader;
 use super::viewport::to_screen_vertex;
 use super::{CullMode, FrontFace, PipelineOptions, Viewport};
 use crate::error::Result;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fixed::FixedPoint;
-use crate::raster::stage::{ShadedTriangle, ShadedVertex};
+use crate::raster::primitive::{ShadedTriangle, ShadedVertex};
+
+/// What happened to the primitives of a draw.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct GeometryStats {
+    /// Triangles assembled.
+    pub primitives: u64,
+    /// Of those, entirely outside the clip volume.
+    pub rejected: u64,
+    /// Of those, cut by a clip plane (each may give several triangles).
+    pub clipped: u64,
+    /// Triangles removed by back-face culling.
+    pub culled: u64,
+    /// Triangles of zero area after snapping.
+    pub degenerate: u64,
+    /// Cut triangles dropped because their coordinates span more orders of
+    /// magnitude than `f64` can intersect exactly enough (e.g. 1e30 and 1e-5).
+    pub unresolvable: u64,
+    /// Triangles whose bounding box holds no pixel centre of the viewport
+    /// (too small to cover a sample, or off-screen): dropped, as they
+    /// could not produce a fragment.
+    pub empty_bounds: u64,
+    /// Triangles handed to the rasterizer.
+    pub triangles: u64,
+}
+
+impl GeometryStats {
+    /// Adds another set of counts to these.
+    pub fn add(&mut self, other: &GeometryStats) {
+        self.primitives += other.primitives;
+        self.rejected += other.rejected;
+        self.clipped += other.clipped;
+        self.culled += other.culled;
+        self.degenerate += other.degenerate;
+        self.unresolvable += other.unresolvable;
+        self.empty_bounds += other.empty_bounds;
+        self.triangles += other.triangles;
+    }
+}
+
+/// A vertex's place after the vertex shader: out-code, and when that is 0
+/// (inside every clip plane) its snapped screen position and depth (kept
+/// here too, so that assembly reads only these 16 bytes per vertex).
+#[derive(Copy, Clone, Debug, Default)]
+pub(super) struct ScreenPoint {
+    pub(super) point: FixedPoint,
+    pub(super) depth: f32,
+    pub(super) outcode: u8,
+}
 
 /// What one task makes of a chunk of the triangles: set-ups with ids
 /// counted from 0 in the chunk, the vertices made by clipping in a

@@ -11,8 +11,8 @@
 
 use super::clip::ClipVertex;
 use crate::error::{Error, Result};
+use crate::raster::primitive::Varyings;
 use crate::raster::shader::DirectionalLight;
-use crate::raster::stage::Varyings;
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 /// Runs once per vertex: model space in, clip space out.

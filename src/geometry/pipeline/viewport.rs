@@ -5,7 +5,7 @@
 use super::clip::ClipVertex;
 use crate::error::{Error, Result};
 use crate::raster::fixed::{Fixed, FixedPoint};
-use crate::raster::stage::ShadedVertex;
+use crate::raster::primitive::ShadedVertex;
 
 /// The perspective divide and viewport transform for a target size.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

@@ -1,7 +1,7 @@
 //! What the fragment stage reads of a draw's primitives: per vertex its
 //! screen depth, `1 / w` and varyings; per triangle its vertex indices and
-//! depth plane; per line its end points; and how varyings are
-//! interpolated.
+//! depth plane; per line its end points. The pipeline writes them, the
+//! stage interpolates them, shaders read the interpolated varyings.
 
 use crate::raster::edge::TriangleSetup;
 use crate::raster::fixed::{FixedPoint, SUBPIXEL_SCALE};
@@ -140,7 +140,7 @@ impl DepthPlane {
     /// [`in_row`](Self::in_row) for the column `dx` pixels right of the
     /// origin (`dx` an integer, given as `f32`).
     #[inline(always)]
-    pub(super) fn in_row_at_offset(&self, row: f32, dx: f32) -> f32 {
+    pub(crate) fn in_row_at_offset(&self, row: f32, dx: f32) -> f32 {
         (row + self.dz_dx * dx).clamp(0.0, 1.0)
     }
 
@@ -215,14 +215,4 @@ pub struct ShadedLine {
     pub to: FixedPoint,
     /// Start and end vertex data.
     pub vertices: [ShadedVertex; 2],
-}
-
-/// How varyings are interpolated across a primitive.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum Interpolation {
-    /// Interpolate `a / w` and `1 / w` linearly, divide per fragment.
-    #[default]
-    PerspectiveCorrect,
-    /// Interpolate `a` linearly in screen space (wrong under perspective).
-    Linear,
 }

@@ -28,17 +28,24 @@
 //! integer edge values, back-ends that emit the same fragments in the same
 //! per-pixel order produce bit-identical colour, depth and coverage buffers.
 
-mod primitive_data;
-
-pub use primitive_data::{
-    DepthPlane, Interpolation, ShadedLine, ShadedTriangle, ShadedVertex, TriangleData, Varyings,
-};
-
 use crate::raster::edge::PixelRect;
 use crate::raster::fragment::{FragmentSink, LineFragment, TriangleFragment, TriangleSpan};
+use crate::raster::primitive::{
+    DepthPlane, ShadedLine, ShadedTriangle, ShadedVertex, TriangleData, Varyings,
+};
 use crate::raster::shader::{from_rgba8, to_rgba8, FragmentInput, FragmentShader};
 use crate::raster::target::{DepthState, DepthTest, RenderTarget, TargetRows};
 use glam::Vec4;
+
+/// How varyings are interpolated across a primitive.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Interpolation {
+    /// Interpolate `a / w` and `1 / w` linearly, divide per fragment.
+    #[default]
+    PerspectiveCorrect,
+    /// Interpolate `a` linearly in screen space (wrong under perspective).
+    Linear,
+}
 
 /// The shared fragment stage: a [`FragmentSink`] that depth-tests, shades
 /// and writes fragments into a [`RenderTarget`].
