@@ -62,9 +62,11 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
     let dom = run_chromium(&browser, &profile, &page, &["--dump-dom"]);
     let images = body_data(&dom, "images");
     // An image per back-end, a difference image per back-end but the
-    // reference, and two heat maps per back-end.
+    // reference, and a heat map per fill rule for the input and for the
+    // pinwheel.
     let backends = rasterlab::triangle_backends().len();
-    assert_eq!(images, backends + (backends - 1) + 2 * backends);
+    let rules = rasterlab::FillRule::ALL.len();
+    assert_eq!(images, backends + (backends - 1) + 2 * rules);
     assert_eq!(
         body_data(&dom, "images-loaded"),
         images,
