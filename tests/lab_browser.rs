@@ -321,8 +321,10 @@ fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
         dev.mouse("mouseMoved", x + t * 4.0 * cell, y - t * 4.0 * cell, 1);
     }
     dev.mouse("mouseReleased", x + 4.0 * cell, y - 4.0 * cell, 0);
+    // Several moves may each have sent a request: wait for the page to
+    // settle on the answer to the last one.
     dev.wait_for(&format!(
-        "Number(document.body.dataset.updates) > {updates} && document.getElementById('trace').firstChild.textContent !== {}",
+        "Number(document.body.dataset.updates) > {updates} && document.body.dataset.busy === '0' && document.getElementById('trace').firstChild.textContent !== {}",
         json!(trace_before)
     ));
     dev.wait_for("document.querySelectorAll('#grid rect.fragment').length > 0");
