@@ -197,13 +197,9 @@ impl<'a> FragmentStage<'a> {
         if self.target.counts_coverage() {
             self.target.coverage[idx] = self.target.coverage[idx].saturating_add(1);
         }
-        if self.depth.is_off() {
-            return Some(idx);
-        }
-        self.depth
-            .test
-            .passes(z, self.target.depth[idx])
-            .then_some(idx)
+        // `always` (and so no depth buffer) reads nothing.
+        let test = self.depth.test;
+        (test == DepthTest::Always || test.passes(z, self.target.depth[idx])).then_some(idx)
     }
 
     /// Shades a sample that passed the depth test at buffer index `idx`
