@@ -775,7 +775,16 @@ pub fn explain(args: &ExplainArgs) -> Result<()> {
             }
             return say_raw!("{text}");
         }
-        name => match backend(name)? {
+        name => match backend(name).map_err(|_| Error::UnknownName {
+            what: "rasterizer back-end",
+            name: name.to_string(),
+            known: rasterlab::raster::backend::all_backends()
+                .iter()
+                .map(|b| b.name)
+                .collect::<Vec<_>>()
+                .join(", ")
+                + "; or depth-buffer, the depth buffer's trace",
+        })? {
             Backend::Triangle(b) => rasterlab::teaching::trace::of_triangle_backend(
                 b,
                 args.triangle()?,
