@@ -48,9 +48,10 @@
 //!   [`measure::benchmark`] times every back-end; meshes are drawn by
 //!   [`MeshRenderer`].
 //! * **Adding a back-end**: implement [`TriangleRasterizer`] (or
-//!   [`LineRasterizer`]) in a file of its own and list it in
-//!   [`raster::backend`]; every command, check, report, benchmark and
-//!   test picks it up from there.
+//!   [`LineRasterizer`]) in a file of its own under `raster/triangle/`
+//!   (or `raster/line/`), declare it there with one `pub mod` line, and
+//!   list it in [`raster::backend`]; every command, check, report,
+//!   benchmark, trace and test picks it up from there.
 //!
 //! ```
 //! use rasterlab::raster::shader::Flat;
