@@ -80,7 +80,15 @@ impl Geometry {
     /// `mesh_vertices` shaded ones. Each part copies its triangles into its
     /// own range of the result, on rayon's threads. A single part is moved
     /// in without copying.
-    pub(super) fn gather(&mut self, parts: &mut [Part], mesh_vertices: usize) {
+    pub(super) fn gather(&mut self, mesh_vertices: usize) {
+        let mut parts = std::mem::take(&mut self.scratch.parts);
+        self.gather_parts(&mut parts, mesh_vertices);
+        self.scratch.parts = parts;
+    }
+
+    /// [`gather`](Self::gather) from `parts`, taken out of the scratch
+    /// buffers while this geometry is written.
+    fn gather_parts(&mut self, parts: &mut [Part], mesh_vertices: usize) {
         if let [part] = parts {
             std::mem::swap(&mut self.setups, &mut part.setups);
             std::mem::swap(&mut self.shaded.triangles, &mut part.triangles);
@@ -188,11 +196,11 @@ impl GeometryInParts {
     /// binned their triangles into bands of `band_rows` rows of `viewport`.
     pub(super) fn keep_in_parts(
         &mut self,
-        parts: &mut [Part],
         mesh_vertices: usize,
         binned: Option<(Bands, Viewport)>,
     ) {
         let n = mesh_vertices as u32;
+        let parts = &mut self.scratch.parts;
         for p in parts.iter_mut() {
             if !p.clip_vertices.is_empty() {
                 let clip_start = self.shaded.vertices.len() as u32;

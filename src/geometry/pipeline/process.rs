@@ -118,23 +118,22 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
     viewport: Viewport,
     options: &PipelineOptions,
 ) -> Result<()> {
-    let mut scratch = std::mem::take(&mut geometry.scratch);
-    let assembled = assemble(
-        &mut scratch,
-        &mut geometry.shaded.vertices,
+    let input = DrawInput {
         vertices,
         triangles,
         shader,
         viewport,
         options,
+    };
+    let (stats, _) = assemble(
+        &mut geometry.scratch,
+        &mut geometry.shaded.vertices,
+        &input,
         false,
-    );
-    if let Ok((stats, _)) = assembled {
-        geometry.stats = stats;
-        geometry.gather(&mut scratch.parts, vertices.len());
-    }
-    geometry.scratch = scratch;
-    assembled.map(|_| ())
+    )?;
+    geometry.stats = stats;
+    geometry.gather(vertices.len());
+    Ok(())
 }
 
 impl GeometryInParts {
@@ -151,25 +150,27 @@ impl GeometryInParts {
         viewport: Viewport,
         options: &PipelineOptions,
     ) -> Result<()> {
-        let mut scratch = std::mem::take(&mut self.scratch);
-        let assembled = assemble(
-            &mut scratch,
-            &mut self.shaded.vertices,
+        let input = DrawInput {
             vertices,
             triangles,
             shader,
             viewport,
             options,
-            true,
-        );
-        if let Ok((stats, bands)) = assembled {
-            self.stats = stats;
-            let binned = bands.map(|b| (b, viewport));
-            self.keep_in_parts(&mut scratch.parts, vertices.len(), binned);
-        }
-        self.scratch = scratch;
-        assembled.map(|_| ())
+        };
+        let (stats, bands) = assemble(&mut self.scratch, &mut self.shaded.vertices, &input, true)?;
+        self.stats = stats;
+        self.keep_in_parts(vertices.len(), bands.map(|b| (b, viewport)));
+        Ok(())
     }
+}
+
+/// One draw's input to the geometry stages.
+struct DrawInput<'a, V, S> {
+    vertices: &'a [V],
+    triangles: &'a [[u32; 3]],
+    shader: &'a S,
+    viewport: Viewport,
+    options: &'a PipelineOptions,
 }
 
 /// The pipeline's geometry stages: shades every vertex into `shaded`, and
@@ -177,17 +178,19 @@ impl GeometryInParts {
 /// `scratch`, one per task. With `bin`, and more than one part, the parts
 /// also bin what they keep into the bands of a draw on rayon's threads,
 /// which are returned with the counts of what happened.
-#[allow(clippy::too_many_arguments)]
 fn assemble<V: Sync, S: VertexShader<V>>(
     scratch: &mut Scratch,
     shaded: &mut Vec<ShadedVertex>,
-    vertices: &[V],
-    triangles: &[[u32; 3]],
-    shader: &S,
-    viewport: Viewport,
-    options: &PipelineOptions,
+    draw: &DrawInput<'_, V, S>,
     bin: bool,
 ) -> Result<(GeometryStats, Option<Bands>)> {
+    let DrawInput {
+        vertices,
+        triangles,
+        shader,
+        viewport,
+        options,
+    } = *draw;
     Error::check_indices(triangles.iter().flatten(), vertices.len())?;
     let clip = ClipVolume::new(viewport.width, viewport.height);
     // Each vertex is shaded once, however many triangles share it; those
