@@ -287,3 +287,42 @@ mod newer_traces {
         }
     }
 }
+
+/// A back-end from outside the registry is traced by the way it walks,
+/// not looked up by its name.
+#[test]
+fn an_outside_back_end_is_traced_by_its_walk() {
+    use rasterlab::raster::fragment::{FragmentSink, WorkCounters};
+    use rasterlab::raster::triangle::{TriangleRasterizer, TriangleSelection, TriangleWalk};
+    use rasterlab::{triangle_backend, PixelRect};
+
+    struct MyBox;
+    impl TriangleRasterizer for MyBox {
+        fn name(&self) -> &'static str {
+            "my-box"
+        }
+        fn description(&self) -> &'static str {
+            "the bounding-box loop, under another name"
+        }
+        fn walk(&self) -> TriangleWalk {
+            TriangleWalk::BoundingBox
+        }
+        fn rasterize_selection(
+            &self,
+            triangles: TriangleSelection<'_>,
+            viewport: PixelRect,
+            sink: &mut dyn FragmentSink,
+        ) -> WorkCounters {
+            triangle_backend("bbox")
+                .unwrap()
+                .rasterize_selection(triangles, viewport, sink)
+        }
+    }
+    let triangle = [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)];
+    let mine =
+        rasterlab::teaching::trace::of_triangle_backend(&MyBox, triangle, FillRule::TopLeft, 6, 4)
+            .unwrap();
+    let bbox = triangle_trace("bbox", triangle, FillRule::TopLeft, 6, 4).unwrap();
+    assert!(mine.starts_with("my-box, top-left rule"), "{mine}");
+    assert_eq!(mine.replacen("my-box", "bbox", 1), bbox);
+}

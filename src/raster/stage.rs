@@ -239,6 +239,23 @@ struct SpanRows<'s> {
 }
 
 impl SpanRows<'_> {
+    /// Counts one more fragment at each pixel (nothing when the target
+    /// does not count coverage: the slice is then empty).
+    #[inline(always)]
+    fn count_coverage(&mut self) {
+        for c in self.coverage.iter_mut() {
+            *c = c.saturating_add(1);
+        }
+    }
+
+    /// Counts coverage, then writes `color` to every pixel: the span with
+    /// no depth buffer.
+    #[inline(always)]
+    fn fill_colour(mut self, color: [u8; 4]) {
+        self.count_coverage();
+        self.color.fill(color);
+    }
+
     /// Counts coverage (when the target counts), then depth-tests each
     /// pixel against the plane (evaluated exactly as [`DepthPlane::at`]
     /// does) and writes `color` (and the depth when `write`) where `passes`.
@@ -250,7 +267,7 @@ impl SpanRows<'_> {
     /// both are the same integer, which the guard band keeps below 2^17.
     #[inline(always)]
     fn fill(
-        self,
+        mut self,
         plane: DepthPlane,
         row: f32,
         x0: u32,
@@ -258,9 +275,7 @@ impl SpanRows<'_> {
         write: bool,
         passes: impl Fn(f32, f32) -> bool,
     ) {
-        for c in self.coverage.iter_mut() {
-            *c = c.saturating_add(1);
-        }
+        self.count_coverage();
         let first = (i64::from(x0) - plane.origin_x) as i32;
         let color = u32::from_ne_bytes(color);
         for (i, (d, c)) in self.depth.iter_mut().zip(self.color.iter_mut()).enumerate() {
@@ -357,12 +372,7 @@ impl FragmentSink for FragmentStage<'_> {
             },
         };
         if self.depth.is_off() {
-            // No depth buffer: the colour goes to every pixel of the span.
-            for c in rows.coverage.iter_mut() {
-                *c = c.saturating_add(1);
-            }
-            rows.color.fill(color);
-            return;
+            return rows.fill_colour(color);
         }
         let (row, x0) = (plane.row(span.y), span.x0);
         let write = self.depth.write;

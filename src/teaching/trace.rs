@@ -201,7 +201,7 @@ pub fn of_triangle_backend(
 ) -> Result<String> {
     match backend.walk() {
         TriangleWalk::EveryPixel | TriangleWalk::BoundingBox => {
-            triangle_trace(backend.name(), vertices, rule, width, height)
+            per_pixel_trace(backend, vertices, rule, width, height)
         }
         TriangleWalk::Scanline => scanline_trace(vertices, rule, width, height),
         TriangleWalk::IncrementalEdges => incremental_trace(vertices, rule, width, height),
@@ -213,7 +213,7 @@ pub fn of_triangle_backend(
 /// the way it [chooses](LineRasterizer::walk) its pixels.
 pub fn of_line_backend(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String> {
     match backend.walk() {
-        LineWalk::DirectEvaluation | LineWalk::Incremental => line_trace(backend.name(), ends),
+        LineWalk::DirectEvaluation | LineWalk::Incremental => column_trace(backend, ends),
         LineWalk::Midpoint => Ok(bresenham_trace(ends)),
         LineWalk::AntiAliased => Ok(wu_trace(ends)),
         LineWalk::DiamondExit => diamond_trace(ends),
@@ -221,8 +221,15 @@ pub fn of_line_backend(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<
 }
 
 /// Direct evaluation (`y = m x + b`, rounded) or DDA (`y += m`, rounded)
-/// on one line: each column's exact and rounded `y`.
+/// on one line, by the name of its back-end (`direct` or `dda`): each
+/// column's exact and rounded `y`.
 pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
+    column_trace(line_backend(backend)?, ends)
+}
+
+/// [`line_trace`] of a back-end that walks by direct evaluation or the DDA.
+fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String> {
+    let name = backend.name();
     let frame = OctantFrame::new(ends.from, ends.to);
     let scale = SUBPIXEL_SCALE as f64;
     let du = frame.du() as f64;
@@ -232,7 +239,7 @@ pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
         0.0
     };
     let mut out = String::new();
-    let walk = line_backend(backend)?.walk();
+    let walk = backend.walk();
     let how = match walk {
         LineWalk::DirectEvaluation => {
             "y = m (x - x0) + y0, evaluated exactly per column, then rounded"
@@ -242,13 +249,13 @@ pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
         }
         _ => {
             return Err(Error::InvalidArgument(format!(
-                "no column trace for `{backend}` (it is for direct evaluation and the DDA)"
+                "no column trace for `{name}` (it is for direct evaluation and the DDA)"
             )))
         }
     };
     let _ = writeln!(
         out,
-        "{backend} {}, m = {m:.4}: {how}; {}",
+        "{name} {}, m = {m:.4}: {how}; {}",
         ends.describe(),
         frame_note(&frame)
     );
@@ -285,7 +292,8 @@ pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
 }
 
 /// The bounding-box (`bbox`) or every-pixel (`naive`) loop on one
-/// triangle given in screen pixels, on a `width` x `height` grid.
+/// triangle given in screen pixels, on a `width` x `height` grid, by the
+/// name of its back-end.
 pub fn triangle_trace(
     backend: &str,
     vertices: [(f64, f64); 3],
@@ -293,6 +301,18 @@ pub fn triangle_trace(
     width: u32,
     height: u32,
 ) -> Result<String> {
+    per_pixel_trace(triangle_backend(backend)?, vertices, rule, width, height)
+}
+
+/// [`triangle_trace`] of a back-end that tests pixels one by one.
+fn per_pixel_trace(
+    backend: &dyn TriangleRasterizer,
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    let name = backend.name();
     let grid = PixelRect::of_target(width, height);
     let mut out = String::new();
     let Some(t) = snapped_or_say(
@@ -304,20 +324,20 @@ pub fn triangle_trace(
     else {
         return Ok(out);
     };
-    let walk = triangle_backend(backend)?.walk();
+    let walk = backend.walk();
     let region = match walk {
         TriangleWalk::BoundingBox => t.bounds_within(grid),
         TriangleWalk::EveryPixel => grid,
         _ => {
             return Err(Error::InvalidArgument(format!(
-            "no per-pixel trace for `{backend}` (it is for the loops that test pixels one by one)"
-        )))
+                "no per-pixel trace for `{name}` (it is for the loops that test pixels one by one)"
+            )))
         }
     };
     check_trace_length(region.area(), "pixel lines")?;
     let _ = writeln!(
         out,
-        "{backend}, {} rule: triangle {:?}, twice its area = {:.4} px^2, {}",
+        "{name}, {} rule: triangle {:?}, twice its area = {:.4} px^2, {}",
         rule.name(),
         vertices,
         t.area as f64 / AREA_UNIT,
