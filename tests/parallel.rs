@@ -9,7 +9,8 @@ use rasterlab::geometry::mesh::Mesh;
 use rasterlab::geometry::pipeline::draw_binned;
 use rasterlab::geometry::pipeline::vertex::Transform;
 use rasterlab::geometry::pipeline::{
-    draw, process_triangles, process_triangles_into, CullMode, Geometry, PipelineOptions, Viewport,
+    draw, draw_clearing, process_triangles, process_triangles_into, CullMode, Geometry,
+    PipelineOptions, Viewport,
 };
 use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use rasterlab::geometry::scene::setup_triangles;
@@ -21,7 +22,7 @@ use rasterlab::raster::primitive::ShadedVertex;
 use rasterlab::raster::shader::FragmentShader;
 use rasterlab::raster::shader::{Constant, Flat, Gouraud};
 use rasterlab::raster::stage::{FragmentStage, Interpolation};
-use rasterlab::raster::target::{DepthState, DepthTest, RenderTarget};
+use rasterlab::raster::target::{Clear, DepthState, DepthTest, RenderTarget};
 use std::path::Path;
 
 fn pool(threads: usize) -> rayon::ThreadPool {
@@ -221,6 +222,18 @@ fn meshes_render_identically_on_any_number_of_threads() {
                     b.name()
                 );
                 assert_eq!(frame.stats.work.fragments, reference.stats.work.fragments);
+                // Into a used target, whose clear is folded into the draw
+                // band by band: the same frame.
+                let mut used = reference.target.clone();
+                used.color.iter_mut().for_each(|c| c[0] ^= 0x55);
+                used.depth.iter_mut().for_each(|d| *d *= 0.5);
+                used.coverage.iter_mut().for_each(|k| *k += 3);
+                pool(threads).install(|| renderer.render_into(*b, &mut used).unwrap());
+                assert!(
+                    used == reference.target,
+                    "{shading}, {threads} threads, {}, used target",
+                    b.name()
+                );
             }
         }
     }
@@ -262,6 +275,46 @@ proptest! {
                 let mut target = RenderTarget::new(common::SIZE, common::SIZE).unwrap();
                 pool(threads).install(|| draw_binned(&geometry, b, shader, DepthState::DEFAULT, Interpolation::PerspectiveCorrect, &mut target));
                 prop_assert!(target == reference, "{} on {} threads", b.name(), threads);
+            }
+        }
+    }
+
+    /// A clear folded into the draw (each row cleared at its first
+    /// fragment, the rest when the draw ends) leaves a dirty target exactly
+    /// as a clear and then the draw do, for every back-end, clear and
+    /// depth state.
+    #[test]
+    fn clears_folded_into_the_draw_equal_a_clear_then_the_draw(
+        soup in common::triangle_soup(12),
+        depths in proptest::collection::vec(0.0f32..1.0, 1..8),
+        backend in 0..rasterlab::triangle_backends().len(),
+        counts in any::<bool>(),
+    ) {
+        let geometry = soup_geometry(&soup, &depths);
+        let b = triangle_backends()[backend];
+        let mut dirty = RenderTarget::new(common::SIZE, common::SIZE).unwrap();
+        if !counts {
+            dirty.coverage = Vec::new();
+        }
+        for (i, ((c, d), k)) in dirty.color.iter_mut().zip(dirty.depth.iter_mut()).zip(0..).enumerate() {
+            *c = [i as u8, 7, (i / 256) as u8, 200];
+            *d = (k % 11) as f32 / 10.0;
+        }
+        dirty.coverage.fill(5);
+        let clears = [Clear::NOTHING, Clear::DEPTH_AND_COVERAGE, Clear::color([9, 8, 7, 255]), Clear::all([1, 2, 3, 255])];
+        for clear in clears {
+            for depth in [DepthState::DEFAULT, DepthState::OFF] {
+                let mut eager = dirty.clone();
+                if let Some(color) = clear.color {
+                    eager.clear_color(color);
+                }
+                if clear.depth_and_coverage {
+                    eager.clear_depth_and_coverage();
+                }
+                draw(&geometry, b, &Gouraud, depth, Interpolation::PerspectiveCorrect, &mut eager);
+                let mut folded = dirty.clone();
+                draw_clearing(&geometry, b, &Gouraud, depth, Interpolation::PerspectiveCorrect, clear, &mut folded);
+                prop_assert!(folded == eager, "{} {:?} {:?}", b.name(), clear, depth);
             }
         }
     }

@@ -29,7 +29,7 @@ use crate::raster::shader::DirectionalLight;
 use crate::raster::shader::FragmentShader;
 use crate::raster::shader::{Diffuse, Filter, Flat, Gouraud, NormalColors, Texture, Textured};
 use crate::raster::stage::{FragmentStage, Interpolation};
-use crate::raster::target::{DepthState, DepthTest, RenderTarget};
+use crate::raster::target::{Clear, DepthState, DepthTest, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use glam::{Mat4, Vec4};
 use std::sync::Mutex;
@@ -352,16 +352,15 @@ impl MeshRenderer {
         };
         let geometry_time = start.elapsed();
         let start = Instant::now();
-        target.clear_color(self.settings.background);
-        target.clear_depth_and_coverage();
-        let work = pipeline::draw_runs_binned(
-            &geometry.runs(),
-            backend,
-            self.shader.as_ref(),
-            self.settings.depth,
-            self.settings.interpolation,
-            target,
-        );
+        // The clear is folded into the draw: each row is cleared just
+        // before its first fragment.
+        let pass = pipeline::Pass {
+            shader: self.shader.as_ref(),
+            depth: self.settings.depth,
+            interpolation: self.settings.interpolation,
+            clear: Clear::all(self.settings.background),
+        };
+        let work = pipeline::draw_runs_binned(&geometry.runs(), backend, pass, target);
         if let Some(line_backend) = self.settings.wireframe {
             self.draw_wireframe(line_backend, &lines, target);
         }

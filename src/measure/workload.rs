@@ -14,7 +14,7 @@
 //! | `lines-short` | short segments, 2 to 16 px |
 //! | `lines-long` | 1000 px segments |
 
-use crate::geometry::pipeline::{draw, Geometry};
+use crate::geometry::pipeline::{draw_clearing, Geometry};
 use crate::geometry::scene::setup_triangles;
 use crate::raster::edge::FillRule;
 use crate::raster::edge::PixelRect;
@@ -27,7 +27,7 @@ use crate::raster::primitive::{ShadedLine, ShadedVertex};
 use crate::raster::shader::to_rgba8;
 use crate::raster::shader::Constant;
 use crate::raster::stage::{FragmentStage, Interpolation};
-use crate::raster::target::{DepthState, DepthTest, RenderTarget};
+use crate::raster::target::{Clear, DepthState, DepthTest, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use glam::Vec4;
 
@@ -73,16 +73,17 @@ impl TriangleWorkload {
         backend.affordable(self.triangles() as u64, 1, 2)
     }
 
-    /// Clears `target` and draws the workload with `backend`; returns the
-    /// fragments drawn.
+    /// Clears `target`'s depth and coverage and draws the workload with
+    /// `backend`; returns the fragments drawn. The clear is folded into the
+    /// draw ([`draw_clearing`]), as a renderer does it.
     pub fn run(&self, backend: &dyn TriangleRasterizer, target: &mut RenderTarget) -> u64 {
-        target.clear_depth_and_coverage();
-        draw(
+        draw_clearing(
             &self.geometry,
             backend,
             &Constant(COLOR),
             DepthState::DEFAULT,
             Interpolation::PerspectiveCorrect,
+            Clear::DEPTH_AND_COVERAGE,
             target,
         )
         .fragments
@@ -96,13 +97,13 @@ impl TriangleWorkload {
         backend: &dyn TriangleRasterizer,
         target: &mut RenderTarget,
     ) -> u64 {
-        target.clear_color(RenderTarget::BLACK);
-        draw(
+        draw_clearing(
             &self.geometry,
             backend,
             &Constant(COLOR),
             DepthState::OFF,
             Interpolation::PerspectiveCorrect,
+            Clear::color(RenderTarget::BLACK),
             target,
         )
         .fragments

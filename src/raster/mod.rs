@@ -32,3 +32,4 @@ pub mod shader;
 pub mod stage;
 pub mod target;
 pub mod triangle;
+pub(crate) mod vector;

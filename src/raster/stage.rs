@@ -2,6 +2,9 @@
 //!
 //! For each fragment the stage does, in this order (the rasterization slides, the software-rasterizer article):
 //!
+//! 0. **load**: when the draw clears the target as it goes (a render
+//!    pass's load op, [`Clear`](crate::raster::target::Clear)), the
+//!    fragment's row is cleared first if no fragment has reached it yet;
 //! 1. **coverage count**: the pixel's count in the coverage buffer goes up
 //!    by one, before any test, so double draws and gaps can be analysed (a
 //!    target made [`without_coverage`](RenderTarget::without_coverage)
@@ -24,6 +27,11 @@
 //! 7. **colour write** (blended by the fragment's coverage for anti-aliased
 //!    lines) and **depth write** when enabled.
 //!
+//! For a shader whose colour is uniform over a triangle, a whole span goes
+//! through steps 1, 2, 3 and 7 in one loop, written once as plain Rust and
+//! compiled both for the baseline vectors and for AVX2, the copy picked at
+//! run time (the `raster::vector` module); both give the same bits.
+//!
 //! Because every step is a pure function of the fragment's pixel and
 //! integer edge values, back-ends that emit the same fragments in the same
 //! per-pixel order produce bit-identical colour, depth and coverage buffers.
@@ -35,6 +43,7 @@ use crate::raster::primitive::{
 };
 use crate::raster::shader::{from_rgba8, to_rgba8, FragmentInput, FragmentShader};
 use crate::raster::target::{DepthState, DepthTest, RenderTarget, TargetRows};
+use crate::raster::vector::{self, Lanes};
 use glam::Vec4;
 
 /// How varyings are interpolated across a primitive.
@@ -124,6 +133,12 @@ impl<'a> FragmentStage<'a> {
         self
     }
 
+    /// Ends the draw: rows the stage was to clear on their first write
+    /// and never wrote are cleared now (see [`Clear`](crate::raster::target::Clear)).
+    pub(crate) fn finish(mut self) {
+        self.target.finish();
+    }
+
     /// The pixels this stage writes, in target coordinates.
     pub fn rect(&self) -> PixelRect {
         self.target.rect()
@@ -193,6 +208,7 @@ impl<'a> FragmentStage<'a> {
     /// the pixel's buffer index when it passes.
     #[inline]
     fn depth_test(&mut self, x: u32, y: u32, z: f32) -> Option<usize> {
+        self.target.load_row(y);
         let idx = self.target.index(x, y);
         if self.target.counts_coverage() {
             self.target.coverage[idx] = self.target.coverage[idx].saturating_add(1);
@@ -290,6 +306,53 @@ impl SpanRows<'_> {
     }
 }
 
+/// A span of one colour, to write into [`SpanRows`]: the stage's span loop,
+/// compiled for the baseline vectors and for AVX2 ([`vector`]).
+struct SpanFill<'s> {
+    rows: SpanRows<'s>,
+    depth: DepthState,
+    plane: DepthPlane,
+    /// The span's row and first column.
+    y: u32,
+    x0: u32,
+    color: [u8; 4],
+}
+
+impl vector::Kernel for SpanFill<'_> {
+    type Output = ();
+
+    /// Writes the colour over the span, depth-tested and written as the
+    /// depth state says against the plane.
+    #[inline(always)]
+    fn run(self) {
+        let SpanFill {
+            rows,
+            depth,
+            plane,
+            y,
+            x0,
+            color,
+        } = self;
+        if depth.is_off() {
+            return rows.fill_colour(color);
+        }
+        let row = plane.row(y);
+        let write = depth.write;
+        // One monomorphic loop per comparison, so the compare is not
+        // re-dispatched per pixel.
+        match depth.test {
+            DepthTest::Never => rows.fill(plane, row, x0, color, write, |_, _| false),
+            DepthTest::Less => rows.fill(plane, row, x0, color, write, |z, d| z < d),
+            DepthTest::Equal => rows.fill(plane, row, x0, color, write, |z, d| z == d),
+            DepthTest::LessEqual => rows.fill(plane, row, x0, color, write, |z, d| z <= d),
+            DepthTest::Greater => rows.fill(plane, row, x0, color, write, |z, d| z > d),
+            DepthTest::NotEqual => rows.fill(plane, row, x0, color, write, |z, d| z != d),
+            DepthTest::GreaterEqual => rows.fill(plane, row, x0, color, write, |z, d| z >= d),
+            DepthTest::Always => rows.fill(plane, row, x0, color, write, |_, _| true),
+        }
+    }
+}
+
 /// A fragment that passed the depth test, with what shading it needs.
 struct Sample<const N: usize> {
     x: u32,
@@ -359,6 +422,7 @@ impl FragmentSink for FragmentStage<'_> {
                 color
             }
         };
+        self.target.load_row(span.y);
         let start = self.target.index(span.x0, span.y);
         let end = start + (span.x1 - span.x0) as usize + 1;
         let counts = self.target.counts_coverage();
@@ -371,23 +435,15 @@ impl FragmentSink for FragmentStage<'_> {
                 &mut []
             },
         };
-        if self.depth.is_off() {
-            return rows.fill_colour(color);
-        }
-        let (row, x0) = (plane.row(span.y), span.x0);
-        let write = self.depth.write;
-        // One monomorphic loop per comparison, so the compare is not
-        // re-dispatched per pixel.
-        match self.depth.test {
-            DepthTest::Never => rows.fill(plane, row, x0, color, write, |_, _| false),
-            DepthTest::Less => rows.fill(plane, row, x0, color, write, |z, d| z < d),
-            DepthTest::Equal => rows.fill(plane, row, x0, color, write, |z, d| z == d),
-            DepthTest::LessEqual => rows.fill(plane, row, x0, color, write, |z, d| z <= d),
-            DepthTest::Greater => rows.fill(plane, row, x0, color, write, |z, d| z > d),
-            DepthTest::NotEqual => rows.fill(plane, row, x0, color, write, |z, d| z != d),
-            DepthTest::GreaterEqual => rows.fill(plane, row, x0, color, write, |z, d| z >= d),
-            DepthTest::Always => rows.fill(plane, row, x0, color, write, |_, _| true),
-        }
+        let fill = SpanFill {
+            rows,
+            depth: self.depth,
+            plane,
+            y: span.y,
+            x0: span.x0,
+            color,
+        };
+        vector::run(Lanes::Widest, fill);
     }
 
     fn line_fragment(&mut self, f: &LineFragment) {
@@ -434,3 +490,67 @@ crate::names::named_enum!(
     PerspectiveCorrect = "perspective",
     Linear = "linear"
 );
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The span loop compiled for AVX2 writes the very bits the baseline
+    /// copy writes, for every depth state, with and without coverage.
+    #[test]
+    fn both_copies_of_the_span_loop_write_the_same_bits() {
+        let mut rng = fastrand::Rng::with_seed(18);
+        let states = DepthTest::ALL
+            .into_iter()
+            .flat_map(|test| [true, false].map(|write| DepthState { test, write }));
+        for depth in states {
+            for n in 0..300 {
+                let len = rng.usize(1..=70);
+                let x0 = rng.u32(0..200);
+                let plane = DepthPlane {
+                    origin_x: rng.i64(-50..250),
+                    origin_y: rng.i64(-50..50),
+                    z_origin: rng.f32(),
+                    dz_dx: (rng.f32() - 0.5) * 0.02,
+                    dz_dy: (rng.f32() - 0.5) * 0.02,
+                };
+                let y = rng.u32(0..40);
+                // Stored depths around the plane's, some exactly on it.
+                let stored: Vec<f32> = (0..len)
+                    .map(|i| match rng.u8(0..3) {
+                        0 => plane.in_row(plane.row(y), x0 + i as u32),
+                        1 => rng.f32(),
+                        _ => 1.0,
+                    })
+                    .collect();
+                let color: Vec<[u8; 4]> = (0..len).map(|_| rng.u32(..).to_ne_bytes()).collect();
+                let counts = n % 2 == 0;
+                let fill_with = |lanes| {
+                    let (mut c, mut d) = (color.clone(), stored.clone());
+                    let mut coverage = vec![7u16; if counts { len } else { 0 }];
+                    let rows = SpanRows {
+                        color: &mut c,
+                        depth: &mut d,
+                        coverage: &mut coverage,
+                    };
+                    let fill = SpanFill {
+                        rows,
+                        depth,
+                        plane,
+                        y,
+                        x0,
+                        color: [1, 2, 3, 4],
+                    };
+                    vector::run(lanes, fill);
+                    let bits: Vec<u32> = d.iter().map(|z| z.to_bits()).collect();
+                    (c, bits, coverage)
+                };
+                assert_eq!(
+                    fill_with(Lanes::Widest),
+                    fill_with(Lanes::Baseline),
+                    "{depth:?} {plane:?} y {y} x0 {x0} len {len}"
+                );
+            }
+        }
+    }
+}

@@ -295,20 +295,38 @@ impl RenderTarget {
 
     /// All rows of the buffers, borrowed as one [`TargetRows`].
     pub fn rows_mut(&mut self) -> TargetRows<'_> {
-        TargetRows {
-            width: self.width,
-            first_row: 0,
-            rows: self.height,
-            color: &mut self.color,
-            depth: &mut self.depth,
-            coverage: &mut self.coverage,
-        }
+        self.rows_clearing(Clear::NOTHING)
+    }
+
+    /// All rows, each cleared by `clear` just before its first write; the
+    /// borrower calls [`TargetRows::finish`] when done, which clears the
+    /// rows never written. The buffers then end as after `clear` and the
+    /// draw, without a separate pass over them.
+    pub(crate) fn rows_clearing(&mut self, clear: Clear) -> TargetRows<'_> {
+        TargetRows::new(
+            self.width,
+            0,
+            &mut self.color,
+            &mut self.depth,
+            &mut self.coverage,
+            clear,
+        )
     }
 
     /// The buffers cut into horizontal bands of `rows_per_band` rows (the
     /// last may be shorter), each borrowed separately so that bands can be
     /// drawn on different threads.
     pub fn bands_mut(&mut self, rows_per_band: u32) -> Vec<TargetRows<'_>> {
+        self.bands_clearing(rows_per_band, Clear::NOTHING)
+    }
+
+    /// [`bands_mut`](Self::bands_mut), each band clearing its rows as
+    /// [`rows_clearing`](Self::rows_clearing) does (each to be finished).
+    pub(crate) fn bands_clearing(
+        &mut self,
+        rows_per_band: u32,
+        clear: Clear,
+    ) -> Vec<TargetRows<'_>> {
         let width = self.width;
         let rows_per_band = rows_per_band.max(1);
         let n = width as usize * rows_per_band as usize;
@@ -321,13 +339,10 @@ impl RenderTarget {
             .zip(self.depth.chunks_mut(n))
             .map(|bufs| (bufs, if counts { coverage.next() } else { None }))
             .enumerate()
-            .map(|(i, ((color, depth), coverage))| TargetRows {
-                width,
-                first_row: i as u32 * rows_per_band,
-                rows: (color.len() / width as usize) as u32,
-                color,
-                depth,
-                coverage: coverage.unwrap_or_default(),
+            .map(|(i, ((color, depth), coverage))| {
+                let first_row = i as u32 * rows_per_band;
+                let coverage = coverage.unwrap_or_default();
+                TargetRows::new(width, first_row, color, depth, coverage, clear)
             })
             .collect()
     }
@@ -339,22 +354,152 @@ impl RenderTarget {
     }
 }
 
+/// What a draw clears as it goes: a render pass's *load op*.
+///
+/// A separate clear writes the whole buffer, and the draw then reads it
+/// back from memory. Folding the clear into the draw
+/// ([`draw_clearing`](crate::geometry::pipeline::draw_clearing)) clears
+/// each row just before the first write to it, while the row is about to
+/// be in the cache anyway, and clears the rows no fragment reached when the
+/// draw finishes. The buffers end exactly as after a clear and a draw.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
+pub struct Clear {
+    /// The colour to clear to, or `None` to keep the colour buffer.
+    pub color: Option<[u8; 4]>,
+    /// Whether depth goes back to 1.0 and the coverage count to 0
+    /// ([`RenderTarget::clear_depth_and_coverage`]).
+    pub depth_and_coverage: bool,
+}
+
+impl Clear {
+    /// Clears nothing: the buffers are loaded as they are.
+    pub const NOTHING: Clear = Clear {
+        color: None,
+        depth_and_coverage: false,
+    };
+
+    /// Depth to 1.0 and coverage to 0; colour kept.
+    pub const DEPTH_AND_COVERAGE: Clear = Clear {
+        color: None,
+        depth_and_coverage: true,
+    };
+
+    /// Everything, colour to `color`: [`RenderTarget::clear`] with another
+    /// colour.
+    pub const fn all(color: [u8; 4]) -> Clear {
+        Clear {
+            color: Some(color),
+            depth_and_coverage: true,
+        }
+    }
+
+    /// Colour only, to `color`.
+    pub const fn color(color: [u8; 4]) -> Clear {
+        Clear {
+            color: Some(color),
+            depth_and_coverage: false,
+        }
+    }
+
+    /// Whether nothing is cleared.
+    pub fn is_nothing(self) -> bool {
+        self == Self::NOTHING
+    }
+}
+
 /// Consecutive full rows of a [`RenderTarget`]'s buffers, borrowed mutably:
 /// the whole target ([`RenderTarget::rows_mut`]) or one band of it
 /// ([`RenderTarget::bands_mut`]). Pixels are addressed in target
 /// coordinates.
+///
+/// Rows a draw borrows with a [`Clear`] are cleared on their first
+/// [`load_row`](Self::load_row), and those never loaded when the draw
+/// finishes (see [`draw_clearing`](crate::geometry::pipeline::draw_clearing)).
 #[derive(Debug)]
 pub struct TargetRows<'a> {
     width: u32,
     first_row: u32,
     rows: u32,
     /// Colours of these rows.
-    pub color: &'a mut [[u8; 4]],
+    pub(crate) color: &'a mut [[u8; 4]],
     /// Depths of these rows.
-    pub depth: &'a mut [f32],
+    pub(crate) depth: &'a mut [f32],
     /// Coverage counts of these rows; empty when the target does not
     /// count coverage.
-    pub coverage: &'a mut [u16],
+    pub(crate) coverage: &'a mut [u16],
+    /// What the first load of a row clears.
+    clear: Clear,
+    /// Per row held, whether it still waits for its clear; empty when
+    /// nothing is cleared.
+    unloaded: Vec<bool>,
+}
+
+impl<'a> TargetRows<'a> {
+    /// Rows `first_row..first_row + rows` of the buffers, which hold just
+    /// those rows, cleared on first load by `clear`.
+    fn new(
+        width: u32,
+        first_row: u32,
+        color: &'a mut [[u8; 4]],
+        depth: &'a mut [f32],
+        coverage: &'a mut [u16],
+        clear: Clear,
+    ) -> Self {
+        let rows = (color.len() / width as usize) as u32;
+        let unloaded = if clear.is_nothing() {
+            Vec::new()
+        } else {
+            vec![true; rows as usize]
+        };
+        TargetRows {
+            width,
+            first_row,
+            rows,
+            color,
+            depth,
+            coverage,
+            clear,
+            unloaded,
+        }
+    }
+
+    /// Makes target row `y` ready for writing: clears it if it still waits
+    /// for its clear. Every write to a row goes after this.
+    #[inline(always)]
+    pub fn load_row(&mut self, y: u32) {
+        let row = y.wrapping_sub(self.first_row) as usize;
+        if self.unloaded.get(row) == Some(&true) {
+            self.clear_row(row);
+        }
+    }
+
+    /// Clears the rows no one loaded, so the buffers end as after an eager
+    /// clear. A draw with rows borrowed by [`RenderTarget::rows_clearing`]
+    /// or [`RenderTarget::bands_clearing`] calls this when it is done.
+    pub(crate) fn finish(&mut self) {
+        for row in 0..self.unloaded.len() {
+            self.clear_row(row);
+        }
+    }
+
+    /// Clears the `row`-th row held, if it still waits for its clear.
+    #[cold]
+    fn clear_row(&mut self, row: usize) {
+        if !std::mem::replace(&mut self.unloaded[row], false) {
+            return;
+        }
+        let width = self.width as usize;
+        let pixels = row * width..(row + 1) * width;
+        if let Some(color) = self.clear.color {
+            self.color[pixels.clone()].fill(color);
+        }
+        if self.clear.depth_and_coverage {
+            self.depth[pixels.clone()].fill(1.0);
+            if let Some(coverage) = self.coverage.get_mut(pixels) {
+                coverage.fill(0);
+            }
+        }
+    }
 }
 
 impl TargetRows<'_> {
@@ -383,7 +528,7 @@ impl TargetRows<'_> {
         }
     }
 
-    /// Whether fragments are counted in [`coverage`](Self::coverage).
+    /// Whether fragments are counted in the coverage buffer.
     #[inline]
     pub fn counts_coverage(&self) -> bool {
         !self.coverage.is_empty()
@@ -409,6 +554,48 @@ fn fill_in_parallel<T: Copy + Send + Sync>(buffer: &mut [T], value: T) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_clear_folded_into_the_rows_ends_as_an_eager_clear() {
+        for clear in [
+            Clear::NOTHING,
+            Clear::DEPTH_AND_COVERAGE,
+            Clear::color([1, 2, 3, 4]),
+            Clear::all([5, 6, 7, 8]),
+        ] {
+            for coverage in [true, false] {
+                let mut dirty = RenderTarget::new(7, 5).unwrap();
+                if !coverage {
+                    dirty.coverage = Vec::new();
+                }
+                dirty.color.fill([9, 9, 9, 9]);
+                dirty.depth.fill(0.25);
+                dirty.coverage.fill(3);
+                let mut eager = dirty.clone();
+                if let Some(color) = clear.color {
+                    eager.clear_color(color);
+                }
+                if clear.depth_and_coverage {
+                    eager.clear_depth_and_coverage();
+                }
+                // Loading row 3 clears it at once; a write to it stays.
+                let mut lazy = dirty.clone();
+                let mut rows = lazy.rows_clearing(clear);
+                rows.load_row(3);
+                rows.depth[3 * 7 + 2] = 0.5;
+                rows.finish();
+                eager.depth[3 * 7 + 2] = 0.5;
+                assert_eq!(lazy, eager, "{clear:?}");
+                // Every band finishes its own rows.
+                let mut banded = dirty.clone();
+                for mut band in banded.bands_clearing(2, clear) {
+                    band.finish();
+                }
+                eager.depth[3 * 7 + 2] = if clear.depth_and_coverage { 1.0 } else { 0.25 };
+                assert_eq!(banded, eager, "{clear:?}");
+            }
+        }
+    }
 
     #[test]
     fn zero_and_oversized_targets_are_errors() {

@@ -36,7 +36,7 @@ use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::WorkCounters;
 use crate::raster::shader::FragmentShader;
 use crate::raster::stage::{FragmentStage, Interpolation};
-use crate::raster::target::{DepthState, RenderTarget};
+use crate::raster::target::{Clear, DepthState, RenderTarget};
 use crate::raster::triangle::{TriangleRasterizer, TriangleSelection};
 use rayon::prelude::*;
 
@@ -50,27 +50,65 @@ pub fn draw(
     interpolation: Interpolation,
     target: &mut RenderTarget,
 ) -> WorkCounters {
-    draw_runs(
-        &geometry.runs(),
+    draw_clearing(
+        geometry,
         backend,
         shader,
         depth,
         interpolation,
+        Clear::NOTHING,
         target,
     )
+}
+
+/// [`draw`], with the target cleared by `clear` first: the same buffers as
+/// a clear and then [`draw`], but each row is cleared just before the
+/// first fragment written to it (see [`Clear`]), so the draw does not read
+/// back a freshly cleared buffer from memory.
+pub fn draw_clearing(
+    geometry: &Geometry,
+    backend: &dyn TriangleRasterizer,
+    shader: &dyn FragmentShader,
+    depth: DepthState,
+    interpolation: Interpolation,
+    clear: Clear,
+    target: &mut RenderTarget,
+) -> WorkCounters {
+    let runs = geometry.runs();
+    let pass = Pass {
+        shader,
+        depth,
+        interpolation,
+        clear,
+    };
+    draw_runs(&runs, backend, pass, target)
+}
+
+/// What a draw does besides rasterizing: shade, test depth, interpolate,
+/// and clear as it goes.
+#[derive(Copy, Clone)]
+pub(crate) struct Pass<'a> {
+    pub shader: &'a dyn FragmentShader,
+    pub depth: DepthState,
+    pub interpolation: Interpolation,
+    pub clear: Clear,
 }
 
 /// [`draw`] of triangles in runs.
 fn draw_runs(
     geometry: &Runs<'_>,
     backend: &dyn TriangleRasterizer,
-    shader: &dyn FragmentShader,
-    depth: DepthState,
-    interpolation: Interpolation,
+    pass: Pass<'_>,
     target: &mut RenderTarget,
 ) -> WorkCounters {
+    let Pass {
+        shader,
+        depth,
+        interpolation,
+        clear,
+    } = pass;
     let viewport = PixelRect::of_target(target.width(), target.height());
-    let mut stage = FragmentStage::new(target, shader)
+    let mut stage = FragmentStage::on_rows(target.rows_clearing(clear), shader)
         .with_triangles(geometry.shaded)
         .with_depth(depth)
         .with_interpolation(interpolation);
@@ -79,6 +117,7 @@ fn draw_runs(
         stage.use_triangles(run.triangles);
         work.add(&backend.rasterize(run.setups, viewport, &mut stage));
     }
+    stage.finish();
     work
 }
 
@@ -93,14 +132,13 @@ pub fn draw_binned(
     interpolation: Interpolation,
     target: &mut RenderTarget,
 ) -> WorkCounters {
-    draw_runs_binned(
-        &geometry.runs(),
-        backend,
+    let pass = Pass {
         shader,
         depth,
         interpolation,
-        target,
-    )
+        clear: Clear::NOTHING,
+    };
+    draw_runs_binned(&geometry.runs(), backend, pass, target)
 }
 
 /// [`draw_binned`] of triangles in runs, with the bins of the pipeline's
@@ -108,15 +146,19 @@ pub fn draw_binned(
 pub(crate) fn draw_runs_binned(
     geometry: &Runs<'_>,
     backend: &dyn TriangleRasterizer,
-    shader: &dyn FragmentShader,
-    depth: DepthState,
-    interpolation: Interpolation,
+    pass: Pass<'_>,
     target: &mut RenderTarget,
 ) -> WorkCounters {
     let threads = rayon::current_num_threads();
     if threads == 1 {
-        return draw_runs(geometry, backend, shader, depth, interpolation, target);
+        return draw_runs(geometry, backend, pass, target);
     }
+    let Pass {
+        shader,
+        depth,
+        interpolation,
+        clear,
+    } = pass;
     let (width, height) = (target.width(), target.height());
     let runs = &geometry.runs;
     let bands = Bands::for_threads(height, threads);
@@ -133,7 +175,7 @@ pub(crate) fn draw_runs_binned(
         }
     };
     target
-        .bands_mut(bands.rows())
+        .bands_clearing(bands.rows(), clear)
         .into_par_iter()
         .enumerate()
         .map(|(b, rows)| {
@@ -151,6 +193,7 @@ pub(crate) fn draw_runs_binned(
                     work.add(&backend.rasterize_selection(selection, viewport, &mut stage));
                 }
             }
+            stage.finish();
             work
         })
         .reduce(WorkCounters::default, |mut a, b| {

@@ -42,12 +42,12 @@ mod process;
 mod setup;
 mod viewport;
 
-pub use draw::{draw, draw_binned};
+pub use draw::{draw, draw_binned, draw_clearing};
 pub use geometry::Geometry;
 pub use options::{CullMode, FrontFace, PipelineOptions};
 pub use process::{process_lines, process_triangles, process_triangles_into};
 pub use setup::GeometryStats;
 pub use viewport::Viewport;
 
-pub(crate) use draw::draw_runs_binned;
+pub(crate) use draw::{draw_runs_binned, Pass};
 pub(crate) use geometry::GeometryInParts;
