@@ -584,7 +584,7 @@ proptest! {
     /// same colours.
     #[test]
     fn fast_path_equals_bresenham_through_the_stage(
-        lines in proptest::collection::vec((endpoint(), endpoint()), 1..6),
+        lines in proptest::collection::vec((endpoint(), endpoint()), 1..14),
         (w, h) in (1u32..48, 1u32..48),
     ) {
         let lines: Vec<LineSetup> = lines

@@ -426,6 +426,39 @@ mod tests {
     use crate::raster::backend::triangle_backends;
     use std::path::Path;
 
+    /// The geometry loops (vertex shading, assembly and set-up) and the
+    /// stage's span loop compiled for AVX2 give the very bits of their
+    /// baseline copies: the same geometry and the same frame, for every
+    /// shading, clipped triangles included.
+    #[test]
+    fn both_copies_of_the_vectorized_loops_give_the_same_frame() {
+        let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
+        for shading in [Shading::Flat, Shading::Gouraud, Shading::Diffuse] {
+            // Zoomed so that triangles cross the near and side planes.
+            let settings = RenderSettings {
+                width: 160,
+                height: 120,
+                azimuth: 40.0,
+                zoom: 6.0,
+                shading,
+                ..RenderSettings::default()
+            };
+            let renderer = MeshRenderer::new(&bunny, settings).unwrap();
+            let widest = renderer.geometry().unwrap();
+            let baseline = crate::raster::vector::on_baseline(|| renderer.geometry().unwrap());
+            assert!(widest.stats.clipped > 0 && widest.stats.triangles > 100);
+            assert_eq!(widest.setups, baseline.setups, "{shading}");
+            assert_eq!(widest.shaded, baseline.shaded, "{shading}");
+            assert_eq!(widest.stats, baseline.stats, "{shading}");
+            for &b in triangle_backends() {
+                let frame = renderer.render(b).unwrap().target;
+                let on_baseline =
+                    crate::raster::vector::on_baseline(|| renderer.render(b).unwrap());
+                assert!(frame == on_baseline.target, "{shading} {}", b.name());
+            }
+        }
+    }
+
     #[test]
     fn first_use_order_is_a_permutation_in_order_of_use() {
         let order = first_use_order(6, &[[4, 2, 4], [0, 2, 3]]).unwrap();

@@ -120,7 +120,7 @@ impl ClipVolume {
 
     /// Bit `i` is set when `p` is outside plane `i` (Cohen-Sutherland
     /// style out-code). NaN coordinates count as outside every plane.
-    #[inline]
+    #[inline(always)]
     pub fn outcode(&self, p: Vec4) -> u8 {
         let mut code = 0;
         for i in 0..7 {

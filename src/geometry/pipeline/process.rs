@@ -14,6 +14,7 @@ use super::viewport::to_screen_vertex;
 use super::{PipelineOptions, Viewport};
 use crate::error::{Error, Result};
 use crate::raster::primitive::{ShadedLine, ShadedVertex};
+use crate::raster::vector;
 use rayon::prelude::*;
 
 /// Out-code bit for a vertex the pipeline refuses (the seven clip planes
@@ -26,7 +27,7 @@ const VERTEX_CHUNK: usize = 4096;
 
 /// Shades one vertex and, when it lies inside every clip plane, divides
 /// and snaps it: its assembly record and its stage vertex.
-#[inline]
+#[inline(always)]
 fn screen_vertex<V, S: VertexShader<V>>(
     shader: &S,
     clip: &ClipVolume,
@@ -70,6 +71,35 @@ fn screen_vertex<V, S: VertexShader<V>>(
             )
         }
         Err(_) => off_screen(REFUSED),
+    }
+}
+
+/// One task's vertices to shade, divide and snap: a loop compiled for the
+/// baseline and for AVX2, the copy picked at run time (the same bits
+/// either way).
+struct ShadeVertices<'a, V, S> {
+    shader: &'a S,
+    clip: &'a ClipVolume,
+    viewport: &'a Viewport,
+    input: &'a [V],
+    screen: &'a mut [ScreenPoint],
+    shaded: &'a mut [ShadedVertex],
+}
+
+impl<V, S: VertexShader<V>> vector::Kernel for ShadeVertices<'_, V, S> {
+    /// The out-codes of all the vertices, or-ed.
+    type Output = u8;
+
+    #[inline(always)]
+    fn run(self) -> u8 {
+        let mut outcodes = 0;
+        let vertices = self.screen.iter_mut().zip(self.shaded).zip(self.input);
+        for ((s, v), vertex) in vertices {
+            let (point, shaded) = screen_vertex(self.shader, self.clip, self.viewport, vertex);
+            outcodes |= point.outcode;
+            (*s, *v) = (point, shaded);
+        }
+        outcodes
     }
 }
 
@@ -209,13 +239,15 @@ fn assemble<V: Sync, S: VertexShader<V>>(
         .zip(shaded.par_chunks_mut(VERTEX_CHUNK))
         .zip(vertices.par_chunks(VERTEX_CHUNK))
         .map(|((screen, shaded), input)| {
-            let mut outcodes = 0;
-            for ((s, v), vertex) in screen.iter_mut().zip(shaded).zip(input) {
-                let (point, shaded) = screen_vertex(shader, &clip, &viewport, vertex);
-                outcodes |= point.outcode;
-                (*s, *v) = (point, shaded);
-            }
-            outcodes & REFUSED != 0
+            let chunk = ShadeVertices {
+                shader,
+                clip: &clip,
+                viewport: &viewport,
+                input,
+                screen,
+                shaded,
+            };
+            vector::run(chunk) & REFUSED != 0
         })
         .reduce(|| false, |a, b| a | b);
     // Only a draw with a refused vertex looks for the first one (a scan of

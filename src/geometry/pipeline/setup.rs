@@ -4,7 +4,7 @@
 //! pipeline does this for a chunk of the triangles into its own [`Part`].
 
 use super::bands::Bands;
-use super::clip::{ClipResult, ClipVolume};
+use super::clip::{ClipResult, ClipVertex, ClipVolume};
 use super::vertex::VertexShader;
 use super::viewport::to_screen_vertex;
 use super::{CullMode, FrontFace, PipelineOptions, Viewport};
@@ -12,6 +12,7 @@ use crate::error::Result;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fixed::FixedPoint;
 use crate::raster::primitive::{ShadedTriangle, ShadedVertex};
+use crate::raster::vector;
 
 /// What happened to the primitives of a draw.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -100,6 +101,7 @@ impl Part {
     /// other than `winding` (when given), culled, or without a pixel sample
     /// of the viewport in its bounding box.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn push(
         &mut self,
         vertices: [u32; 3],
@@ -177,20 +179,111 @@ pub(super) struct AssemblyInput<'a, V, S> {
 impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
     /// Assembles, clips, culls and sets up `triangles`, the first of which
     /// is primitive number `first` of the draw, into `part`.
+    ///
+    /// The loop is compiled for the baseline and for AVX2, and the copy the
+    /// CPU runs is picked at run time (the same bits either way).
     pub(super) fn process(&self, triangles: &[[u32; 3]], first: usize, part: &mut Part) {
-        let (viewport, options) = (self.viewport, self.options);
-        let pixels = PixelRect::of_target(viewport.width, viewport.height);
-        let mesh_vertices = self.mesh_vertices;
         part.clear(self.bands);
         part.setups.reserve(triangles.len());
         part.triangles.reserve(triangles.len());
         part.source.reserve(triangles.len());
-        let mut polygon = Vec::with_capacity(10);
+        let assemble = Assemble {
+            input: self,
+            triangles,
+            first,
+            part,
+        };
+        vector::run(assemble);
+    }
+
+    /// Clips triangle `t` (primitive number `source`), which straddles a
+    /// clip plane, and sets up the fan of what is left into `part`.
+    #[inline(never)]
+    fn clip_and_push(
+        &self,
+        t: [u32; 3],
+        codes: [u8; 3],
+        source: u32,
+        part: &mut Part,
+        polygon: &mut Vec<ClipVertex>,
+    ) {
+        let (viewport, options) = (self.viewport, self.options);
+        let pixels = PixelRect::of_target(viewport.width, viewport.height);
+        let corners = t.map(|i| self.shader.shade(&self.vertices[i as usize]));
+        let ClipResult::Cut(_) = self.clip.clip_triangle(&corners, codes, polygon) else {
+            unreachable!("the out-codes say the triangle straddles a plane");
+        };
+        part.stats.clipped += 1;
+        // A cut vertex can miss its plane when the triangle's
+        // coordinates differ by more than f64 resolves (say 1e30
+        // next to 1e-5); such a polygon is dropped, never drawn wrong.
+        let Ok(screen) = polygon
+            .iter()
+            .map(|v| to_screen_vertex(viewport, v))
+            .collect::<Result<Vec<(FixedPoint, ShadedVertex)>>>()
+        else {
+            part.stats.unresolvable += 1;
+            return;
+        };
+        let base = self.mesh_vertices + part.clip_vertices.len() as u32;
+        part.clip_vertices.extend(screen.iter().map(|(_, v)| *v));
+        // The fan of a convex polygon keeps one winding. Cut points
+        // that are nearly collinear can snap into a sliver of the
+        // opposite winding, which would overlap its neighbour; the
+        // polygon's winding (the sign of its area, the sum of its fan
+        // triangles' signed areas) decides which slivers are dropped.
+        let fan: Vec<[usize; 3]> = (1..screen.len().saturating_sub(1))
+            .map(|i| [0, i, i + 1])
+            .collect();
+        let twice_area: i64 = fan
+            .iter()
+            .map(|f| TriangleSetup::signed_area(f.map(|k| screen[k].0)))
+            .sum();
+        let winding = if twice_area < 0 { -1 } else { 1 };
+        for f in fan {
+            part.push(
+                f.map(|k| base + k as u32),
+                f.map(|k| screen[k].0),
+                f.map(|k| screen[k].1.depth),
+                source,
+                Some(winding),
+                options,
+                pixels,
+            );
+        }
+    }
+}
+
+/// One task's triangles, to assemble into its part: the loop
+/// [`AssemblyInput::process`] compiles twice.
+struct Assemble<'i, 'a, V, S> {
+    input: &'i AssemblyInput<'a, V, S>,
+    triangles: &'i [[u32; 3]],
+    first: usize,
+    part: &'i mut Part,
+}
+
+impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
+    type Output = ();
+
+    /// Triangles wholly inside the clip volume (nearly all) are set up
+    /// here; those outside every point of one plane are rejected; the
+    /// rest are clipped out of line.
+    #[inline(always)]
+    fn run(self) {
+        let Assemble {
+            input,
+            triangles,
+            first,
+            part,
+        } = self;
+        let options = input.options;
+        let pixels = PixelRect::of_target(input.viewport.width, input.viewport.height);
+        let mut polygon = Vec::new();
         for (index, t) in triangles.iter().enumerate() {
             part.stats.primitives += 1;
             let source = (first + index) as u32;
-            let idx = t.map(|i| i as usize);
-            let screen = idx.map(|i| self.screen[i]);
+            let screen = t.map(|i| input.screen[i as usize]);
             let codes = screen.map(|s| s.outcode);
             if codes == [0; 3] {
                 let depths = screen.map(|s| s.depth);
@@ -203,53 +296,10 @@ impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
                     options,
                     pixels,
                 );
-                continue;
-            }
-            if codes[0] & codes[1] & codes[2] != 0 {
+            } else if codes[0] & codes[1] & codes[2] != 0 {
                 part.stats.rejected += 1;
-                continue;
-            }
-            let corners = idx.map(|i| self.shader.shade(&self.vertices[i]));
-            let ClipResult::Cut(_) = self.clip.clip_triangle(&corners, codes, &mut polygon) else {
-                unreachable!("the out-codes say the triangle straddles a plane");
-            };
-            part.stats.clipped += 1;
-            // A cut vertex can miss its plane when the triangle's
-            // coordinates differ by more than f64 resolves (say 1e30
-            // next to 1e-5); such a polygon is dropped, never drawn wrong.
-            let Ok(screen) = polygon
-                .iter()
-                .map(|v| to_screen_vertex(viewport, v))
-                .collect::<Result<Vec<(FixedPoint, ShadedVertex)>>>()
-            else {
-                part.stats.unresolvable += 1;
-                continue;
-            };
-            let base = mesh_vertices + part.clip_vertices.len() as u32;
-            part.clip_vertices.extend(screen.iter().map(|(_, v)| *v));
-            // The fan of a convex polygon keeps one winding. Cut points
-            // that are nearly collinear can snap into a sliver of the
-            // opposite winding, which would overlap its neighbour; the
-            // polygon's winding (the sign of its area, the sum of its fan
-            // triangles' signed areas) decides which slivers are dropped.
-            let fan: Vec<[usize; 3]> = (1..screen.len().saturating_sub(1))
-                .map(|i| [0, i, i + 1])
-                .collect();
-            let twice_area: i64 = fan
-                .iter()
-                .map(|f| TriangleSetup::signed_area(f.map(|k| screen[k].0)))
-                .sum();
-            let winding = if twice_area < 0 { -1 } else { 1 };
-            for f in fan {
-                part.push(
-                    f.map(|k| base + k as u32),
-                    f.map(|k| screen[k].0),
-                    f.map(|k| screen[k].1.depth),
-                    source,
-                    Some(winding),
-                    options,
-                    pixels,
-                );
+            } else {
+                input.clip_and_push(*t, codes, source, part, &mut polygon);
             }
         }
     }

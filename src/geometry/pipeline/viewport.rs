@@ -42,6 +42,7 @@ impl Viewport {
 }
 
 /// Divides by `w`, maps to the viewport and snaps a clip-space vertex.
+#[inline(always)]
 pub(super) fn to_screen_vertex(
     viewport: &Viewport,
     v: &ClipVertex,
