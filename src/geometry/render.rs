@@ -424,6 +424,7 @@ pub fn unique_edges(triangles: &[[u32; 3]]) -> Vec<[u32; 2]> {
 mod tests {
     use super::*;
     use crate::raster::backend::triangle_backends;
+    use crate::raster::vector::{self, Width};
     use std::path::Path;
 
     /// The geometry loops (vertex shading, assembly and set-up) and the
@@ -431,7 +432,7 @@ mod tests {
     /// baseline copies: the same geometry and the same frame, for every
     /// shading, clipped triangles included.
     #[test]
-    fn both_copies_of_the_vectorized_loops_give_the_same_frame() {
+    fn every_copy_of_the_vectorized_loops_gives_the_same_frame() {
         let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
         for shading in [Shading::Flat, Shading::Gouraud, Shading::Diffuse] {
             // Zoomed so that triangles cross the near and side planes.
@@ -444,17 +445,25 @@ mod tests {
                 ..RenderSettings::default()
             };
             let renderer = MeshRenderer::new(&bunny, settings).unwrap();
-            let widest = renderer.geometry().unwrap();
-            let baseline = crate::raster::vector::on_baseline(|| renderer.geometry().unwrap());
-            assert!(widest.stats.clipped > 0 && widest.stats.triangles > 100);
-            assert_eq!(widest.setups, baseline.setups, "{shading}");
-            assert_eq!(widest.shaded, baseline.shaded, "{shading}");
-            assert_eq!(widest.stats, baseline.stats, "{shading}");
-            for &b in triangle_backends() {
-                let frame = renderer.render(b).unwrap().target;
-                let on_baseline =
-                    crate::raster::vector::on_baseline(|| renderer.render(b).unwrap());
-                assert!(frame == on_baseline.target, "{shading} {}", b.name());
+            let baseline = vector::limited_to(Width::Baseline, || renderer.geometry().unwrap());
+            assert!(baseline.stats.clipped > 0 && baseline.stats.triangles > 100);
+            let frames: Vec<_> = triangle_backends()
+                .iter()
+                .map(|b| vector::limited_to(Width::Baseline, || renderer.render(*b).unwrap()))
+                .collect();
+            for copy in vector::copies() {
+                let geometry = vector::limited_to(copy, || renderer.geometry().unwrap());
+                assert_eq!(geometry.setups, baseline.setups, "{shading} {copy:?}");
+                assert_eq!(geometry.shaded, baseline.shaded, "{shading} {copy:?}");
+                assert_eq!(geometry.stats, baseline.stats, "{shading} {copy:?}");
+                for (b, expected) in triangle_backends().iter().zip(&frames) {
+                    let frame = vector::limited_to(copy, || renderer.render(*b).unwrap());
+                    assert!(
+                        frame.target == expected.target,
+                        "{shading} {copy:?} {}",
+                        b.name()
+                    );
+                }
             }
         }
     }
