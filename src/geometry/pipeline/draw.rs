@@ -65,6 +65,37 @@ pub fn draw(
 /// a clear and then [`draw`], but each row is cleared just before the
 /// first fragment written to it (see [`Clear`]), so the draw does not read
 /// back a freshly cleared buffer from memory.
+///
+/// ```
+/// use glam::Vec4;
+/// use rasterlab::geometry::pipeline::{draw, draw_clearing, Geometry};
+/// use rasterlab::geometry::scene::setup_triangles;
+/// use rasterlab::raster::primitive::ShadedVertex;
+/// use rasterlab::raster::shader::Flat;
+/// use rasterlab::raster::stage::Interpolation;
+/// use rasterlab::raster::target::{Clear, DepthState, RenderTarget};
+/// use rasterlab::{FillRule, FixedPoint};
+///
+/// let p = |x, y| FixedPoint::snap(x, y).unwrap();
+/// let triangle = [p(1.0, 1.0), p(7.0, 2.0), p(3.0, 6.0)];
+/// let setups = setup_triangles(&[triangle], FillRule::TopLeft);
+/// let red = ShadedVertex::flat(0.5, Vec4::new(1.0, 0.0, 0.0, 1.0));
+/// let geometry = Geometry::of_screen_triangles(setups, &[[red; 3]]);
+///
+/// // A used target: a clear, then the draw ...
+/// let mut used = RenderTarget::new(8, 8).unwrap();
+/// used.color.fill([0, 0, 255, 255]);
+/// used.depth.fill(0.25);
+/// let mut eager = used.clone();
+/// eager.clear();
+/// let scanline = rasterlab::triangle_backend("scanline").unwrap();
+/// let (depth, lerp) = (DepthState::DEFAULT, Interpolation::PerspectiveCorrect);
+/// draw(&geometry, scanline, &Flat, depth, lerp, &mut eager);
+/// // ... or the clear folded into the draw: the same buffers.
+/// let clear = Clear::all(RenderTarget::BLACK);
+/// draw_clearing(&geometry, scanline, &Flat, depth, lerp, clear, &mut used);
+/// assert_eq!(used, eager);
+/// ```
 pub fn draw_clearing(
     geometry: &Geometry,
     backend: &dyn TriangleRasterizer,
