@@ -34,9 +34,10 @@ use super::geometry::{Geometry, Runs};
 use super::Viewport;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::WorkCounters;
+use crate::raster::primitive::TriangleData;
 use crate::raster::shader::FragmentShader;
 use crate::raster::stage::{FragmentStage, Interpolation};
-use crate::raster::target::{Clear, DepthState, RenderTarget};
+use crate::raster::target::{Clear, DepthState, RenderTarget, TargetRows};
 use crate::raster::triangle::{TriangleRasterizer, TriangleSelection};
 use rayon::prelude::*;
 
@@ -125,6 +126,17 @@ pub(crate) struct Pass<'a> {
     pub clear: Clear,
 }
 
+impl<'a> Pass<'a> {
+    /// The stage of this pass, writing into `rows`, for triangles whose
+    /// stage data is `shaded`.
+    fn stage(self, rows: TargetRows<'a>, shaded: &'a TriangleData) -> FragmentStage<'a> {
+        FragmentStage::on_rows(rows, self.shader)
+            .with_triangles(shaded)
+            .with_depth(self.depth)
+            .with_interpolation(self.interpolation)
+    }
+}
+
 /// [`draw`] of triangles in runs.
 fn draw_runs(
     geometry: &Runs<'_>,
@@ -132,17 +144,8 @@ fn draw_runs(
     pass: Pass<'_>,
     target: &mut RenderTarget,
 ) -> WorkCounters {
-    let Pass {
-        shader,
-        depth,
-        interpolation,
-        clear,
-    } = pass;
     let viewport = PixelRect::of_target(target.width(), target.height());
-    let mut stage = FragmentStage::on_rows(target.rows_clearing(clear), shader)
-        .with_triangles(geometry.shaded)
-        .with_depth(depth)
-        .with_interpolation(interpolation);
+    let mut stage = pass.stage(target.rows_clearing(pass.clear), geometry.shaded);
     let mut work = WorkCounters::default();
     for run in &geometry.runs {
         stage.use_triangles(run.triangles);
@@ -184,12 +187,6 @@ pub(crate) fn draw_runs_binned(
     if threads == 1 {
         return draw_runs(geometry, backend, pass, target);
     }
-    let Pass {
-        shader,
-        depth,
-        interpolation,
-        clear,
-    } = pass;
     let (width, height) = (target.width(), target.height());
     let runs = &geometry.runs;
     let bands = Bands::for_threads(height, threads);
@@ -206,15 +203,12 @@ pub(crate) fn draw_runs_binned(
         }
     };
     target
-        .bands_clearing(bands.rows(), clear)
+        .bands_clearing(bands.rows(), pass.clear)
         .into_par_iter()
         .enumerate()
         .map(|(b, rows)| {
             let viewport = rows.rect();
-            let mut stage = FragmentStage::on_rows(rows, shader)
-                .with_triangles(geometry.shaded)
-                .with_depth(depth)
-                .with_interpolation(interpolation);
+            let mut stage = pass.stage(rows, geometry.shaded);
             let mut work = WorkCounters::default();
             for &(run, per_band) in &chunks {
                 if !per_band[b].is_empty() {
