@@ -137,36 +137,6 @@ pub struct Frame {
     pub stats: FrameStats,
 }
 
-/// The triangles in an order that uses each vertex again soon after its
-/// last use (`meshopt`'s vertex cache optimizer), each triangle with its
-/// corners in their order (so its first, provoking vertex is kept).
-///
-/// Consecutive triangles then share vertices, so the pipeline and the
-/// stage find the vertex data they just read still in the cache. The draw
-/// order changes, not what each triangle draws: every back-end draws in
-/// this one order, so their images stay bit-identical to each other. Two
-/// triangles of one closed mesh meet a pixel only at the very same depth
-/// in a mesh that covers itself, where the first drawn wins: there the
-/// picture can differ from the file's order. `None` when an index is out
-/// of range: the pipeline then reports it as it stands.
-fn vertex_cache_order(vertex_count: usize, triangles: &[[u32; 3]]) -> Option<Vec<[u32; 3]>> {
-    if triangles
-        .iter()
-        .flatten()
-        .any(|&i| i as usize >= vertex_count)
-    {
-        return None;
-    }
-    let indices: Vec<u32> = triangles.iter().flatten().copied().collect();
-    let ordered = meshopt::optimize_vertex_cache(&indices, vertex_count);
-    Some(
-        ordered
-            .chunks_exact(3)
-            .map(|c| [c[0], c[1], c[2]])
-            .collect(),
-    )
-}
-
 /// New vertex numbers in the order the triangles first use the vertices
 /// (unused vertices after them, in their order): `new_index[old]`.
 ///
@@ -273,8 +243,7 @@ impl MeshRenderer {
         } else {
             Vec::new()
         };
-        let mut triangles = vertex_cache_order(vertices.len(), &mesh.triangles)
-            .unwrap_or_else(|| mesh.triangles.clone());
+        let mut triangles = mesh.triangles.clone();
         let vertices = match first_use_order(vertices.len(), &triangles) {
             Some(new_index) => {
                 for i in triangles
@@ -500,30 +469,16 @@ mod tests {
     }
 
     #[test]
-    fn the_vertex_cache_order_keeps_every_triangle_and_its_corners() {
-        let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
-        let n = bunny.positions.len();
-        let ordered = vertex_cache_order(n, &bunny.triangles).unwrap();
-        assert_ne!(ordered, bunny.triangles, "the order changed");
-        let (mut a, mut b) = (ordered.clone(), bunny.triangles.clone());
-        a.sort_unstable();
-        b.sort_unstable();
-        assert_eq!(a, b, "the same triangles, corners in the same order");
-        assert_eq!(vertex_cache_order(3, &[[0, 1, 3]]), None);
-    }
-
-    #[test]
     fn first_use_order_is_a_permutation_in_order_of_use() {
         let order = first_use_order(6, &[[4, 2, 4], [0, 2, 3]]).unwrap();
         assert_eq!(order, vec![2, 4, 1, 3, 0, 5]);
         assert_eq!(first_use_order(3, &[[0, 1, 3]]), None);
     }
 
-    /// The renderer's triangle order and vertex renumbering change no bit
-    /// on the bunny: each back-end draws it as the pipeline draws it in
-    /// the file's order.
+    /// The renderer's vertex renumbering changes no bit: each back-end
+    /// draws the bunny as the pipeline draws it in the file's order.
     #[test]
-    fn reordered_triangles_and_renumbered_vertices_draw_the_same_image() {
+    fn renumbered_vertices_draw_the_same_image() {
         let mesh = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
         let settings = RenderSettings {
             width: 96,
