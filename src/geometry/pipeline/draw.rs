@@ -23,7 +23,13 @@
 //! as in [`draw`](crate::geometry::pipeline::draw).
 //!
 //! With one thread there is nothing to share out, and the draw is
-//! [`pipeline::draw`](crate::geometry::pipeline::draw) itself. The number of threads
+//! [`pipeline::draw`](crate::geometry::pipeline::draw) itself. That draw
+//! goes band by band too when the triangles are few (at most 256), in
+//! bands whose colour and depth fit a core's cache (64 rows at 1920
+//! pixels wide), each band walking every triangle: large triangles over
+//! one another are then drawn while the band is in the cache, instead of
+//! each sweeping the whole buffers (four full-screen layers: 8.1 and 7.6
+//! ms a frame triangle by triangle, 5.9 and 5.6 ms band by band). The number of threads
 //! is rayon's: all cores by default,
 //! `RAYON_NUM_THREADS` or a pool installed by the caller (`--threads N` on
 //! the command line). Work counters are summed over bands, so a triangle
@@ -137,13 +143,57 @@ impl<'a> Pass<'a> {
     }
 }
 
-/// [`draw`] of triangles in runs.
+/// Draws of at most this many triangles go band by band on one thread
+/// too ([`cache_band_rows`]).
+const BAND_BY_BAND_TRIANGLES: usize = 256;
+
+/// Bytes of colour and depth in a band drawn band by band: well inside a
+/// core's second-level cache.
+const CACHE_BAND_BYTES: usize = 1 << 20;
+
+/// Rows of the bands a draw of few triangles goes through on one thread:
+/// as many as [`CACHE_BAND_BYTES`] hold for a target `width` pixels wide,
+/// a multiple of 8 (the tiled back-end's block), at least 8.
+///
+/// Drawing triangle by triangle, each large triangle sweeps the whole
+/// colour and depth buffers (16 MB at 1080p), and the next one finds them
+/// back in memory, not in the cache. Drawing band by band, all the
+/// triangles over a band are drawn while its rows are in the cache. Each
+/// band walks every triangle, which costs nothing for a few and too much
+/// for a mesh (those are binned on several threads, and walked in order
+/// on one). Every pixel still meets its fragments in triangle order, so
+/// the image is the same bits.
+fn cache_band_rows(width: u32) -> u32 {
+    let row_bytes = width as usize * (4 + 4);
+    let rows = (CACHE_BAND_BYTES / row_bytes.max(1)) as u32;
+    (rows / 8 * 8).max(8)
+}
+
+/// [`draw`] of triangles in runs: band by band when they are few
+/// ([`cache_band_rows`]), else triangle by triangle over the target.
 fn draw_runs(
     geometry: &Runs<'_>,
     backend: &dyn TriangleRasterizer,
     pass: Pass<'_>,
     target: &mut RenderTarget,
 ) -> WorkCounters {
+    let triangles: usize = geometry.runs.iter().map(|r| r.setups.len()).sum();
+    let rows = cache_band_rows(target.width());
+    if triangles <= BAND_BY_BAND_TRIANGLES && rows < target.height() {
+        // A few triangles: every band walks all of them, and the pixels
+        // they share are drawn while the band is in the cache.
+        let mut work = WorkCounters::default();
+        for rows in target.bands_clearing(rows, pass.clear) {
+            let viewport = rows.rect();
+            let mut stage = pass.stage(rows, geometry.shaded);
+            for run in &geometry.runs {
+                stage.use_triangles(run.triangles);
+                work.add(&backend.rasterize(run.setups, viewport, &mut stage));
+            }
+            stage.finish();
+        }
+        return work;
+    }
     let viewport = PixelRect::of_target(target.width(), target.height());
     let mut stage = pass.stage(target.rows_clearing(pass.clear), geometry.shaded);
     let mut work = WorkCounters::default();
