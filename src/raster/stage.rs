@@ -272,23 +272,41 @@ impl SpanRows<'_> {
         self.color.fill(color);
     }
 
-    /// Counts coverage (when the target counts), then depth-tests each
-    /// pixel against the plane (evaluated exactly as [`DepthPlane::at`]
-    /// does) and writes `color` (and the depth when `write`) where `passes`.
-    ///
-    /// The loop has no branch: every pixel's colour and depth are stored,
-    /// the old value where the test fails, so the compiler can run it on
-    /// vectors. The column offset is counted in `i32`, whose conversion to
-    /// `f32` gives the same value as [`DepthPlane::in_row`]'s `i64` one:
-    /// both are the same integer, which the guard band keeps below 2^17.
+    /// [`fill_writing`](Self::fill_writing) with the depth write on or off:
+    /// one loop each, so the loop does not test `write`.
     #[inline(always)]
     fn fill(
-        mut self,
+        self,
         plane: DepthPlane,
         row: f32,
         x0: u32,
         color: [u8; 4],
         write: bool,
+        passes: impl Fn(f32, f32) -> bool,
+    ) {
+        if write {
+            self.fill_writing::<true>(plane, row, x0, color, passes);
+        } else {
+            self.fill_writing::<false>(plane, row, x0, color, passes);
+        }
+    }
+
+    /// Counts coverage (when the target counts), then depth-tests each
+    /// pixel against the plane (evaluated exactly as [`DepthPlane::at`]
+    /// does) and writes `color` (and the depth when `WRITE`) where `passes`.
+    ///
+    /// The loop has no branch: every pixel's colour (and depth) is stored,
+    /// the old value where the test fails, so the compiler can run it on
+    /// vectors. The column offset is counted in `i32`, whose conversion to
+    /// `f32` gives the same value as [`DepthPlane::in_row`]'s `i64` one:
+    /// both are the same integer, which the guard band keeps below 2^17.
+    #[inline(always)]
+    fn fill_writing<const WRITE: bool>(
+        mut self,
+        plane: DepthPlane,
+        row: f32,
+        x0: u32,
+        color: [u8; 4],
         passes: impl Fn(f32, f32) -> bool,
     ) {
         self.count_coverage();
@@ -300,8 +318,9 @@ impl SpanRows<'_> {
             let pass = u32::from(passes(z, *d)).wrapping_neg();
             let keep = u32::from_ne_bytes(*c) & !pass;
             *c = (color & pass | keep).to_ne_bytes();
-            let written = pass & u32::from(write).wrapping_neg();
-            *d = f32::from_bits(z.to_bits() & written | d.to_bits() & !written);
+            if WRITE {
+                *d = f32::from_bits(z.to_bits() & pass | d.to_bits() & !pass);
+            }
         }
     }
 }
