@@ -296,21 +296,16 @@ proptest! {
         if !counts {
             dirty.coverage = Vec::new();
         }
-        for (i, ((c, d), k)) in dirty.color.iter_mut().zip(dirty.depth.iter_mut()).zip(0..).enumerate() {
+        for (i, (c, d)) in dirty.color.iter_mut().zip(dirty.depth.iter_mut()).enumerate() {
             *c = [i as u8, 7, (i / 256) as u8, 200];
-            *d = (k % 11) as f32 / 10.0;
+            *d = (i % 11) as f32 / 10.0;
         }
         dirty.coverage.fill(5);
         let clears = [Clear::NOTHING, Clear::DEPTH_AND_COVERAGE, Clear::color([9, 8, 7, 255]), Clear::all([1, 2, 3, 255])];
         for clear in clears {
             for depth in [DepthState::DEFAULT, DepthState::OFF] {
                 let mut eager = dirty.clone();
-                if let Some(color) = clear.color {
-                    eager.clear_color(color);
-                }
-                if clear.depth_and_coverage {
-                    eager.clear_depth_and_coverage();
-                }
+                eager.clear_now(clear);
                 draw(&geometry, b, &Gouraud, depth, Interpolation::PerspectiveCorrect, &mut eager);
                 let mut folded = dirty.clone();
                 draw_clearing(&geometry, b, &Gouraud, depth, Interpolation::PerspectiveCorrect, clear, &mut folded);

@@ -260,8 +260,20 @@ impl RenderTarget {
     /// Back to the state of a new target: colour black, depth 1.0,
     /// coverage 0.
     pub fn clear(&mut self) {
-        self.clear_color(Self::BLACK);
-        self.clear_depth_and_coverage();
+        self.clear_now(Clear::all(Self::BLACK));
+    }
+
+    /// Clears what `clear` says, at once, over the whole buffers: what a
+    /// draw that folds `clear` into its writes
+    /// ([`draw_clearing`](crate::geometry::pipeline::draw_clearing)) ends
+    /// the same as.
+    pub fn clear_now(&mut self, clear: Clear) {
+        if let Some(color) = clear.color {
+            self.clear_color(color);
+        }
+        if clear.depth_and_coverage {
+            self.clear_depth_and_coverage();
+        }
     }
 
     /// The colour buffer enlarged `scale` times: each pixel a `scale` x
@@ -412,8 +424,8 @@ impl Clear {
 /// ([`RenderTarget::bands_mut`]). Pixels are addressed in target
 /// coordinates.
 ///
-/// Rows a draw borrows with a [`Clear`] are cleared on their first
-/// [`load_row`](Self::load_row), and those never loaded when the draw
+/// Rows a draw borrows with a [`Clear`] are cleared just before the first
+/// fragment written to them, and those no fragment reached when the draw
 /// finishes (see [`draw_clearing`](crate::geometry::pipeline::draw_clearing)).
 #[derive(Debug)]
 pub struct TargetRows<'a> {
@@ -466,7 +478,7 @@ impl<'a> TargetRows<'a> {
     /// Makes target row `y` ready for writing: clears it if it still waits
     /// for its clear. Every write to a row goes after this.
     #[inline(always)]
-    pub fn load_row(&mut self, y: u32) {
+    pub(crate) fn load_row(&mut self, y: u32) {
         let row = y.wrapping_sub(self.first_row) as usize;
         if self.unloaded.get(row) == Some(&true) {
             self.clear_row(row);
@@ -572,12 +584,7 @@ mod tests {
                 dirty.depth.fill(0.25);
                 dirty.coverage.fill(3);
                 let mut eager = dirty.clone();
-                if let Some(color) = clear.color {
-                    eager.clear_color(color);
-                }
-                if clear.depth_and_coverage {
-                    eager.clear_depth_and_coverage();
-                }
+                eager.clear_now(clear);
                 // Loading row 3 clears it at once; a write to it stays.
                 let mut lazy = dirty.clone();
                 let mut rows = lazy.rows_clearing(clear);

@@ -38,7 +38,7 @@
 use super::bands::{Bands, Bins};
 use super::geometry::{Geometry, Runs};
 use super::Viewport;
-use crate::raster::edge::{PixelRect, TriangleSetup};
+use crate::raster::edge::TriangleSetup;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::primitive::TriangleData;
 use crate::raster::shader::FragmentShader;
@@ -178,30 +178,24 @@ fn draw_runs(
     target: &mut RenderTarget,
 ) -> WorkCounters {
     let triangles: usize = geometry.runs.iter().map(|r| r.setups.len()).sum();
-    let rows = cache_band_rows(target.width());
-    if triangles <= BAND_BY_BAND_TRIANGLES && rows < target.height() {
-        // A few triangles: every band walks all of them, and the pixels
-        // they share are drawn while the band is in the cache.
-        let mut work = WorkCounters::default();
-        for rows in target.bands_clearing(rows, pass.clear) {
-            let viewport = rows.rect();
-            let mut stage = pass.stage(rows, geometry.shaded);
-            for run in &geometry.runs {
-                stage.use_triangles(run.triangles);
-                work.add(&backend.rasterize(run.setups, viewport, &mut stage));
-            }
-            stage.finish();
-        }
-        return work;
-    }
-    let viewport = PixelRect::of_target(target.width(), target.height());
-    let mut stage = pass.stage(target.rows_clearing(pass.clear), geometry.shaded);
+    // A few triangles: every band walks all of them, and the pixels they
+    // share are drawn while the band is in the cache. Otherwise one band,
+    // the whole target.
+    let rows = if triangles <= BAND_BY_BAND_TRIANGLES {
+        cache_band_rows(target.width())
+    } else {
+        target.height()
+    };
     let mut work = WorkCounters::default();
-    for run in &geometry.runs {
-        stage.use_triangles(run.triangles);
-        work.add(&backend.rasterize(run.setups, viewport, &mut stage));
+    for rows in target.bands_clearing(rows, pass.clear) {
+        let viewport = rows.rect();
+        let mut stage = pass.stage(rows, geometry.shaded);
+        for run in &geometry.runs {
+            stage.use_triangles(run.triangles);
+            work.add(&backend.rasterize(run.setups, viewport, &mut stage));
+        }
+        stage.finish();
     }
-    stage.finish();
     work
 }
 
