@@ -43,11 +43,26 @@ pub trait FragmentShader: Sync {
     }
 }
 
-/// Converts a colour in `[0, 1]` to RGBA8 (clamped, rounded).
+/// Converts a colour in `[0, 1]` to RGBA8 (clamped, rounded; NaN gives 0).
+///
+/// The four channels go through one vector each step: clamp, `* 255 +
+/// 0.5`, truncate. Per channel that is `(v.clamp(0.0, 1.0) * 255.0 + 0.5)
+/// as u8`, bit for bit, except that a NaN channel becomes 0 at the clamp
+/// rather than at the final conversion: the same byte.
+///
+/// ```
+/// use glam::Vec4;
+/// use rasterlab::raster::shader::to_rgba8;
+///
+/// assert_eq!(to_rgba8(Vec4::new(0.0, 0.5, 1.0, 2.0)), [0, 128, 255, 255]);
+/// assert_eq!(to_rgba8(Vec4::new(f32::NAN, -1.0, 0.998, 0.002)), [0, 0, 254, 1]);
+/// ```
 #[inline]
 pub fn to_rgba8(c: Vec4) -> [u8; 4] {
-    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
-    [q(c.x), q(c.y), q(c.z), q(c.w)]
+    let scaled = c.clamp(Vec4::ZERO, Vec4::ONE) * 255.0 + Vec4::splat(0.5);
+    // Every lane lies in [0.5, 255.5]: truncating to u32 then keeping the
+    // low byte is `as u8` (255.5 truncates to 255).
+    scaled.as_uvec4().to_array().map(|v| v as u8)
 }
 
 /// Converts RGBA8 to a colour in `[0, 1]`.
@@ -269,6 +284,43 @@ impl FragmentShader for Textured {
         match self.light {
             Some(light) => (c.truncate() * light.intensity(input.varyings.normal)).extend(c.w),
             None => c,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The channel-by-channel conversion [`to_rgba8`] stands for.
+    fn per_channel(c: Vec4) -> [u8; 4] {
+        let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+        [q(c.x), q(c.y), q(c.z), q(c.w)]
+    }
+
+    /// The vector conversion gives the per-channel bytes for every kind of
+    /// value: each rounding boundary `(k + 0.5) / 255` and its neighbours,
+    /// values out of range, infinities, NaN, and random ones.
+    #[test]
+    fn the_vector_conversion_to_rgba8_is_the_per_channel_one() {
+        let mut values = vec![0.0, -0.0, 1.0, -1.0, 2.0, f32::INFINITY, f32::NEG_INFINITY];
+        values.extend([
+            f32::NAN,
+            f32::MIN_POSITIVE,
+            f32::MAX,
+            f32::MIN,
+            1.0 + f32::EPSILON,
+        ]);
+        for k in 0..=255 {
+            let edge = (k as f32 + 0.5) / 255.0;
+            values.extend([edge, edge.next_down(), edge.next_up(), k as f32 / 255.0]);
+        }
+        let mut rng = fastrand::Rng::with_seed(8);
+        values.extend((0..100_000).map(|_| rng.f32() * 1.2 - 0.1));
+        for (i, &v) in values.iter().enumerate() {
+            let w = values[(i * 7 + 3) % values.len()];
+            let c = Vec4::new(v, w, 1.0 - v, 0.5 * w);
+            assert_eq!(to_rgba8(c), per_channel(c), "{c:?}");
         }
     }
 }

@@ -46,6 +46,9 @@ use crate::raster::target::{DepthState, DepthTest, RenderTarget, TargetRows};
 use crate::raster::vector;
 use glam::Vec4;
 
+/// How many triangle ids ahead the stage prefetches.
+const PREFETCH_AHEAD: usize = 8;
+
 /// How varyings are interpolated across a primitive.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub enum Interpolation {
@@ -75,6 +78,9 @@ pub struct FragmentStage<'a> {
     /// triangle whose span was shaded, and its colour, so the next spans
     /// of the same triangle are not shaded again.
     span_colour: Option<(u32, [u8; 4])>,
+    /// The last triangle whose fragments arrived: when another begins, the
+    /// data of one further ahead is prefetched.
+    current: u32,
 }
 
 impl<'a> FragmentStage<'a> {
@@ -97,6 +103,7 @@ impl<'a> FragmentStage<'a> {
             interpolation: Interpolation::PerspectiveCorrect,
             line_depth_offset: 0.0,
             span_colour: None,
+            current: u32::MAX,
         }
     }
 
@@ -162,6 +169,35 @@ impl<'a> FragmentStage<'a> {
                     screen
                 }
             }
+        }
+    }
+
+    /// When triangle `id` is not the one whose fragments came last: asks
+    /// for the vertices, and the first depth and colour, of the triangle
+    /// [`PREFETCH_AHEAD`] ids further on, so that they are in the cache
+    /// when its fragments come (each fragment's depth test and shading
+    /// otherwise waits for memory: a mesh's triangles are small, and its
+    /// vertices and pixels spread over tens of megabytes).
+    #[inline(always)]
+    fn prefetch_ahead(&mut self, id: u32) {
+        if id == self.current {
+            return;
+        }
+        self.current = id;
+        let Some(t) = self.triangles.get(id as usize + PREFETCH_AHEAD) else {
+            return;
+        };
+        for &v in &t.vertices {
+            if let Some(v) = self.vertices.get(v as usize) {
+                vector::prefetch(v);
+            }
+        }
+        let (x, y) = (t.depth.origin_x, t.depth.origin_y);
+        let rect = self.target.rect();
+        if rect.contains(x, y) {
+            let idx = self.target.index(x as u32, y as u32);
+            vector::prefetch(&self.target.depth[idx]);
+            vector::prefetch(&self.target.color[idx]);
         }
     }
 
@@ -404,12 +440,14 @@ impl Sample<3> {
 
 impl FragmentSink for FragmentStage<'_> {
     fn triangle_fragment(&mut self, f: &TriangleFragment) {
+        self.prefetch_ahead(f.triangle);
         if let Some(t) = self.triangle(f.triangle) {
             self.triangle_sample(t, f);
         }
     }
 
     fn triangle_span(&mut self, span: &TriangleSpan) {
+        self.prefetch_ahead(span.triangle);
         let Some(t) = self.triangle(span.triangle) else {
             return;
         };

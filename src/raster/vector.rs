@@ -76,6 +76,23 @@ unsafe fn avx2<K: Kernel>(kernel: K) -> K::Output {
     kernel.run()
 }
 
+/// Asks the CPU to bring the cache line holding `value` into the cache,
+/// so that a load of it soon after does not wait for memory. Only a hint:
+/// it reads nothing and changes nothing the program can see.
+#[inline(always)]
+pub(crate) fn prefetch<T>(value: &T) {
+    // SAFETY: SSE, which `_mm_prefetch` needs, is part of baseline x86-64;
+    // a prefetch does not access memory as far as the program can tell, and
+    // the address is that of a live reference besides.
+    #[cfg(target_arch = "x86_64")]
+    unsafe {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast::<i8>());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
+}
+
 /// The widest copy the tests allow.
 #[cfg(not(test))]
 #[inline(always)]
