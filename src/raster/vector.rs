@@ -16,10 +16,15 @@
 //! AVX-512 (sixteen `f32`) was tried as a third copy and measured no
 //! faster on the fills; it is left out.
 //!
+//! It also has [`prefetch`], the hint that brings a cache line in ahead of
+//! its use.
+//!
 //! This module is the crate's only unsafe code: calling a function compiled
 //! for AVX2 is unsafe because running it on a CPU without AVX2 would
 //! fault. [`run`] calls one only after the CPU said it has the
-//! features.
+//! features. The prefetch intrinsic is unsafe as every `std::arch` call
+//! taking a pointer is, though it reads nothing; [`prefetch`] takes a
+//! reference.
 #![allow(unsafe_code)]
 
 /// The vector widths a loop is compiled for, narrowest first.
