@@ -177,6 +177,9 @@ impl RenderTarget {
     /// Opaque black: the default clear colour.
     pub const BLACK: [u8; 4] = [0, 0, 0, 255];
 
+    /// The depth a cleared depth buffer holds: the far plane.
+    pub const FAR_DEPTH: f32 = 1.0;
+
     /// A cleared target: colour opaque black, depth 1.0, coverage 0.
     ///
     /// Errors on a zero side or a side over [`MAX_TARGET_SIDE`].
@@ -187,7 +190,7 @@ impl RenderTarget {
             width,
             height,
             color: vec![Self::BLACK; n],
-            depth: vec![1.0; n],
+            depth: vec![Self::FAR_DEPTH; n],
             coverage: vec![0; n],
         })
     }
@@ -253,7 +256,7 @@ impl RenderTarget {
     /// Resets depth to 1.0 and coverage to 0 (colour is kept), on rayon's
     /// threads.
     pub fn clear_depth_and_coverage(&mut self) {
-        fill_in_parallel(&mut self.depth, 1.0);
+        fill_in_parallel(&mut self.depth, Self::FAR_DEPTH);
         fill_in_parallel(&mut self.coverage, 0);
     }
 
@@ -506,7 +509,7 @@ impl<'a> TargetRows<'a> {
             self.color[pixels.clone()].fill(color);
         }
         if self.clear.depth_and_coverage {
-            self.depth[pixels.clone()].fill(1.0);
+            self.depth[pixels.clone()].fill(RenderTarget::FAR_DEPTH);
             if let Some(coverage) = self.coverage.get_mut(pixels) {
                 coverage.fill(0);
             }

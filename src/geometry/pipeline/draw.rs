@@ -29,8 +29,9 @@
 //! pixels wide), each band walking every triangle: large triangles over
 //! one another are then drawn while the band is in the cache, instead of
 //! each sweeping the whole buffers (four full-screen layers: 8.1 and 7.6
-//! ms a frame triangle by triangle, 5.9 and 5.6 ms band by band). The number of threads
-//! is rayon's: all cores by default,
+//! ms a frame triangle by triangle, 5.9 and 5.6 ms band by band).
+//!
+//! The number of threads is rayon's: all cores by default,
 //! `RAYON_NUM_THREADS` or a pool installed by the caller (`--threads N` on
 //! the command line). Work counters are summed over bands, so a triangle
 //! met by three bands counts three primitives.
