@@ -4,9 +4,12 @@
 //!   terms (decision variables, edge values, active edges, blocks);
 //! * [`grid_picture`]: zoomed pictures of the pixel grid and fill-rule
 //!   heat maps;
+//! * [`palette`]: the one colour-blind safe palette every picture, page
+//!   and legend uses, and the legends themselves;
 //! * [`report`]: the side-by-side HTML comparison of every back-end on
 //!   one input (images, differences, work and time).
 
 pub mod grid_picture;
+pub mod palette;
 pub mod report;
 pub mod trace;
