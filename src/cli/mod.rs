@@ -1,10 +1,37 @@
-//! Command-line parsing and dispatch.
+//! Command-line parsing and dispatch: one file per subcommand, each a clap
+//! `Args` and a few lines that call one library function and print what it
+//! returns.
 
 use clap::{Parser, Subcommand};
 use rasterlab::{Error, Result};
 use std::process::ExitCode;
 
-mod commands;
+/// Prints a line on standard output; a closed or full output is an
+/// [`Error::Write`], not a panic.
+macro_rules! say {
+    ($($arg:tt)*) => {
+        writeln!(std::io::stdout().lock(), $($arg)*).map_err($crate::cli::print::stdout_error)
+    };
+}
+
+/// Prints text on standard output, as [`say!`] without the newline.
+macro_rules! say_raw {
+    ($($arg:tt)*) => {
+        write!(std::io::stdout().lock(), $($arg)*).map_err($crate::cli::print::stdout_error)
+    };
+}
+
+mod args;
+mod backends;
+mod bench;
+mod check;
+mod compare;
+mod demo;
+mod explain;
+mod fragments;
+mod lab;
+mod print;
+mod render;
 
 /// Compare rasterization algorithms: exact back-ends on one shared fragment stage.
 #[derive(Parser, Debug)]
@@ -23,38 +50,47 @@ enum Command {
     /// List every back-end as `NAME KIND DESCRIPTION`, one per line.
     Backends,
     /// Print the fragments a back-end emits for a triangle soup, one `x y t` per line.
-    Fragments(commands::FragmentsArgs),
+    Fragments(fragments::FragmentsArgs),
     /// Render a triangle soup or a built-in scene to a PNG file.
-    Render(commands::RenderArgs),
+    Render(render::RenderArgs),
     /// Trace one algorithm step by step on a small input, in the course's terms; --picture draws its grid.
-    Explain(commands::ExplainArgs),
+    Explain(explain::ExplainArgs),
     /// Run every back-end on one input and write a side-by-side HTML report.
-    Compare(commands::CompareArgs),
+    Compare(compare::CompareArgs),
     /// Render the bundled scenes with every back-end and check the images are identical.
-    Demo(commands::DemoArgs),
+    Demo(demo::DemoArgs),
     /// Time every back-end on the same workloads: table, JSON and bar chart.
-    Bench(commands::BenchArgs),
+    Bench(bench::BenchArgs),
     /// Check a rasterizer (another program, or a back-end) against the
     /// rules on generated cases; a failure is shrunk to a counterexample.
-    Check(commands::CheckArgs),
+    Check(check::CheckArgs),
     /// Serve the interactive lab on 127.0.0.1: drag vertices, watch every
     /// back-end's pixels, traces, heat maps and depth buffer update.
-    Lab(commands::LabArgs),
+    Lab(lab::LabArgs),
 }
 
 /// Runs the command line; errors are printed to stderr.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // Help and version are printed as they are; a usage error, like
+        // every other error, starts with `rasterlab: error:`.
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            eprint!("rasterlab: {}", e.render());
+            return ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2));
+        }
+    };
     let run = || match &cli.command {
-        Command::Backends => commands::backends(),
-        Command::Fragments(args) => commands::fragments(args),
-        Command::Render(args) => commands::render(args),
-        Command::Demo(args) => commands::demo(args),
-        Command::Explain(args) => commands::explain(args),
-        Command::Compare(args) => commands::compare(args),
-        Command::Bench(args) => commands::bench(args),
-        Command::Check(args) => commands::check(args),
-        Command::Lab(args) => commands::lab(args),
+        Command::Backends => backends::run(),
+        Command::Fragments(args) => fragments::run(args),
+        Command::Render(args) => render::run(args),
+        Command::Demo(args) => demo::run(args),
+        Command::Explain(args) => explain::run(args),
+        Command::Compare(args) => compare::run(args),
+        Command::Bench(args) => bench::run(args),
+        Command::Check(args) => check::run(args),
+        Command::Lab(args) => lab::run(args),
     };
     let result = match cli.threads {
         None => run(),

@@ -8,9 +8,11 @@
 //! * [`polygon`]: simple polygons with holes and their spade triangulation;
 //! * [`input`]: the text inputs of the command line (triangle soups,
 //!   polygons, line sets);
-//! * [`scene`]: small 2D scenes of screen-space triangles.
+//! * [`scene`]: small 2D scenes of screen-space triangles;
+//! * [`listing`]: the fragments a back-end emits for a text file's shapes.
 
 pub mod input;
+pub mod listing;
 pub mod mesh;
 pub mod pipeline;
 pub mod polygon;

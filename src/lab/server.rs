@@ -12,18 +12,42 @@
 
 use super::{answer, LabRequest, MAX_REQUEST_BYTES};
 use crate::check::Program;
+use crate::error::{Error, Result};
 use std::io::Read;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 use tiny_http::{Header, Method, Request, Response, Server};
 
-/// Serves until `stop` is set (checked a few times a second).
-pub fn serve(server: &Server, mut program: Option<Program>, stop: &AtomicBool) {
-    while !stop.load(Ordering::Relaxed) {
-        match server.recv_timeout(Duration::from_millis(200)) {
-            Ok(Some(request)) => handle(request, program.as_mut()),
-            Ok(None) => {}
-            Err(_) => break,
+/// The lab's server, listening on 127.0.0.1 only.
+pub struct LabServer {
+    server: Server,
+    port: u16,
+}
+
+impl LabServer {
+    /// Listens on 127.0.0.1:`port` (0: any free port).
+    pub fn bind(port: u16) -> Result<LabServer> {
+        let server = Server::http(("127.0.0.1", port)).map_err(|e| {
+            Error::InvalidArgument(format!("cannot listen on 127.0.0.1:{port}: {e}"))
+        })?;
+        let port = server.server_addr().to_ip().map_or(port, |a| a.port());
+        Ok(LabServer { server, port })
+    }
+
+    /// The port it listens on.
+    pub fn port(&self) -> u16 {
+        self.port
+    }
+
+    /// Serves until `stop` is set (checked a few times a second), with
+    /// `program` (a student's rasterizer) overlaid when given.
+    pub fn serve(&self, mut program: Option<Program>, stop: &AtomicBool) {
+        while !stop.load(Ordering::Relaxed) {
+            match self.server.recv_timeout(Duration::from_millis(200)) {
+                Ok(Some(request)) => handle(request, program.as_mut()),
+                Ok(None) => {}
+                Err(_) => break,
+            }
         }
     }
 }

@@ -94,6 +94,15 @@ pub enum Backend {
     Line(&'static dyn LineRasterizer),
 }
 
+impl fmt::Debug for Backend {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Backend::Triangle(b) => write!(f, "Triangle({})", b.name()),
+            Backend::Line(b) => write!(f, "Line({})", b.name()),
+        }
+    }
+}
+
 /// The back-end of either kind called `name`.
 pub fn backend(name: &str) -> Result<Backend> {
     triangle_backend(name)

@@ -7,8 +7,15 @@
 //! * [`palette`]: the one colour-blind safe palette every picture, page
 //!   and legend uses, and the legends themselves;
 //! * [`report`]: the side-by-side HTML comparison of every back-end on
-//!   one input (images, differences, work and time).
+//!   one input (images, differences, work and time);
+//! * [`compare`]: the `compare` command: an input file, every back-end, the report;
+//! * [`explain`]: one algorithm traced on a small input, as `explain` prints it;
+//! * [`demo`]: every back-end on the bundled scenes and meshes, its
+//!   images compared with the reference's.
 
+pub mod compare;
+pub mod demo;
+pub mod explain;
 pub mod grid_picture;
 pub mod palette;
 pub mod report;

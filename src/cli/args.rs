@@ -1,0 +1,66 @@
+//! Argument types several subcommands share.
+
+use clap::Args;
+use rasterlab::raster::line::{Connectivity, Endpoints};
+use rasterlab::LineOptions;
+
+/// A `WxH` size.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Size {
+    pub width: u32,
+    pub height: u32,
+}
+
+impl std::str::FromStr for Size {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let (w, h) = s
+            .split_once(['x', 'X'])
+            .ok_or_else(|| format!("`{s}` is not a size like 640x480"))?;
+        let parse = |v: &str| {
+            v.trim()
+                .parse::<u32>()
+                .map_err(|_| format!("`{s}` is not a size like 640x480"))
+        };
+        Ok(Size {
+            width: parse(w)?,
+            height: parse(h)?,
+        })
+    }
+}
+
+/// Options of the line back-ends.
+#[derive(Args, Debug)]
+pub struct LineArgs {
+    /// Line connectivity: 8 or 4.
+    #[arg(long, default_value = "8")]
+    connectivity: Connectivity,
+    /// Line endpoints: inclusive or half-open.
+    #[arg(long, default_value = "inclusive")]
+    endpoints: Endpoints,
+    /// Draw lines so the pixels do not depend on the direction of travel.
+    #[arg(long)]
+    symmetric: bool,
+}
+
+impl LineArgs {
+    /// The options given.
+    pub fn options(&self) -> LineOptions {
+        LineOptions {
+            connectivity: self.connectivity,
+            endpoints: self.endpoints,
+            symmetric: self.symmetric,
+        }
+    }
+}
+
+/// More timed runs than this add nothing to a median.
+const MAX_SAMPLES: usize = 1000;
+
+/// `--samples`: timed runs of one measurement, 1 to [`MAX_SAMPLES`].
+pub fn samples(s: &str) -> Result<usize, String> {
+    s.parse::<usize>()
+        .ok()
+        .filter(|n| (1..=MAX_SAMPLES).contains(n))
+        .ok_or_else(|| format!("--samples must be between 1 and {MAX_SAMPLES}, not {s}"))
+}

@@ -1,0 +1,67 @@
+//! `rasterlab bench`: every back-end timed on the same workloads.
+
+use super::args::Size;
+use super::print::progress_bar;
+use clap::Args;
+use rasterlab::Result;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Workload set: quick (seconds) or full (the `cargo bench` sizes).
+    #[arg(long, default_value = "quick")]
+    set: rasterlab::measure::benchmark::WorkloadSet,
+    /// Target size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1920x1080")]
+    size: Size,
+    /// Timed runs per back-end and workload (the median is reported).
+    #[arg(long, default_value = "5", value_parser = super::args::samples)]
+    samples: usize,
+    /// Meshes to render (default: the bundled dragon).
+    #[arg(long = "mesh")]
+    meshes: Vec<PathBuf>,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// Directory for bench.json, bench.png and bench.svg.
+    #[arg(long, default_value = "bench-output")]
+    out: PathBuf,
+}
+
+pub fn run(args: &BenchArgs) -> Result<()> {
+    use rasterlab::measure::benchmark::{self, BenchOptions};
+    rasterlab::output::check_dir(&args.out)?;
+    let meshes = if args.meshes.is_empty() {
+        vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/dragon_vrip_res4.ply.gz")]
+    } else {
+        args.meshes.clone()
+    };
+    let options = BenchOptions {
+        set: args.set,
+        width: args.size.width,
+        height: args.size.height,
+        samples: args.samples,
+        meshes,
+    };
+    let bar = progress_bar(0, "");
+    let results = benchmark::run(&options, &mut |p| {
+        bar.set_length(p.total as u64);
+        bar.set_position(p.done as u64);
+        bar.set_message(p.pair.to_string());
+    });
+    bar.finish_and_clear();
+    let results = results?;
+    if args.json {
+        say!("{}", benchmark::to_json(&results))?;
+    } else {
+        say_raw!("{}", benchmark::table(&results))?;
+    }
+    benchmark::write_outputs(&results, &args.out)?;
+    eprintln!(
+        "threads: {}; wrote bench.json, bench.png, bench.svg in {}",
+        rayon::current_num_threads(),
+        args.out.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,58 @@
+//! `rasterlab explain`: one algorithm traced step by step, and its grid picture.
+
+use super::args::Size;
+use clap::Args;
+use rasterlab::teaching::explain::{explain, ExplainRequest};
+use rasterlab::teaching::grid_picture::GridPicture;
+use rasterlab::{FillRule, Result};
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct ExplainArgs {
+    /// What to trace: bresenham, direct, dda, wu, diamond (a line: x0 y0
+    /// x1 y1, pixel indices unless --screen); bbox, naive, scanline,
+    /// incremental, tiled (a triangle: x0 y0 x1 y1 x2 y2, in screen
+    /// coordinates); depth-buffer (triangles of 7
+    /// numbers each, x0 y0 x1 y1 x2 y2 z, or none for the course's
+    /// depth-buffer example). Any other back-end: --picture only.
+    #[arg(long)]
+    backend: String,
+    /// Fill rule for triangles.
+    #[arg(long, default_value = "top-left")]
+    rule: FillRule,
+    /// Grid size, `WxH` (16x16 for one triangle, 14x9 for the course's
+    /// depth-buffer example).
+    #[arg(long)]
+    size: Option<Size>,
+    /// Read line endpoints as screen coordinates, as `rasterlab fragments`
+    /// and files do (`0.5 0.5 7.5 3.5`), instead of pixel indices whose
+    /// centres the line joins (`0 0 7 3`, the course's convention).
+    #[arg(long)]
+    screen: bool,
+    /// Also write a zoomed grid picture of the same input (`.svg` or
+    /// `.png`): the pixels tested and the fragments emitted.
+    #[arg(long)]
+    picture: Option<PathBuf>,
+    /// The coordinates.
+    #[arg(allow_negative_numbers = true)]
+    coordinates: Vec<f64>,
+}
+
+pub fn run(args: &ExplainArgs) -> Result<()> {
+    if let Some(path) = &args.picture {
+        rasterlab::output::check_file(path, &GridPicture::EXTENSIONS)?;
+    }
+    let explanation = explain(&ExplainRequest {
+        backend: args.backend.clone(),
+        rule: args.rule,
+        size: args.size.map(|s| (s.width, s.height)),
+        screen: args.screen,
+        coordinates: args.coordinates.clone(),
+        picture: args.picture.is_some(),
+    })?;
+    if let (Some(path), Some(picture)) = (&args.picture, &explanation.picture) {
+        picture.save(path)?;
+        eprintln!("picture: {}", path.display());
+    }
+    super::print::out(explanation.text)
+}

@@ -1,0 +1,134 @@
+//! The fragments a back-end emits for the shapes of a text file, as
+//! `rasterlab fragments` prints them: one `x y t` line per fragment (the
+//! pixel and the primitive's index), with the coverage after them for an
+//! anti-aliased line back-end.
+//!
+//! ```
+//! use rasterlab::geometry::input::parse_shapes;
+//! use rasterlab::geometry::listing::{list_fragments, FragmentsRequest};
+//! use rasterlab::{backend, FillRule, LineOptions};
+//! use std::path::Path;
+//!
+//! let shapes = parse_shapes("0 0 2 0 0 2\n", Path::new("one.txt")).unwrap();
+//! let request = FragmentsRequest {
+//!     backend: backend("scanline").unwrap(),
+//!     file: Path::new("one.txt"),
+//!     width: 4,
+//!     height: 4,
+//!     rule: FillRule::TopLeft,
+//!     line: LineOptions::DEFAULT,
+//! };
+//! let listing = list_fragments(&request, &shapes).unwrap();
+//! assert_eq!(listing.to_string(), "0 0 0\n1 0 0\n0 1 0\n");
+//! ```
+
+use crate::error::{Error, Result};
+use crate::geometry::input::{read_shapes, Shapes};
+use crate::geometry::scene::setup_triangles;
+use crate::raster::backend::Backend;
+use crate::raster::edge::{FillRule, PixelRect};
+use crate::raster::fragment::FragmentList;
+use crate::raster::line::{LineOptions, LineSetup};
+use crate::raster::target::RenderTarget;
+use std::fmt;
+use std::path::Path;
+
+/// What to list: a back-end, the file of shapes it draws, and how.
+#[derive(Clone, Copy)]
+pub struct FragmentsRequest<'a> {
+    /// The back-end; it must draw the kind of shape the file holds.
+    pub backend: Backend,
+    /// The triangle soup or line set (see [`crate::geometry::input`]).
+    pub file: &'a Path,
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+    /// Fill rule (triangles).
+    pub rule: FillRule,
+    /// Line options (lines).
+    pub line: LineOptions,
+}
+
+/// The fragments of one request, in emission order.
+#[derive(Clone, Debug, Default)]
+pub struct FragmentListing {
+    /// The fragments.
+    pub fragments: FragmentList,
+    /// Whether line fragments carry a coverage weight (an anti-aliased back-end).
+    pub weighted: bool,
+}
+
+/// Checks the request, reads its file, draws the shapes with its back-end
+/// and lists the fragments.
+pub fn list_fragments_in_file(request: &FragmentsRequest<'_>) -> Result<FragmentListing> {
+    check(request)?;
+    list_fragments(request, &read_shapes(request.file)?)
+}
+
+/// Draws `shapes` (read from the request's file) with the request's
+/// back-end and lists the fragments.
+pub fn list_fragments(request: &FragmentsRequest<'_>, shapes: &Shapes) -> Result<FragmentListing> {
+    check(request)?;
+    let viewport = PixelRect::of_target(request.width, request.height);
+    let mut listing = FragmentListing::default();
+    let sink = &mut listing.fragments;
+    match (request.backend, shapes) {
+        (Backend::Triangle(b), Shapes::Triangles { triangles, .. }) => {
+            b.rasterize(&setup_triangles(triangles, request.rule), viewport, sink);
+        }
+        (Backend::Line(b), Shapes::Lines { segments, .. }) => {
+            let setups = LineSetup::numbered(segments);
+            b.rasterize(&setups, &request.line, viewport, sink);
+            listing.weighted = b.anti_aliased();
+        }
+        (Backend::Triangle(b), Shapes::Lines { .. }) => {
+            return Err(kind_mismatch(
+                request.file,
+                b.name(),
+                "triangles",
+                "line segments",
+            ))
+        }
+        (Backend::Line(b), Shapes::Triangles { .. }) => {
+            return Err(kind_mismatch(
+                request.file,
+                b.name(),
+                "line segments",
+                "triangles",
+            ))
+        }
+    }
+    Ok(listing)
+}
+
+/// The options suit the back-end and the target size is drawable.
+fn check(request: &FragmentsRequest<'_>) -> Result<()> {
+    if let Backend::Line(b) = request.backend {
+        b.check_options(&request.line)?;
+    }
+    RenderTarget::check_size(request.width, request.height)
+}
+
+fn kind_mismatch(file: &Path, name: &str, draws: &str, holds: &str) -> Error {
+    Error::InvalidArgument(format!(
+        "{}: back-end `{name}` draws {draws}, but the file holds {holds}",
+        file.display()
+    ))
+}
+
+impl fmt::Display for FragmentListing {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for t in &self.fragments.triangles {
+            writeln!(f, "{} {} {}", t.x, t.y, t.triangle)?;
+        }
+        for l in &self.fragments.lines {
+            if self.weighted {
+                writeln!(f, "{} {} {} {:.4}", l.x, l.y, l.line, l.coverage)?;
+            } else {
+                writeln!(f, "{} {} {}", l.x, l.y, l.line)?;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,98 @@
+//! `compare`: every back-end on one input file, as a self-contained HTML
+//! report (see [`Report`]) and a table of their work and time.
+//!
+//! ```no_run
+//! use rasterlab::teaching::compare::{compare, CompareRequest};
+//! use std::path::Path;
+//!
+//! let summary = compare(&CompareRequest {
+//!     input: Path::new("assets/polygon.txt"),
+//!     width: 64,
+//!     height: 64,
+//!     samples: 3,
+//!     out: Path::new("compare-output"),
+//! })
+//! .unwrap();
+//! print!("{summary}");
+//! ```
+
+use crate::error::Result;
+use crate::geometry::input::{read_shapes, Shapes};
+use crate::geometry::mesh::Mesh;
+use crate::geometry::scene::Scene2D;
+use crate::raster::line::LineSetup;
+use crate::teaching::report::{CompareInput, Report};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// What to compare, and where the report goes.
+#[derive(Clone, Copy, Debug)]
+pub struct CompareRequest<'a> {
+    /// A triangle soup or polygon file, a line set file, or a mesh.
+    pub input: &'a Path,
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+    /// Timed runs per back-end (the median is reported).
+    pub samples: usize,
+    /// The folder the report (`index.html`) is written to.
+    pub out: &'a Path,
+}
+
+/// The comparison, and where its report was written.
+pub struct CompareSummary {
+    /// The comparison.
+    pub report: Report,
+    /// The report's HTML file.
+    pub path: PathBuf,
+}
+
+/// Reads the input, runs every back-end on it, and writes the report.
+pub fn compare(request: &CompareRequest<'_>) -> Result<CompareSummary> {
+    let (width, height) = (request.width, request.height);
+    Report::check_memory(width, height)?;
+    crate::output::check_dir(request.out)?;
+    let input = load(request.input, width, height)?;
+    let report = Report::compare(&input, width, height, request.samples)?;
+    let path = report.write(request.out)?;
+    Ok(CompareSummary { report, path })
+}
+
+/// A mesh (by its extension), a triangle soup or polygon file, or a line set.
+fn load(path: &Path, width: u32, height: u32) -> Result<CompareInput> {
+    if Mesh::is_mesh_path(path) {
+        return Ok(CompareInput::Mesh(Box::new(Mesh::load(path)?)));
+    }
+    Ok(match read_shapes(path)? {
+        Shapes::Triangles { triangles, .. } => {
+            CompareInput::Triangles(Scene2D::from_triangles(width, height, triangles))
+        }
+        Shapes::Lines { segments, .. } => CompareInput::Lines(LineSetup::numbered(&segments)),
+    })
+}
+
+impl fmt::Display for CompareSummary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let report = &self.report;
+        writeln!(f, "reference: {}", report.reference_note)?;
+        writeln!(
+            f,
+            "{:<12} {:>10} {:>10} {:>9} {:>10}  differing pixels vs {}",
+            "back-end", "fragments", "tested", "tests/frag", "time", report.reference
+        )?;
+        for run in &report.runs {
+            writeln!(
+                f,
+                "{:<12} {:>10} {:>10} {:>9} {:>8.3}ms  {}",
+                run.name,
+                run.work.fragments,
+                run.work.samples_tested,
+                run.tests_per_fragment_text(),
+                run.time.as_secs_f64() * 1e3,
+                run.differing_pixels
+            )?;
+        }
+        writeln!(f, "report: {}", self.path.display())
+    }
+}

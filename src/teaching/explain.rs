@@ -1,0 +1,164 @@
+//! `explain`: one algorithm traced step by step on a small input, and its
+//! grid picture. The input is given as numbers, as a student types them:
+//! a line's two ends (pixel indices whose centres it joins, the course's
+//! convention, or screen coordinates), a triangle's three corners in
+//! screen coordinates, or triangles with a depth each for the course's
+//! depth-buffer example.
+//!
+//! ```
+//! use rasterlab::teaching::explain::{explain, ExplainRequest};
+//!
+//! let request = ExplainRequest::new("bresenham", vec![0.0, 0.0, 7.0, 3.0]);
+//! let explanation = explain(&request).unwrap();
+//! assert!(explanation.text.contains("bresenham"));
+//! ```
+
+use crate::error::{Error, Result};
+use crate::geometry::scene::Scene2D;
+use crate::raster::backend::{all_backends, backend, triangle_backend, Backend};
+use crate::raster::edge::FillRule;
+use crate::raster::line::LineOptions;
+use crate::raster::target::RenderTarget;
+use crate::teaching::grid_picture::GridPicture;
+use crate::teaching::trace::{self, LineEnds};
+
+/// The name that asks for the depth buffer's trace instead of a back-end's.
+pub const DEPTH_BUFFER: &str = "depth-buffer";
+
+/// The grid `explain` draws on unless told otherwise.
+pub const DEFAULT_GRID: (u32, u32) = (16, 16);
+
+/// What to explain.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExplainRequest {
+    /// A back-end's name, or [`DEPTH_BUFFER`].
+    pub backend: String,
+    /// The fill rule for triangles.
+    pub rule: FillRule,
+    /// The grid size; [`DEFAULT_GRID`] (or the course example's own size) when `None`.
+    pub size: Option<(u32, u32)>,
+    /// Line ends are screen coordinates (`0.5 0.5 7.5 3.5`) rather than
+    /// pixel indices whose centres the line joins (`0 0 7 3`).
+    pub screen: bool,
+    /// The numbers: 4 for a line, 6 for a triangle, 7 per triangle (or
+    /// none, the course's example) for the depth buffer.
+    pub coordinates: Vec<f64>,
+    /// Also draw the grid picture.
+    pub picture: bool,
+}
+
+impl ExplainRequest {
+    /// A request for `backend` on `coordinates`, under the top-left rule,
+    /// on the default grid, without a picture.
+    pub fn new(backend: &str, coordinates: Vec<f64>) -> ExplainRequest {
+        ExplainRequest {
+            backend: backend.to_string(),
+            rule: FillRule::TopLeft,
+            size: None,
+            screen: false,
+            coordinates,
+            picture: false,
+        }
+    }
+
+    fn size(&self, default: (u32, u32)) -> Result<(u32, u32)> {
+        let (w, h) = self.size.unwrap_or(default);
+        RenderTarget::check_size(w, h)?;
+        Ok((w, h))
+    }
+
+    fn want(&self, n: usize, what: &str) -> Result<()> {
+        let got = self.coordinates.len();
+        if got == n {
+            Ok(())
+        } else {
+            Err(Error::InvalidArgument(format!(
+                "{} traces {what}: give {n} numbers, not {got}",
+                self.backend
+            )))
+        }
+    }
+
+    fn triangle(&self) -> Result<[(f64, f64); 3]> {
+        self.want(6, "a triangle")?;
+        let c = &self.coordinates;
+        Ok([(c[0], c[1]), (c[2], c[3]), (c[4], c[5])])
+    }
+
+    fn line(&self) -> Result<LineEnds> {
+        self.want(4, "a line")?;
+        let c = &self.coordinates;
+        let numbers = [c[0], c[1], c[2], c[3]];
+        if self.screen {
+            LineEnds::screen(numbers)
+        } else {
+            LineEnds::pixels(numbers)
+        }
+    }
+
+    /// The depth-buffer input: the course's example, or triangles of seven
+    /// numbers each.
+    fn depth_scene(&self) -> Result<Scene2D> {
+        if self.coordinates.is_empty() {
+            let mut scene = Scene2D::depth_example(true);
+            (scene.width, scene.height) = self.size((scene.width, scene.height))?;
+            return Ok(scene);
+        }
+        let (width, height) = self.size(DEFAULT_GRID)?;
+        Scene2D::with_depths(width, height, &self.coordinates)
+    }
+}
+
+/// A trace, and the grid picture when one was asked for.
+pub struct Explanation {
+    /// The step-by-step trace, as text.
+    pub text: String,
+    /// The grid picture of the same input.
+    pub picture: Option<GridPicture>,
+}
+
+/// Traces the request's algorithm on its input.
+pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
+    let rule = request.rule;
+    if request.backend == DEPTH_BUFFER {
+        let scene = request.depth_scene()?;
+        let text = trace::depth_buffer_trace(&scene, triangle_backend("bbox")?, rule)?;
+        let picture = request
+            .picture
+            .then(|| GridPicture::depth_buffer(&scene, rule))
+            .transpose()?;
+        return Ok(Explanation { text, picture });
+    }
+    let chosen = backend(&request.backend).map_err(|_| Error::UnknownName {
+        what: "rasterizer back-end",
+        name: request.backend.clone(),
+        known: all_backends()
+            .iter()
+            .map(|b| b.name)
+            .collect::<Vec<_>>()
+            .join(", ")
+            + "; or depth-buffer, the depth buffer's trace",
+    })?;
+    let (width, height) = request.size(DEFAULT_GRID)?;
+    let (text, picture) = match chosen {
+        Backend::Triangle(b) => {
+            let triangle = request.triangle()?;
+            let text = trace::of_triangle_backend(b, triangle, rule, width, height)?;
+            let picture = request
+                .picture
+                .then(|| GridPicture::of_triangles(b, &[triangle], rule, width, height))
+                .transpose()?;
+            (text, picture)
+        }
+        Backend::Line(b) => {
+            let line = request.line()?;
+            let text = trace::of_line_backend(b, &line)?;
+            let picture = request
+                .picture
+                .then(|| GridPicture::of_lines(b, &[line], &LineOptions::DEFAULT, width, height))
+                .transpose()?;
+            (text, picture)
+        }
+    };
+    Ok(Explanation { text, picture })
+}
