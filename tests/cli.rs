@@ -267,12 +267,12 @@ fn bench_prints_a_table_and_writes_json_and_charts() {
         dir.to_str().unwrap(),
     ]);
     let printed: serde_json::Value = serde_json::from_str(&success_stdout(out)).unwrap();
-    let rows = printed.as_array().unwrap();
+    let rows = printed["results"].as_array().unwrap();
     assert!(rows.iter().any(|r| r["backend"] == "fast-bresenham"));
     assert!(rows.iter().any(|r| r["workload"] == "dragon_vrip_res4"));
     let written: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("bench.json")).unwrap()).unwrap();
-    assert_eq!(written.as_array().unwrap().len(), rows.len());
+    assert_eq!(written["results"].as_array().unwrap().len(), rows.len());
     assert!(image::open(dir.join("bench.png")).is_ok());
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,24 +1,37 @@
 //! `rasterlab bench`: every back-end on the same workloads, timed in one
-//! run, with a table, JSON and a bar chart.
+//! run, with a table, JSON and a bar chart, and the context that makes the
+//! figures readable (commit, machine, load, threads, samples, size).
 //!
 //! Each (workload, back-end) pair is run `samples` times after one warm-up
-//! run, and the **median** time is kept (the machine is shared and noisy;
-//! the median ignores the odd slow run). From it: millions of primitives
-//! per second, billions of pixels per second, and the ratio to the slowest
-//! back-end on that workload. For published crates side by side, and
-//! confidence intervals, `cargo bench --bench side_by_side` runs the same
-//! workloads under criterion.
+//! run; its figure is the **median** time, shown with the minimum and
+//! maximum beside it (the machine is shared and noisy: the spread says how
+//! far a figure can be trusted, and two back-ends whose spreads overlap
+//! are not ranked), and the CPU time its threads got per run with the time
+//! they waited for a core ([`crate::measure::cpu`]). From the median: a
+//! throughput in the workload's own unit (pixels for the fills, triangle
+//! sizes and slivers, triangles for meshes, lines for lines), and the ratio
+//! to the **fastest** back-end on that workload, the baseline of both the
+//! table and the chart. For published crates side by side, rounds
+//! interleaved, `cargo bench --bench side_by_side`.
 
 use crate::error::Result;
 use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::CullMode;
 use crate::geometry::render::{MeshRenderer, RenderSettings};
+use crate::measure::context::Context;
+use crate::measure::cpu::CpuUse;
+use crate::measure::table::Table;
+use crate::measure::timing::{significant, time_runs, Spread, Timing};
 use crate::measure::workload::{self, LineWorkload};
 use crate::raster::backend::{line_backends, triangle_backends};
 use crate::raster::target::RenderTarget;
 use serde::Serialize;
+use std::fmt;
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+/// What the ratio column and the chart's bars compare with.
+pub const BASELINE: &str = "the fastest back-end on the same workload";
 
 /// One measured (workload, back-end) pair.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -27,18 +40,42 @@ pub struct Measurement {
     pub workload: String,
     /// Back-end name.
     pub backend: String,
+    /// Threads it drew on.
+    pub threads: usize,
     /// Primitives (triangles or lines) per run.
     pub primitives: u64,
     /// Pixels written per run.
     pub pixels: u64,
-    /// Median time of one run, in milliseconds.
+    /// Wall time of the timed runs: minimum, median, maximum.
+    pub spread: Spread,
+    /// Median time of one run, in milliseconds (`spread.median_ms`).
     pub median_ms: f64,
-    /// Millions of primitives per second.
-    pub mprims_per_s: f64,
-    /// Billions of pixels per second.
+    /// Throughput at the median time, in [`unit`](Self::unit).
+    pub rate: f64,
+    /// The throughput's unit, chosen per workload: `Gpix/s` (fills),
+    /// `Mpix/s` (triangle sizes, slivers), `Mtri/s` (meshes) or
+    /// `Mlines/s`.
+    pub unit: String,
+    /// Billions of pixels per second at the median time.
     pub gpixels_per_s: f64,
-    /// How many times faster than the slowest back-end on this workload.
-    pub vs_slowest: f64,
+    /// The median time over the fastest back-end's on this workload
+    /// ([`BASELINE`]): 1 for the fastest, 2 for half its speed.
+    pub vs_fastest: f64,
+    /// CPU time per run of each working thread, and time spent waiting
+    /// for a core (`None` where the system does not tell).
+    pub cpu: Option<CpuUse>,
+}
+
+/// A whole `rasterlab bench` run: its context and its figures. Its
+/// `Display` is the table, its JSON the same with every field.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BenchReport {
+    /// Commit, machine, load, threads, samples, target size.
+    pub context: Context,
+    /// What `vs_fastest` and the chart compare with ([`BASELINE`]).
+    pub baseline: String,
+    /// One figure per (workload, back-end).
+    pub results: Vec<Measurement>,
 }
 
 /// Which workloads to run.
@@ -71,17 +108,12 @@ pub struct BenchOptions {
 }
 
 /// The median of `samples` timed runs of `run`, after one warm-up run.
-pub(crate) fn median_time<T>(samples: usize, mut run: impl FnMut() -> T) -> (Duration, T) {
-    let first = run();
-    let mut times: Vec<Duration> = (0..samples.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            std::hint::black_box(run());
-            start.elapsed()
-        })
-        .collect();
-    times.sort_unstable();
-    (times[times.len() / 2], first)
+pub(crate) fn median_time<T>(samples: usize, run: impl FnMut() -> T) -> (Duration, T) {
+    let (timing, first) = time_runs(samples, run);
+    (
+        Duration::from_secs_f64(timing.spread.median_ms / 1e3),
+        first,
+    )
 }
 
 /// What [`run`] reports before timing each (workload, back-end) pair.
@@ -95,28 +127,52 @@ pub struct Progress<'a> {
     pub pair: &'a str,
 }
 
-/// Runs the benchmark; `progress` is called before each pair is timed.
-pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result<Vec<Measurement>> {
+/// The throughput unit of a workload, its scale (items per unit), and
+/// whether it counts pixels (else primitives): the fills in Gpix/s; the
+/// triangle sizes, which all draw about the same pixels, and the slivers
+/// in Mpix/s; meshes in Mtri/s; lines in Mlines/s.
+fn unit_of(workload: &str) -> (&'static str, f64, bool) {
+    if workload.starts_with("fill") {
+        ("Gpix/s", 1e9, true)
+    } else if workload.starts_with("size") || workload.starts_with("sliver") {
+        ("Mpix/s", 1e6, true)
+    } else if workload.starts_with("lines") {
+        ("Mlines/s", 1e6, false)
+    } else {
+        ("Mtri/s", 1e6, false)
+    }
+}
+
+/// Runs the benchmark on the current rayon pool's threads; `progress` is
+/// called before each pair is timed.
+pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result<BenchReport> {
     RenderTarget::check_size(options.width, options.height)?;
     let (w, h) = (options.width, options.height);
+    let threads = rayon::current_num_threads();
+    let mut context = Context::start(threads, options.samples.max(1), w, h);
     let mut results = Vec::new();
     // Colour and depth, as the peers draw: the coverage count is a
     // checking aid that a renderer does not need.
     let mut target = RenderTarget::without_coverage(w, h)?;
-    let mut measure = |workload: &str, backend: &str, prims: u64, time: Duration, pixels: u64| {
-        let s = time.as_secs_f64().max(1e-9);
+    let mut measure = |workload: &str, backend: &str, prims: u64, timing: Timing, pixels: u64| {
+        let s = (timing.spread.median_ms / 1e3).max(1e-12);
+        let (unit, scale, of_pixels) = unit_of(workload);
+        let items = if of_pixels { pixels } else { prims };
         results.push(Measurement {
             workload: workload.to_string(),
             backend: backend.to_string(),
+            threads,
             primitives: prims,
             pixels,
-            median_ms: s * 1e3,
-            mprims_per_s: prims as f64 / s / 1e6,
+            median_ms: timing.spread.median_ms,
+            spread: timing.spread,
+            rate: items as f64 / s / scale,
+            unit: unit.to_string(),
             gpixels_per_s: pixels as f64 / s / 1e9,
-            vs_slowest: 1.0,
+            vs_fastest: 1.0,
+            cpu: timing.cpu,
         });
     };
-
     let mut triangle_workloads = vec![workload::fill(w, h, 1)];
     let (sizes, lines): (&[f32], (usize, usize)) = match options.set {
         WorkloadSet::Quick => (&[4.0, 32.0, 250.0], (100_000, 1_000)),
@@ -173,8 +229,14 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
     for work in &triangle_workloads {
         for b in triangle_backends().iter().filter(|b| work.suits(**b)) {
             step(&work.name, b.name());
-            let (time, pixels) = median_time(options.samples, || work.run(*b, &mut target));
-            measure(&work.name, b.name(), work.triangles() as u64, time, pixels);
+            let (timing, pixels) = time_runs(options.samples, || work.run(*b, &mut target));
+            measure(
+                &work.name,
+                b.name(),
+                work.triangles() as u64,
+                timing,
+                pixels,
+            );
         }
     }
 
@@ -182,13 +244,13 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
         let count = work.lines.len() as u64;
         for b in line_backends() {
             step(&work.name, b.name());
-            let (time, pixels) =
-                median_time(options.samples, || work.run(*b, &mut target).fragments);
-            measure(&work.name, b.name(), count, time, pixels);
+            let (timing, pixels) =
+                time_runs(options.samples, || work.run(*b, &mut target).fragments);
+            measure(&work.name, b.name(), count, timing, pixels);
         }
         step(&work.name, "fast-bresenham");
-        let (time, pixels) = median_time(options.samples, || work.run_fast(&mut target));
-        measure(&work.name, "fast-bresenham", count, time, pixels);
+        let (timing, pixels) = time_runs(options.samples, || work.run_fast(&mut target));
+        measure(&work.name, "fast-bresenham", count, timing, pixels);
     }
 
     for (name, mesh) in &meshes {
@@ -204,7 +266,7 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
         for b in &mesh_backends {
             step(name, b.name());
             let mut error = None;
-            let (time, pixels) = median_time(options.samples, || {
+            let (timing, pixels) = time_runs(options.samples, || {
                 match renderer.render_into(**b, &mut target) {
                     Ok(stats) => stats.work.fragments,
                     Err(e) => {
@@ -216,20 +278,25 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
             if let Some(e) = error {
                 return Err(e);
             }
-            measure(name, b.name(), mesh.triangles.len() as u64, time, pixels);
+            measure(name, b.name(), mesh.triangles.len() as u64, timing, pixels);
         }
     }
 
-    // Ratios to the slowest back-end of each workload.
+    // Ratios to the fastest back-end of each workload.
     for i in 0..results.len() {
-        let slowest = results
+        let fastest = results
             .iter()
             .filter(|m| m.workload == results[i].workload)
             .map(|m| m.median_ms)
-            .fold(0.0, f64::max);
-        results[i].vs_slowest = slowest / results[i].median_ms;
+            .fold(f64::INFINITY, f64::min);
+        results[i].vs_fastest = results[i].median_ms / fastest.max(1e-12);
     }
-    Ok(results)
+    context.finish();
+    Ok(BenchReport {
+        context,
+        baseline: BASELINE.to_string(),
+        results,
+    })
 }
 
 /// A mesh file's name without its extensions.
@@ -240,30 +307,59 @@ fn mesh_name(path: &Path) -> String {
     name.split('.').next().unwrap_or_default().to_string()
 }
 
-/// The results as a plain-text table.
-pub fn table(results: &[Measurement]) -> String {
-    let mut out = format!(
-        "{:<14} {:<16} {:>10} {:>11} {:>9} {:>9} {:>8}\n",
-        "workload", "back-end", "median ms", "Mprim/s", "Gpix/s", "pixels", "x slowest"
-    );
-    for m in results {
-        out += &format!(
-            "{:<14} {:<16} {:>10.3} {:>11.2} {:>9.3} {:>9} {:>8.1}x\n",
-            m.workload,
-            m.backend,
-            m.median_ms,
-            m.mprims_per_s,
-            m.gpixels_per_s,
-            m.pixels,
-            m.vs_slowest
+impl BenchReport {
+    /// The figures as a table with aligned columns: median [min-max] ms,
+    /// throughput, pixels, time over the fastest's, CPU per thread.
+    pub fn table(&self) -> Table {
+        let mut table = Table::with_text_columns(
+            2,
+            &[
+                "workload",
+                "back-end",
+                "ms median [min-max]",
+                "throughput",
+                "pixels",
+                "vs fastest",
+                "cpu ms per thread, waited",
+            ],
         );
+        for m in &self.results {
+            table.row(vec![
+                m.workload.clone(),
+                m.backend.clone(),
+                m.spread.summary(),
+                format!("{} {}", significant(m.rate), m.unit),
+                m.pixels.to_string(),
+                format!("{}x", significant(m.vs_fastest)),
+                m.cpu
+                    .as_ref()
+                    .map_or_else(|| "unknown".to_string(), CpuUse::summary),
+            ]);
+        }
+        table
     }
-    out
 }
 
-/// The results as JSON.
-pub fn to_json(results: &[Measurement]) -> String {
-    serde_json::to_string_pretty(results).expect("measurements serialise")
+impl fmt::Display for BenchReport {
+    /// The context, the table, and what "vs fastest" means.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}{}", self.context, self.table())?;
+        writeln!(
+            f,
+            "vs fastest: the median time over that of {} (1x = fastest; the chart's baseline too)",
+            self.baseline
+        )
+    }
+}
+
+/// The report as a plain-text table, with its context.
+pub fn table(report: &BenchReport) -> String {
+    report.to_string()
+}
+
+/// The report as JSON: the context, the baseline, and every figure.
+pub fn to_json(report: &BenchReport) -> String {
+    serde_json::to_string_pretty(report).expect("measurements serialise")
 }
 
 /// One colour per back-end, in a fixed order.
@@ -304,12 +400,9 @@ fn workload_names(results: &[Measurement]) -> Vec<&str> {
     distinct(results, |m| &m.workload)
 }
 
-/// The measurements of `workload`, and the best Gpix/s among them (the
-/// chart's full bar height).
-fn group<'a>(results: &'a [Measurement], workload: &str) -> (Vec<&'a Measurement>, f64) {
-    let group: Vec<&Measurement> = results.iter().filter(|m| m.workload == workload).collect();
-    let fastest = group.iter().map(|m| m.gpixels_per_s).fold(0.0, f64::max);
-    (group, fastest)
+/// The measurements of `workload`.
+fn group<'a>(results: &'a [Measurement], workload: &str) -> Vec<&'a Measurement> {
+    results.iter().filter(|m| m.workload == workload).collect()
 }
 
 /// The font the PNG chart's text is drawn with (DejaVu Sans, bundled in
@@ -319,8 +412,8 @@ const CHART_FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
 /// The chart as an image: [`chart_svg`] rendered by `resvg` with the
 /// bundled font, so the PNG has the same axis, labels and values.
-pub fn chart_png(results: &[Measurement]) -> image::RgbaImage {
-    let svg = chart_svg(results);
+pub fn chart_png(report: &BenchReport) -> image::RgbaImage {
+    let svg = chart_svg(report);
     let mut options = resvg::usvg::Options::default();
     options.fontdb_mut().load_font_data(CHART_FONT.to_vec());
     options.font_family = "DejaVu Sans".into();
@@ -343,20 +436,31 @@ pub fn chart_png(results: &[Measurement]) -> image::RgbaImage {
 
 /// A horizontal bar chart: one group per workload, one labelled bar per
 /// back-end, bar length the speed relative to the fastest back-end on that
-/// workload (the axis at the bottom, 0 to 1), each bar's median time and
-/// throughput written beside it.
-pub fn chart_svg(results: &[Measurement]) -> String {
+/// workload ([`BASELINE`], as the table's), the axis at the bottom, 0 to
+/// 1, each bar's median time with its minimum and maximum and its
+/// throughput written beside it, the run's context under the title.
+pub fn chart_svg(report: &BenchReport) -> String {
+    let results = &report.results;
     let names = backend_names(results);
     let workloads = workload_names(results);
-    let (label_w, bar_w, value_w) = (110.0, 460.0, 230.0);
-    let (row, header, top) = (17.0, 24.0, 44.0);
+    let (label_w, bar_w, value_w) = (130.0, 440.0, 330.0);
+    let (row, header, top) = (17.0, 24.0, 60.0);
     let x0 = 10.0 + label_w;
-    let rows: usize = workloads.iter().map(|w| group(results, w).0.len()).sum();
+    let rows: usize = workloads.iter().map(|w| group(results, w).len()).sum();
     let plot_h = workloads.len() as f64 * header + rows as f64 * row;
     let width = x0 + bar_w + value_w;
     let height = top + plot_h + 50.0;
     let mut svg = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"10\" y=\"22\" font-size=\"14\" font-weight=\"bold\">rasterlab bench: speed relative to the fastest back-end on each workload</text>\n"
+    );
+    let c = &report.context;
+    let load = c
+        .machine
+        .load_average
+        .map_or_else(|| "unknown".to_string(), |l| format!("{:.2}", l[0]));
+    svg += &format!(
+        "<text x=\"10\" y=\"40\">commit {}, {}x{}, {} thread(s), {} timed runs per bar; {}, {} cores, load average {load} at start</text>\n",
+        c.commit, c.width, c.height, c.threads, c.samples, escape(&c.machine.cpu), c.machine.cores
     );
     // Vertical grid lines and the axis.
     let axis_y = top + plot_h + 4.0;
@@ -369,14 +473,14 @@ pub fn chart_svg(results: &[Measurement]) -> String {
         );
     }
     svg += &format!(
-        "<line x1=\"{x0}\" y1=\"{axis_y:.1}\" x2=\"{:.1}\" y2=\"{axis_y:.1}\" stroke=\"#333\"/><text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">speed relative to the fastest (1 = fastest; median time and throughput beside each bar)</text>\n",
+        "<line x1=\"{x0}\" y1=\"{axis_y:.1}\" x2=\"{:.1}\" y2=\"{axis_y:.1}\" stroke=\"#333\"/><text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">speed relative to the fastest (1 = fastest; median [min-max] ms and throughput beside each bar)</text>\n",
         x0 + bar_w,
         x0 + bar_w / 2.0,
         axis_y + 32.0
     );
     let mut y = top;
     for wl in &workloads {
-        let (members, fastest) = group(results, wl);
+        let members = group(results, wl);
         let prims = members.first().map_or(0, |m| m.primitives);
         y += header;
         svg += &format!(
@@ -386,14 +490,10 @@ pub fn chart_svg(results: &[Measurement]) -> String {
         for m in members {
             let k = names.iter().position(|n| *n == m.backend).unwrap_or(0);
             let [r, gr, b] = PALETTE[k % PALETTE.len()];
-            let rel = if fastest > 0.0 {
-                m.gpixels_per_s / fastest
-            } else {
-                0.0
-            };
+            let rel = 1.0 / m.vs_fastest.max(1.0);
             let w = (rel * bar_w).max(1.0);
             svg += &format!(
-                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text><rect x=\"{x0}\" y=\"{:.1}\" width=\"{w:.1}\" height=\"{:.1}\" fill=\"rgb({r},{gr},{b})\"><title>{} {}: {:.3} ms</title></rect><text x=\"{:.1}\" y=\"{:.1}\">{:.3} ms, {:.3} Gpix/s</text>\n",
+                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text><rect x=\"{x0}\" y=\"{:.1}\" width=\"{w:.1}\" height=\"{:.1}\" fill=\"rgb({r},{gr},{b})\"><title>{} {}: {} ms</title></rect><text x=\"{:.1}\" y=\"{:.1}\">{} ms, {} {}</text>\n",
                 x0 - 6.0,
                 y + row - 5.0,
                 m.backend,
@@ -401,11 +501,12 @@ pub fn chart_svg(results: &[Measurement]) -> String {
                 row - 4.0,
                 m.workload,
                 m.backend,
-                m.median_ms,
+                m.spread.summary(),
                 x0 + w + 6.0,
                 y + row - 5.0,
-                m.median_ms,
-                m.gpixels_per_s
+                m.spread.summary(),
+                significant(m.rate),
+                m.unit
             );
             y += row;
         }
@@ -414,26 +515,39 @@ pub fn chart_svg(results: &[Measurement]) -> String {
     svg
 }
 
+/// Text safe inside SVG.
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
 /// Writes `bench.json`, `bench.png` and `bench.svg` into `dir`.
-pub fn write_outputs(results: &[Measurement], dir: &Path) -> Result<()> {
+pub fn write_outputs(report: &BenchReport, dir: &Path) -> Result<()> {
     crate::output::check_dir(dir)?;
-    crate::output::write_file(&dir.join("bench.json"), to_json(results).as_bytes())?;
-    crate::output::write_file(&dir.join("bench.svg"), chart_svg(results).as_bytes())?;
-    crate::output::write_png(&dir.join("bench.png"), &chart_png(results))
+    crate::output::write_file(&dir.join("bench.json"), to_json(report).as_bytes())?;
+    crate::output::write_file(&dir.join("bench.svg"), chart_svg(report).as_bytes())?;
+    crate::output::write_png(&dir.join("bench.png"), &chart_png(report))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn a_tiny_run_measures_every_pair_and_charts_it() {
+    /// One tiny run with the bundled dragon, shared by the tests.
+    fn tiny_run() -> &'static BenchReport {
+        static REPORT: std::sync::OnceLock<BenchReport> = std::sync::OnceLock::new();
+        REPORT.get_or_init(run_tiny)
+    }
+
+    fn run_tiny() -> BenchReport {
+        let dragon = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/dragon_vrip_res4.ply.gz");
         let options = BenchOptions {
             set: WorkloadSet::Quick,
             width: 64,
             height: 48,
             samples: 1,
-            meshes: vec![],
+            meshes: vec![dragon],
         };
         let (mut steps, mut total) = (0, 0);
         let results = run(&options, &mut |p| {
@@ -442,17 +556,94 @@ mod tests {
         })
         .unwrap();
         assert_eq!(steps, total);
-        assert_eq!(results.len(), steps);
+        assert_eq!(results.results.len(), steps);
+        results
+    }
+
+    #[test]
+    fn a_tiny_run_measures_every_pair_and_charts_it() {
+        let report = tiny_run();
+        let results = &report.results;
         let fill: Vec<&Measurement> = results.iter().filter(|m| m.workload == "fill-1").collect();
         assert_eq!(fill.len(), triangle_backends().len());
         assert!(fill.iter().all(|m| m.pixels == 64 * 48));
-        assert!(results.iter().any(|m| (m.vs_slowest - 1.0).abs() < 1e-12));
-        assert!(results.iter().all(|m| m.vs_slowest >= 1.0));
-        let json: serde_json::Value = serde_json::from_str(&to_json(&results)).unwrap();
-        assert_eq!(json.as_array().unwrap().len(), results.len());
-        let png = chart_png(&results);
+        assert!(results.iter().any(|m| (m.vs_fastest - 1.0).abs() < 1e-12));
+        assert!(results.iter().all(|m| m.vs_fastest >= 1.0));
+        let json: serde_json::Value = serde_json::from_str(&to_json(report)).unwrap();
+        assert_eq!(json["results"].as_array().unwrap().len(), results.len());
+        let png = chart_png(report);
         let coloured = png.pixels().filter(|p| p.0 != [255, 255, 255, 255]).count();
         assert!(coloured > 100);
-        assert!(chart_svg(&results).matches("<title>").count() == results.len());
+        assert!(chart_svg(report).matches("<title>").count() == results.len());
+    }
+
+    #[test]
+    fn the_json_records_the_context_and_the_spread_of_every_figure() {
+        let report = tiny_run();
+        let json: serde_json::Value = serde_json::from_str(&to_json(report)).unwrap();
+        let context = &json["context"];
+        assert_eq!(context["commit"], crate::measure::context::COMMIT);
+        assert_ne!(context["commit"], "");
+        assert_eq!(context["threads"], rayon::current_num_threads());
+        assert_eq!(context["samples"], 1);
+        assert_eq!(
+            (context["width"].as_u64(), context["height"].as_u64()),
+            (Some(64), Some(48))
+        );
+        let machine = &context["machine"];
+        assert!(!machine["cpu"].as_str().unwrap().is_empty());
+        assert!(machine["cores"].as_u64().unwrap() >= 1);
+        assert!(machine.get("load_average").is_some());
+        assert!(context.get("load_average_at_end").is_some());
+        assert_eq!(json["baseline"], BASELINE);
+        for row in json["results"].as_array().unwrap() {
+            let spread = &row["spread"];
+            let (min, median, max) = (
+                spread["min_ms"].as_f64().unwrap(),
+                spread["median_ms"].as_f64().unwrap(),
+                spread["max_ms"].as_f64().unwrap(),
+            );
+            assert!(min <= median && median <= max, "{row}");
+            assert_eq!(spread["runs"], 1);
+            assert_eq!(row["median_ms"].as_f64(), Some(median));
+            assert_eq!(row["threads"], rayon::current_num_threads());
+            assert!(row["rate"].as_f64().unwrap() > 0.0, "{row}");
+            assert!(row["vs_fastest"].as_f64().unwrap() >= 1.0);
+            assert!(row.get("cpu").is_some());
+            let unit = row["unit"].as_str().unwrap();
+            let workload = row["workload"].as_str().unwrap();
+            let expected = match workload {
+                w if w.starts_with("fill") => "Gpix/s",
+                w if w.starts_with("size") || w.starts_with("sliver") => "Mpix/s",
+                w if w.starts_with("lines") => "Mlines/s",
+                _ => "Mtri/s",
+            };
+            assert_eq!(unit, expected, "{workload}");
+        }
+    }
+
+    #[test]
+    fn the_table_keeps_its_columns_aligned_and_shows_no_zero_rates() {
+        let report = tiny_run();
+        assert!(report
+            .results
+            .iter()
+            .any(|m| m.workload == "dragon_vrip_res4"));
+        let table = report.table().to_string();
+        let widths: Vec<usize> = table.lines().map(|l| l.chars().count()).collect();
+        // The last column is aligned right: every line ends at one column.
+        assert!(widths.iter().all(|w| *w == widths[0]), "{table}");
+        let header = table.lines().next().unwrap();
+        let column = header.find("throughput").unwrap() + "throughput".len();
+        for line in table.lines().skip(1) {
+            assert!(line[..column].ends_with("/s"), "{line}");
+            assert!(!line.contains(" 0.00 "), "{line}");
+        }
+        let text = report.to_string();
+        assert!(text.starts_with(&format!("commit {}", report.context.commit)));
+        assert!(text.contains("load average"));
+        assert!(text
+            .trim_end()
+            .ends_with("(1x = fastest; the chart's baseline too)"));
     }
 }
