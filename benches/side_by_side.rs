@@ -1,42 +1,67 @@
-//! Whole frames, side by side with published crates doing the same work.
+//! Whole frames, side by side with published rasterizers doing the same
+//! work, timed in interleaved rounds, and the ratio table read off them.
 //!
-//! * `dragon`: the Stanford dragon (871,414 triangles; and `dragon_res2`)
-//!   at 1920x1080, back faces culled, depth test, Gouraud shading (lit per
-//!   vertex), against `euc` doing the same; rasterlab on one thread per
-//!   back-end, and `tiled` on two;
-//!   The full dragon is also drawn zoomed 2.5x (`dragon_zoom2.5`, the
-//!   camera of `render --zoom 2.5`), about 1.5 M fragments;
-//! * `fill`, `size`, `sliver`: 2D triangles with depth test and colour
-//!   write (see `rasterlab::measure::workload`), against `tiny-skia` filling the same
-//!   triangles without anti-aliasing (colour only, no depth buffer); the
-//!   two-triangle fills are also drawn colour only (`*-colour-only`:
-//!   colour cleared, `DepthState::OFF`), the very work tiny-skia does;
-//! * `lines`: a million short and ten thousand long lines, every line
-//!   back-end through the stage and the fast path, against the
-//!   `line_drawing` crate's Bresenham writing into a colour buffer.
+//! * `dragon_res4`, `dragon_res2`, `dragon`: the Stanford dragon (11,102,
+//!   202,520 and 871,414 triangles) at 1920x1080, back faces culled, depth
+//!   test, Gouraud shading (lit per vertex); `dragon_zoom2.5` is the full
+//!   dragon with the camera of `render --zoom 2.5` (about 1.5 M
+//!   fragments). Peers: `euc`, and Mesa's llvmpipe (OpenGL) on one and on
+//!   two rasterizer threads. rasterlab: every back-end on one thread, and
+//!   `tiled` on two;
+//! * `fill-L`, `size-S`, `sliver-A`: 2D triangles with depth test and
+//!   colour write (see `rasterlab::measure::workload`), against llvmpipe
+//!   doing the same and `tiny-skia` filling the same triangles without
+//!   anti-aliasing (colour only, no depth buffer); `fill-L-colour-only` is
+//!   the fill with colour cleared and no depth (`DepthState::OFF`), the
+//!   very work tiny-skia does, and llvmpipe without depth test; the
+//!   fills are also drawn by `tiled` on two threads;
+//! * `lines-short-1M`, `lines-long-10k`: every line back-end through the
+//!   stage and the fast path, against the `line_drawing` crate's Bresenham
+//!   writing into a colour buffer.
 //!
 //! Every rasterlab figure is measured on one thread (a rayon pool of one,
-//! so the target clears too stay on one core) except `tiled-2-threads`.
+//! so the target clears too stay on one core) except `tiled-2-threads`;
 //! rasterlab draws into one reused target made
-//! `RenderTarget::without_coverage`: colour and depth, as the peers, without
-//! the per-pixel fragment count that the correctness tests read.
+//! `RenderTarget::without_coverage` (colour and depth, as the peers).
 //!
-//! `cargo bench --bench side_by_side` (needs `../shared/data` for the full
-//! dragon; without it, only the bundled `dragon_vrip_res4` is run).
+//! Each workload runs its contenders once to warm up, then in `--rounds`
+//! rounds (default 10), each contender once per round, the order turning
+//! each round (`rasterlab::measure::rounds`). Printed per workload: each
+//! contender's median [min-max] ms, the CPU time per working thread and
+//! the time waited for a core; at the end, the context (commit, machine,
+//! load) and the ratio table: each peer against rasterlab's best on as
+//! many threads, the median of the per-round ratios with their minimum
+//! and maximum. llvmpipe is timed only after it has drawn the same
+//! fragments as rasterlab (give or take 3).
+//!
+//! ```text
+//! cargo bench --bench side_by_side                       # everything
+//! cargo bench --bench side_by_side -- --rounds 5 dragon  # workloads named *dragon*
+//! ```
+//!
+//! The Stanford models beyond the bundled one are looked for in
+//! `$RASTERLAB_DATA` or `../shared/data` (`rasterlab::measure::data`);
+//! llvmpipe needs Mesa at run time (Debian: `libegl1 libegl-mesa0
+//! libgl1-mesa-dri`). What is missing is printed as skipped, with why.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+#[path = "support/gl.rs"]
+mod gl;
+
 use glam::{Mat4, Vec3};
 use rasterlab::geometry::mesh::Mesh;
 use rasterlab::geometry::pipeline::CullMode;
 use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
+use rasterlab::measure::context::Context;
+use rasterlab::measure::data::{self, Skipped};
+use rasterlab::measure::rounds::{ratio_header, Contender, Side, Workload, WorkloadResult};
 use rasterlab::measure::workload::{self, LineWorkload, TriangleWorkload};
 use rasterlab::raster::backend::{line_backends, triangle_backend, triangle_backends};
 use rasterlab::raster::fixed::FixedPoint;
 use rasterlab::raster::line::pixel_containing;
 use rasterlab::raster::target::RenderTarget;
-use std::hint::black_box;
-use std::path::Path;
-use std::time::Duration;
+use rasterlab::raster::triangle::TriangleRasterizer;
+use std::cell::RefCell;
+use std::path::PathBuf;
 
 const W: u32 = 1920;
 const H: u32 = 1080;
@@ -46,6 +71,111 @@ fn pool(threads: usize) -> rayon::ThreadPool {
         .num_threads(threads)
         .build()
         .unwrap()
+}
+
+/// What the command line asks for: rounds, and name filters.
+struct Options {
+    rounds: usize,
+    filters: Vec<String>,
+}
+
+impl Options {
+    fn parse() -> Options {
+        let mut options = Options {
+            rounds: 10,
+            filters: Vec::new(),
+        };
+        let mut args = std::env::args().skip(1);
+        while let Some(arg) = args.next() {
+            match arg.as_str() {
+                "--rounds" => {
+                    options.rounds = args
+                        .next()
+                        .and_then(|n| n.parse().ok())
+                        .filter(|n| *n >= 1)
+                        .expect("--rounds takes a whole number of at least 1");
+                }
+                // cargo bench passes --bench; other flags are criterion's.
+                a if a.starts_with("--") => {}
+                a => options.filters.push(a.to_string()),
+            }
+        }
+        options
+    }
+
+    fn wants(&self, name: &str) -> bool {
+        self.filters.is_empty() || self.filters.iter().any(|f| name.contains(f.as_str()))
+    }
+}
+
+/// llvmpipe on one and on two rasterizer threads, or why not.
+type Gl = Result<Vec<gl::Llvmpipe>, Skipped>;
+
+fn llvmpipe() -> Gl {
+    let open = |threads| {
+        gl::Llvmpipe::new(W, H, threads).map_err(|reason| Skipped {
+            reason: format!("llvmpipe unavailable: {reason}"),
+        })
+    };
+    let gls = vec![open(1)?, open(2)?];
+    eprintln!("llvmpipe: {}", gls[0].renderer());
+    Ok(gls)
+}
+
+fn llvmpipe_name(gl: &gl::Llvmpipe) -> String {
+    match gl.threads() {
+        1 => "llvmpipe-1-thread".to_string(),
+        n => format!("llvmpipe-{n}-threads"),
+    }
+}
+
+/// Adds llvmpipe's contenders, drawing `shapes` (one per context), once
+/// it is seen to draw `ours` fragments give or take `tolerance`.
+#[allow(clippy::too_many_arguments)]
+fn add_llvmpipe<'a>(
+    work: &mut Workload<'a>,
+    gls: &'a Gl,
+    shapes: &'a [gl::Shape],
+    transform: &'a [f32; 16],
+    state: gl::DrawState,
+    ours: u64,
+    tolerance: u64,
+    workload: &str,
+) {
+    let gls = match gls {
+        Ok(gls) => gls,
+        Err(why) => {
+            work.skip("llvmpipe", why.clone());
+            return;
+        }
+    };
+    let theirs = gls[0].fragments(&shapes[0], transform, state.cull_back);
+    eprintln!("{workload}: fragments rasterlab {ours}, llvmpipe {theirs}");
+    if ours.abs_diff(theirs) > tolerance {
+        work.skip(
+            "llvmpipe",
+            Skipped {
+                reason: format!(
+                    "llvmpipe drew {theirs} fragments where rasterlab drew {ours}: not the same work"
+                ),
+            },
+        );
+        return;
+    }
+    for (gl, shape) in gls.iter().zip(shapes) {
+        let name = llvmpipe_name(gl);
+        work.add(Contender::new(&name, Side::Peer, gl.threads(), move || {
+            gl.draw(shape, transform, state)
+        }));
+    }
+}
+
+fn delete_shapes(gls: &Gl, shapes: Vec<gl::Shape>) {
+    if let Ok(gls) = gls {
+        for (gl, shape) in gls.iter().zip(shapes) {
+            gl.delete(shape);
+        }
+    }
 }
 
 /// `euc`'s pipeline for a mesh: positions by index, a per-vertex diffuse
@@ -72,98 +202,141 @@ impl euc::Pipeline for EucMesh<'_> {
     }
 }
 
-fn dragon(c: &mut Criterion) {
-    let shared = Path::new("../shared/data");
-    let mut meshes = vec![(
-        "dragon_res4",
-        Path::new("assets/dragon_vrip_res4.ply.gz").to_path_buf(),
-    )];
-    if shared.exists() {
-        meshes.push(("dragon_res2", shared.join("dragon_vrip_res2.ply.gz")));
-        meshes.push(("dragon", shared.join("dragon_vrip.ply.gz")));
-    }
-    let meshes = meshes.into_iter().flat_map(|(name, path)| {
-        // The full dragon also zoomed 2.5x: 1.5 M fragments, larger triangles.
-        let zoomed = (name == "dragon").then(|| ("dragon_zoom2.5".to_string(), path.clone(), 2.5));
-        std::iter::once((name.to_string(), path, 1.0)).chain(zoomed)
-    });
-    for (name, path, zoom) in meshes {
-        let mesh = Mesh::load(&path).unwrap();
-        let mut settings = RenderSettings {
-            width: W,
-            height: H,
-            azimuth: 30.0,
-            zoom,
-            shading: Shading::Gouraud,
-            ..RenderSettings::default()
-        };
-        settings.pipeline.cull = CullMode::Back;
-        let renderer = MeshRenderer::new(&mesh, settings).unwrap();
-        let mut group = c.benchmark_group(format!("mesh/{name}"));
-        group.throughput(Throughput::Elements(mesh.triangles.len() as u64));
-        let mut target = RenderTarget::without_coverage(W, H).unwrap();
-        let one = pool(1);
-        let pixels = u64::from(W) * u64::from(H);
-        let affordable = |b: &&&dyn rasterlab::raster::triangle::TriangleRasterizer| {
-            b.affordable(mesh.triangles.len() as u64, pixels, 2 * pixels)
-        };
-        for b in triangle_backends().iter().filter(affordable) {
-            group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
-                bench.iter(|| {
-                    one.install(|| {
-                        renderer
-                            .render_into(*b, &mut target)
-                            .unwrap()
-                            .work
-                            .fragments
-                    })
-                })
-            });
-        }
-        let two = pool(2);
-        let tiled = triangle_backend("tiled").unwrap();
-        group.bench_function(BenchmarkId::from_parameter("tiled-2-threads"), |bench| {
-            bench.iter(|| {
-                two.install(|| {
-                    renderer
-                        .render_into(tiled, &mut target)
-                        .unwrap()
-                        .work
-                        .fragments
-                })
-            })
-        });
-        // The same camera, the same per-vertex light, through euc.
-        let transform = renderer.transform();
-        let light = settings.light;
-        let intensity: Vec<f32> = mesh
-            .normals
+/// The dragons: the bundled one, then those of the data folder.
+fn dragons(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
+    let bundled = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/dragon_vrip_res4.ply.gz");
+    let models = [
+        ("dragon_res4", Ok(bundled), vec![1.0]),
+        ("dragon_res2", data::find(data::DRAGON_RES2), vec![1.0]),
+        ("dragon", data::find(data::FULL_DRAGON), vec![1.0, 2.5]),
+    ];
+    let mut results = Vec::new();
+    for (name, path, zooms) in models {
+        let names: Vec<String> = zooms
             .iter()
-            .map(|n| light.intensity(transform.normal_matrix * *n))
-            .collect();
-        let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
-        let euc_mesh = EucMesh {
-            mvp: transform.mvp,
-            positions: &mesh.positions,
-            intensity: &intensity,
-        };
-        let mut color = euc::buffer::Buffer2d::new([W as usize, H as usize], 0u32);
-        let mut depth = euc::buffer::Buffer2d::new([W as usize, H as usize], 1.0f32);
-        group.bench_function(BenchmarkId::from_parameter("peer-euc"), |bench| {
-            bench.iter(|| {
-                use euc::{Pipeline, Target};
-                color.clear(0);
-                depth.clear(1.0);
-                euc_mesh.draw::<euc::rasterizer::Triangles<_, euc::rasterizer::BackfaceCullingEnabled>, _>(
-                    &indices,
-                    &mut color,
-                    Some(&mut depth),
-                );
-                black_box(color.as_ref()[0])
+            .map(|&z| {
+                if z == 1.0 {
+                    name.to_string()
+                } else {
+                    format!("{name}_zoom{z}")
+                }
             })
-        });
-        group.finish();
+            .collect();
+        if !names.iter().any(|n| options.wants(n)) {
+            continue;
+        }
+        let mesh = match path {
+            Ok(path) => Mesh::load(&path).unwrap(),
+            Err(why) => {
+                for n in names.iter().filter(|n| options.wants(n)) {
+                    let result = Workload::skipped(n, &why);
+                    print!("{}", result.figure_table());
+                    results.push(result);
+                }
+                continue;
+            }
+        };
+        for (zoom, name) in zooms.into_iter().zip(names) {
+            if options.wants(&name) {
+                let result = dragon(&name, &mesh, zoom, options.rounds, gls);
+                print!("{}", result.figure_table());
+                results.push(result);
+            }
+        }
     }
+    results
+}
+
+fn dragon(name: &str, mesh: &Mesh, zoom: f32, rounds: usize, gls: &Gl) -> WorkloadResult {
+    let mut settings = RenderSettings {
+        width: W,
+        height: H,
+        azimuth: 30.0,
+        zoom,
+        shading: Shading::Gouraud,
+        ..RenderSettings::default()
+    };
+    settings.pipeline.cull = CullMode::Back;
+    let renderer = MeshRenderer::new(mesh, settings).unwrap();
+    let target = RefCell::new(RenderTarget::without_coverage(W, H).unwrap());
+    let (one, two) = (pool(1), pool(2));
+    let pixels = u64::from(W) * u64::from(H);
+    let draw = |b: &dyn TriangleRasterizer, pool: &rayon::ThreadPool| {
+        let target = &mut *target.borrow_mut();
+        pool.install(|| renderer.render_into(b, target).unwrap().work.fragments)
+    };
+    let ours = draw(triangle_backend("scanline").unwrap(), &one);
+
+    // The same camera, the same per-vertex light, for the peers.
+    let transform = renderer.transform();
+    let intensity: Vec<f32> = mesh
+        .normals
+        .iter()
+        .map(|n| settings.light.intensity(transform.normal_matrix * *n))
+        .collect();
+    let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+    let euc_mesh = EucMesh {
+        mvp: transform.mvp,
+        positions: &mesh.positions,
+        intensity: &intensity,
+    };
+    let euc_buffers = RefCell::new((
+        euc::buffer::Buffer2d::new([W as usize, H as usize], 0u32),
+        euc::buffer::Buffer2d::new([W as usize, H as usize], 1.0f32),
+    ));
+    let vertices: Vec<gl::Vertex> = mesh
+        .positions
+        .iter()
+        .zip(&intensity)
+        .map(|(p, light)| gl::Vertex {
+            position: p.to_array(),
+            light: *light,
+        })
+        .collect();
+    let shapes: Vec<gl::Shape> = gls
+        .iter()
+        .flatten()
+        .map(|gl| gl.shape(&vertices, &indices))
+        .collect();
+    let gl_transform = gl::Llvmpipe::mesh_transform(transform.mvp.to_cols_array());
+
+    let mut work = Workload::new(name);
+    let affordable = |b: &&&dyn TriangleRasterizer| {
+        b.affordable(mesh.triangles.len() as u64, pixels, 2 * pixels)
+    };
+    let (draw, one, two) = (&draw, &one, &two);
+    for &b in triangle_backends().iter().filter(affordable) {
+        work.add(Contender::new(b.name(), Side::Rasterlab, 1, move || {
+            draw(b, one)
+        }));
+    }
+    let tiled = triangle_backend("tiled").unwrap();
+    work.add(Contender::new(
+        "tiled-2-threads",
+        Side::Rasterlab,
+        2,
+        move || draw(tiled, two),
+    ));
+    work.add(Contender::new("peer-euc", Side::Peer, 1, || {
+        use euc::{Pipeline, Target};
+        let (color, depth) = &mut *euc_buffers.borrow_mut();
+        color.clear(0);
+        depth.clear(1.0);
+        euc_mesh.draw::<euc::rasterizer::Triangles<_, euc::rasterizer::BackfaceCullingEnabled>, _>(
+            &indices,
+            color,
+            Some(depth),
+        );
+        color.as_ref()[0]
+    }));
+    let state = gl::DrawState {
+        depth: true,
+        cull_back: true,
+    };
+    add_llvmpipe(&mut work, gls, &shapes, &gl_transform, state, ours, 3, name);
+    let result = work.run(rounds);
+    delete_shapes(gls, shapes);
+    result
 }
 
 /// The workload's triangles filled by tiny-skia, aliased, in one colour.
@@ -194,7 +367,28 @@ fn tiny_skia_fill(work: &TriangleWorkload, pixmap: &mut tiny_skia::Pixmap) {
     }
 }
 
-fn triangles(c: &mut Criterion) {
+/// The workload's triangles for GL: window coordinates and depth.
+fn gl_triangles(work: &TriangleWorkload) -> (Vec<gl::Vertex>, Vec<u32>) {
+    let vertices: Vec<gl::Vertex> = work
+        .geometry
+        .setups
+        .iter()
+        .flat_map(|t| {
+            let depth = work.depths[t.id as usize];
+            t.vertices.map(|v| {
+                let (x, y) = v.to_f64();
+                gl::Vertex {
+                    position: [x as f32, y as f32, depth],
+                    light: 1.0,
+                }
+            })
+        })
+        .collect();
+    let indices = (0..vertices.len() as u32).collect();
+    (vertices, indices)
+}
+
+fn triangles(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
     let mut workloads = vec![workload::fill(W, H, 1), workload::fill(W, H, 4)];
     for size in [1.0, 4.0, 16.0, 64.0, 250.0, 500.0] {
         workloads.push(workload::sized(W, H, size));
@@ -202,35 +396,82 @@ fn triangles(c: &mut Criterion) {
     for angle in [0.0, 45.0, 90.0] {
         workloads.push(workload::slivers(W, H, angle));
     }
-    let mut target = RenderTarget::without_coverage(W, H).unwrap();
-    let mut pixmap = tiny_skia::Pixmap::new(W, H).unwrap();
-    let one = pool(1);
+    let target = RefCell::new(RenderTarget::without_coverage(W, H).unwrap());
+    let pixmap = RefCell::new(tiny_skia::Pixmap::new(W, H).unwrap());
+    let (one, two) = (pool(1), pool(2));
+    let tiled = triangle_backend("tiled").unwrap();
+    let mut results = Vec::new();
     for work in &workloads {
-        let mut group = c.benchmark_group(format!("triangles/{}", work.name));
-        let pixels = work.run(triangle_backends()[1], &mut target);
-        group.throughput(Throughput::Elements(pixels));
-        for b in triangle_backends().iter().filter(|b| work.suits(**b)) {
-            group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
-                bench.iter(|| one.install(|| work.run(*b, &mut target)))
-            });
-        }
-        // The same work as tiny-skia's: clear the colour, fill, no depth.
-        if work.name.starts_with("fill") {
-            for b in triangle_backends().iter().filter(|b| work.suits(**b)) {
-                let id = format!("{}-colour-only", b.name());
-                group.bench_function(BenchmarkId::from_parameter(id), |bench| {
-                    bench.iter(|| one.install(|| work.run_colour_only(*b, &mut target)))
-                });
+        // With depth, as a frame is drawn; the fills also colour only.
+        let colour_only = format!("{}-colour-only", work.name);
+        let variants = [(work.name.clone(), true), (colour_only, false)];
+        for (name, depth) in variants {
+            if !options.wants(&name) || (!depth && !work.name.starts_with("fill")) {
+                continue;
             }
+            let run_on = |b: &dyn TriangleRasterizer, pool: &rayon::ThreadPool| {
+                let target = &mut *target.borrow_mut();
+                pool.install(|| {
+                    if depth {
+                        work.run(b, target)
+                    } else {
+                        work.run_colour_only(b, target)
+                    }
+                })
+            };
+            let run = |b: &dyn TriangleRasterizer| run_on(b, &one);
+            let ours = run(triangle_backend("scanline").unwrap());
+            let (vertices, indices) = gl_triangles(work);
+            let shapes: Vec<gl::Shape> = gls
+                .iter()
+                .flatten()
+                .map(|gl| gl.shape(&vertices, &indices))
+                .collect();
+            let window = gls.as_ref().map_or([0.0; 16], |g| g[0].window_transform());
+            let mut contest = Workload::new(&name);
+            let run = &run;
+            for &b in triangle_backends().iter().filter(|b| work.suits(**b)) {
+                contest.add(Contender::new(b.name(), Side::Rasterlab, 1, move || run(b)));
+            }
+            // The fills on two threads too, band by band.
+            if work.name.starts_with("fill") {
+                let (run_on, two) = (&run_on, &two);
+                contest.add(Contender::new(
+                    "tiled-2-threads",
+                    Side::Rasterlab,
+                    2,
+                    move || run_on(tiled, two),
+                ));
+            }
+            contest.add(Contender::new("peer-tiny-skia", Side::Peer, 1, || {
+                let pixmap = &mut pixmap.borrow_mut();
+                tiny_skia_fill(work, pixmap);
+                pixmap.data()[0]
+            }));
+            let state = gl::DrawState {
+                depth,
+                cull_back: false,
+            };
+            // GL maps pixels to clip space and back in f32: a vertex can
+            // land 1/256 px from rasterlab's.
+            let tolerance = (ours / 100_000).max(3);
+            add_llvmpipe(
+                &mut contest,
+                gls,
+                &shapes,
+                &window,
+                state,
+                ours,
+                tolerance,
+                &name,
+            );
+            let result = contest.run(options.rounds);
+            delete_shapes(gls, shapes);
+            print!("{}", result.figure_table());
+            results.push(result);
         }
-        group.bench_function(BenchmarkId::from_parameter("peer-tiny-skia"), |bench| {
-            bench.iter(|| {
-                tiny_skia_fill(work, &mut pixmap);
-                black_box(pixmap.data()[0])
-            })
-        });
-        group.finish();
     }
+    results
 }
 
 /// line_drawing's Bresenham on the pixels containing the endpoints,
@@ -248,14 +489,25 @@ fn line_drawing_lines(lines: &[(i32, i32, i32, i32)], buffer: &mut [[u8; 4]]) ->
     n
 }
 
-fn lines(c: &mut Criterion) {
+fn lines(options: &Options) -> Vec<WorkloadResult> {
     let sets = [
-        LineWorkload::new("lines/short-1M", workload::short_lines(W, H, 1_000_000)),
-        LineWorkload::new("lines/long-10k", workload::long_lines(W, H, 10_000)),
+        ("lines-short-1M", 1_000_000, true),
+        ("lines-long-10k", 10_000, false),
     ];
-    let mut target = RenderTarget::without_coverage(W, H).unwrap();
+    let target = RefCell::new(RenderTarget::without_coverage(W, H).unwrap());
+    let buffer = RefCell::new(vec![[0u8; 4]; (W * H) as usize]);
     let one = pool(1);
-    for work in &sets {
+    let mut results = Vec::new();
+    for (name, count, short) in sets {
+        if !options.wants(name) {
+            continue;
+        }
+        let lines = if short {
+            workload::short_lines(W, H, count)
+        } else {
+            workload::long_lines(W, H, count)
+        };
+        let work = LineWorkload::new(name, lines);
         let ints: Vec<(i32, i32, i32, i32)> = work
             .lines
             .iter()
@@ -270,27 +522,51 @@ fn lines(c: &mut Criterion) {
                 (a.0, a.1, b.0, b.1)
             })
             .collect();
-        let mut group = c.benchmark_group(&work.name);
-        group.throughput(Throughput::Elements(work.run_fast(&mut target)));
-        for b in line_backends() {
-            group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {
-                bench.iter(|| one.install(|| work.run(*b, &mut target)))
-            });
+        let mut contest = Workload::new(name);
+        let (work, one, target) = (&work, &one, &target);
+        for &b in line_backends() {
+            contest.add(Contender::new(b.name(), Side::Rasterlab, 1, move || {
+                let target = &mut *target.borrow_mut();
+                one.install(|| work.run(b, target))
+            }));
         }
-        group.bench_function(BenchmarkId::from_parameter("fast-bresenham"), |bench| {
-            bench.iter(|| one.install(|| work.run_fast(&mut target)))
-        });
-        let mut buffer = vec![[0u8; 4]; (W * H) as usize];
-        group.bench_function(BenchmarkId::from_parameter("peer-line_drawing"), |bench| {
-            bench.iter(|| line_drawing_lines(&ints, &mut buffer))
-        });
-        group.finish();
+        contest.add(Contender::new("fast-bresenham", Side::Rasterlab, 1, || {
+            let target = &mut *target.borrow_mut();
+            one.install(|| work.run_fast(target))
+        }));
+        contest.add(Contender::new("peer-line_drawing", Side::Peer, 1, || {
+            line_drawing_lines(&ints, &mut buffer.borrow_mut())
+        }));
+        let result = contest.run(options.rounds);
+        print!("{}", result.figure_table());
+        results.push(result);
     }
+    results
 }
 
-criterion_group! {
-    name = benches;
-    config = Criterion::default().sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(2));
-    targets = dragon, triangles, lines
+fn main() {
+    let options = Options::parse();
+    let mut context = Context::start(1, options.rounds, W, H);
+    let gls = llvmpipe();
+    if let Err(why) = &gls {
+        eprintln!("llvmpipe: {why}");
+    }
+    let mut results = dragons(&options, &gls);
+    results.extend(triangles(&options, &gls));
+    results.extend(lines(&options));
+    context.finish();
+    let mut ratios = ratio_header();
+    for result in &results {
+        result.ratio_rows(&mut ratios);
+    }
+    println!();
+    println!(
+        "cargo bench --bench side_by_side -- --rounds {} {}",
+        options.rounds,
+        options.filters.join(" ")
+    );
+    print!("{context}");
+    println!("rasterlab on 1 thread unless the name says otherwise; llvmpipe-1-thread is one rasterizer thread beside the drawing thread");
+    println!("peer / best: the peer's time over rasterlab's best on as many threads, median of the per-round ratios [min-max]; above 1, rasterlab is faster");
+    print!("{ratios}");
 }
-criterion_main!(benches);

@@ -5,14 +5,20 @@
 //!   triangles, meshes, line sets) prepared once and drawn many times;
 //! * [`benchmark`]: the table, JSON and chart of `rasterlab bench`;
 //! * [`timing`]: a warm-up, timed runs, their minimum, median and maximum;
+//! * [`rounds`]: rasterlab and its peers timed in interleaved rounds, and
+//!   the ratio table of `cargo bench --bench side_by_side`;
 //! * [`cpu`]: the CPU time each thread got, and the time it waited for a
 //!   core, beside the wall time;
 //! * [`context`]: the commit, machine and load a run was measured on;
+//! * [`data`]: where the Stanford models that are not bundled are found,
+//!   and the skipped row when they are not;
 //! * [`table`]: plain-text tables with aligned columns.
 
 pub mod benchmark;
 pub mod context;
 pub mod cpu;
+pub mod data;
+pub mod rounds;
 pub mod table;
 pub mod timing;
 pub mod workload;

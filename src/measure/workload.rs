@@ -45,6 +45,9 @@ pub struct TriangleWorkload {
     pub name: String,
     /// The triangles, in drawing order.
     pub geometry: Geometry,
+    /// Each triangle's depth (all three corners), by triangle id, for
+    /// peers that draw the same triangles.
+    pub depths: Vec<f32>,
 }
 
 impl TriangleWorkload {
@@ -57,6 +60,7 @@ impl TriangleWorkload {
         TriangleWorkload {
             name,
             geometry: Geometry::of_screen_triangles(setups, &vertices),
+            depths: (0..triangles.len()).map(&depth).collect(),
         }
     }
 

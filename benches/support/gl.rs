@@ -1,0 +1,494 @@
+//! Mesa's llvmpipe, the software OpenGL rasterizer, driven off-screen
+//! through EGL: no window, no GPU, no GL library at build time.
+//!
+//! `libEGL.so.1` is opened when [`Llvmpipe::new`] runs (`khronos-egl` with
+//! dynamic loading), the GL functions are looked up through it (`glow`),
+//! and the drawing goes into a framebuffer object of colour (RGBA8) and
+//! depth (32-bit float), so the same work as rasterlab's target. On Debian
+//! the run-time packages are `libegl1 libegl-mesa0 libgl1-mesa-dri`; when
+//! they are missing, [`Llvmpipe::new`] says so in its error and the callers
+//! print the rows they could not measure as skipped.
+//!
+//! The display is EGL's surfaceless platform (`EGL_MESA_platform_surfaceless`).
+//! llvmpipe reads its rasterizer thread count (`LP_NUM_THREADS`) once per
+//! display, when the display is initialised, and a process has one
+//! surfaceless display: a second thread count alive at the same time is
+//! given the display of Mesa's software device (`EGL_EXT_platform_device`
+//! with `EGL_MESA_device_software`), also llvmpipe, also without window or
+//! GPU. So at most two thread counts can be alive at once.
+//!
+//! Coordinates: rasterlab's screen has y growing down, GL's window y grows
+//! up. Every transform here negates clip-space y ([`Llvmpipe::mesh_transform`])
+//! or maps pixels straight to window coordinates
+//! ([`Llvmpipe::window_transform`]), so a point at rasterlab's `(x, y)`
+//! lands at GL's window `(x, y)`, and row `r` of [`Llvmpipe::coverage`] is
+//! rasterlab's row `r`. The negation mirrors the winding, so a mesh's front
+//! faces (counter-clockwise in rasterlab) are clockwise for GL
+//! (`glFrontFace(GL_CW)`).
+//!
+//! Included by `benches/side_by_side.rs` and `tests/llvmpipe.rs` with
+//! `#[path]`; it depends on `khronos-egl` and `glow` only.
+#![allow(dead_code)] // each includer uses a part
+
+use glow::HasContext;
+use khronos_egl as egl;
+use std::sync::Mutex;
+
+/// `EGL_PLATFORM_SURFACELESS_MESA`.
+const PLATFORM_SURFACELESS: egl::Enum = 0x31DD;
+/// `EGL_PLATFORM_DEVICE_EXT`.
+const PLATFORM_DEVICE: egl::Enum = 0x313F;
+
+/// The two displays and the thread count each was initialised with.
+static DISPLAYS: Mutex<[Option<usize>; 2]> = Mutex::new([None, None]);
+
+/// One vertex: a position (model space for a mesh, pixels and depth for
+/// window triangles) and a light intensity (the grey it is drawn in).
+#[derive(Copy, Clone, Debug, PartialEq)]
+#[repr(C)]
+pub struct Vertex {
+    /// Position.
+    pub position: [f32; 3],
+    /// Light intensity in `[0, 1]`.
+    pub light: f32,
+}
+
+/// Indexed triangles uploaded to the GL.
+pub struct Shape {
+    vertex_array: glow::VertexArray,
+    buffers: [glow::Buffer; 2],
+    indices: i32,
+}
+
+/// How a shape is drawn.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct DrawState {
+    /// Depth test `less` with depth writes (the depth is cleared to 1.0
+    /// first); without it, no depth buffer is touched.
+    pub depth: bool,
+    /// Back faces culled (front faces clockwise in GL's window, see the
+    /// module docs).
+    pub cull_back: bool,
+}
+
+/// An llvmpipe context with an off-screen colour and depth target.
+pub struct Llvmpipe {
+    egl: egl::DynamicInstance<egl::EGL1_5>,
+    display: egl::Display,
+    context: egl::Context,
+    gl: glow::Context,
+    program: glow::Program,
+    transform: glow::UniformLocation,
+    query: glow::Query,
+    width: u32,
+    height: u32,
+    threads: usize,
+}
+
+impl Llvmpipe {
+    /// llvmpipe with `threads` rasterizer threads (`LP_NUM_THREADS`; 0
+    /// rasterizes on the calling thread) and a `width` x `height` target,
+    /// current on this thread. The error says what is missing.
+    pub fn new(width: u32, height: u32, threads: usize) -> Result<Llvmpipe, String> {
+        // SAFETY: libEGL is the system's EGL loader; khronos-egl checks
+        // that it exports the EGL 1.5 entry points it binds.
+        let egl = unsafe { egl::DynamicInstance::<egl::EGL1_5>::load_required() }.map_err(|e| {
+            format!(
+                "no libEGL.so.1 ({e}): install Mesa (Debian: libegl1 libegl-mesa0 libgl1-mesa-dri)"
+            )
+        })?;
+        let display = open_display(&egl, threads)?;
+        egl.bind_api(egl::OPENGL_API)
+            .map_err(|e| format!("eglBindAPI(OpenGL): {e}"))?;
+        let attributes = [
+            egl::CONTEXT_MAJOR_VERSION,
+            3,
+            egl::CONTEXT_MINOR_VERSION,
+            3,
+            egl::CONTEXT_OPENGL_PROFILE_MASK,
+            egl::CONTEXT_OPENGL_CORE_PROFILE_BIT,
+            egl::NONE,
+        ];
+        // SAFETY: a null config is EGL_NO_CONFIG_KHR (EGL_KHR_no_config_context,
+        // which Mesa offers): the context draws only into framebuffer objects.
+        let no_config = unsafe { egl::Config::from_ptr(std::ptr::null_mut()) };
+        let context = egl
+            .create_context(display, no_config, None, &attributes)
+            .map_err(|e| format!("eglCreateContext(OpenGL 3.3 core): {e}"))?;
+        egl.make_current(display, None, None, Some(context))
+            .map_err(|e| format!("eglMakeCurrent: {e}"))?;
+        // SAFETY: the context is current; eglGetProcAddress returns GL
+        // entry points of that context's vendor (or null, which glow
+        // turns into a panic only when the function is called).
+        let gl = unsafe {
+            glow::Context::from_loader_function(|name| {
+                egl.get_proc_address(name)
+                    .map_or(std::ptr::null(), |f| f as *const std::ffi::c_void)
+            })
+        };
+        // SAFETY: plain GL calls on the current context.
+        let renderer = unsafe { gl.get_parameter_string(glow::RENDERER) };
+        if !renderer.contains("llvmpipe") {
+            return Err(format!("EGL gave the renderer {renderer:?}, not llvmpipe"));
+        }
+        // SAFETY: as above.
+        let (program, transform, query) = unsafe { set_up(&gl, width, height)? };
+        Ok(Llvmpipe {
+            egl,
+            display,
+            context,
+            gl,
+            program,
+            transform,
+            query,
+            width,
+            height,
+            threads,
+        })
+    }
+
+    /// The GL renderer string, e.g. `llvmpipe (LLVM 15.0.6, 256 bits)`.
+    pub fn renderer(&self) -> String {
+        self.make_current();
+        // SAFETY: a GL call on the current context.
+        unsafe { self.gl.get_parameter_string(glow::RENDERER) }
+    }
+
+    /// The rasterizer threads asked for.
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
+    /// Makes this context current on the calling thread (needed when two
+    /// llvmpipe contexts are used in turn).
+    pub fn make_current(&self) {
+        self.egl
+            .make_current(self.display, None, None, Some(self.context))
+            .expect("an llvmpipe context made current again");
+    }
+
+    /// Uploads indexed triangles.
+    pub fn shape(&self, vertices: &[Vertex], indices: &[u32]) -> Shape {
+        self.make_current();
+        let gl = &self.gl;
+        // SAFETY: GL calls on the current context; the slices outlive the
+        // calls, and the attribute layout is `Vertex`'s (repr(C), 16 bytes).
+        unsafe {
+            let vertex_array = gl.create_vertex_array().expect("a vertex array");
+            gl.bind_vertex_array(Some(vertex_array));
+            let vbo = gl.create_buffer().expect("a vertex buffer");
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+            gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, as_bytes(vertices), glow::STATIC_DRAW);
+            gl.enable_vertex_attrib_array(0);
+            gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, 16, 0);
+            gl.enable_vertex_attrib_array(1);
+            gl.vertex_attrib_pointer_f32(1, 1, glow::FLOAT, false, 16, 12);
+            let ebo = gl.create_buffer().expect("an index buffer");
+            gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
+            gl.buffer_data_u8_slice(
+                glow::ELEMENT_ARRAY_BUFFER,
+                as_bytes(indices),
+                glow::STATIC_DRAW,
+            );
+            gl.bind_vertex_array(None);
+            Shape {
+                vertex_array,
+                buffers: [vbo, ebo],
+                indices: indices.len() as i32,
+            }
+        }
+    }
+
+    /// Frees a shape's buffers.
+    pub fn delete(&self, shape: Shape) {
+        self.make_current();
+        // SAFETY: GL calls on the current context, on objects it made.
+        unsafe {
+            self.gl.delete_vertex_array(shape.vertex_array);
+            for buffer in shape.buffers {
+                self.gl.delete_buffer(buffer);
+            }
+        }
+    }
+
+    /// A mesh transform for GL: rasterlab's model-view-projection matrix
+    /// (column-major) with clip-space y negated, so GL's window
+    /// coordinates are rasterlab's screen coordinates.
+    pub fn mesh_transform(mvp: [f32; 16]) -> [f32; 16] {
+        let mut m = mvp;
+        for column in 0..4 {
+            m[column * 4 + 1] = -m[column * 4 + 1];
+        }
+        m
+    }
+
+    /// The transform for window triangles: a vertex's position is
+    /// `(x, y, depth)` in pixels (rasterlab's screen) and `[0, 1]`.
+    pub fn window_transform(&self) -> [f32; 16] {
+        let (sx, sy) = (2.0 / self.width as f32, 2.0 / self.height as f32);
+        [
+            sx, 0.0, 0.0, 0.0, //
+            0.0, sy, 0.0, 0.0, //
+            0.0, 0.0, 2.0, 0.0, //
+            -1.0, -1.0, -1.0, 1.0,
+        ]
+    }
+
+    /// Clears the depth (when drawing with depth) or the colour (when
+    /// not), draws `shape` and waits until llvmpipe has finished.
+    pub fn draw(&self, shape: &Shape, transform: &[f32; 16], state: DrawState) {
+        self.submit(shape, transform, state);
+        // SAFETY: a GL call on the current context.
+        unsafe { self.gl.finish() };
+    }
+
+    /// The fragments `shape` produces under `state`, but with every one
+    /// passing the depth test (the depth test set to `always`): the count
+    /// rasterlab's back-ends call "fragments emitted".
+    pub fn fragments(&self, shape: &Shape, transform: &[f32; 16], cull_back: bool) -> u64 {
+        let gl = &self.gl;
+        self.make_current();
+        // SAFETY: GL calls on the current context.
+        unsafe {
+            gl.begin_query(glow::SAMPLES_PASSED, self.query);
+            self.submit(
+                shape,
+                transform,
+                DrawState {
+                    depth: false,
+                    cull_back,
+                },
+            );
+            gl.end_query(glow::SAMPLES_PASSED);
+            u64::from(gl.get_query_parameter_u32(self.query, glow::QUERY_RESULT))
+        }
+    }
+
+    /// The pixels the last draw covered (alpha not zero), row by row, row
+    /// 0 first (rasterlab's top row, see the module docs).
+    pub fn coverage(&self) -> Vec<bool> {
+        self.make_current();
+        let mut rgba = vec![0u8; self.width as usize * self.height as usize * 4];
+        // SAFETY: a GL call on the current context; the buffer holds the
+        // whole target in RGBA8.
+        unsafe {
+            self.gl.read_pixels(
+                0,
+                0,
+                self.width as i32,
+                self.height as i32,
+                glow::RGBA,
+                glow::UNSIGNED_BYTE,
+                glow::PixelPackData::Slice(Some(&mut rgba)),
+            );
+        }
+        rgba.chunks_exact(4).map(|p| p[3] != 0).collect()
+    }
+
+    fn submit(&self, shape: &Shape, transform: &[f32; 16], state: DrawState) {
+        self.make_current();
+        let gl = &self.gl;
+        // SAFETY: GL calls on the current context, with objects it made.
+        unsafe {
+            if state.depth {
+                gl.enable(glow::DEPTH_TEST);
+                gl.depth_func(glow::LESS);
+                gl.depth_mask(true);
+                gl.clear(glow::DEPTH_BUFFER_BIT);
+            } else {
+                gl.disable(glow::DEPTH_TEST);
+                gl.depth_mask(false);
+                gl.clear(glow::COLOR_BUFFER_BIT);
+            }
+            if state.cull_back {
+                gl.enable(glow::CULL_FACE);
+                gl.cull_face(glow::BACK);
+                gl.front_face(glow::CW);
+            } else {
+                gl.disable(glow::CULL_FACE);
+            }
+            gl.use_program(Some(self.program));
+            gl.uniform_matrix_4_f32_slice(Some(&self.transform), false, transform);
+            gl.bind_vertex_array(Some(shape.vertex_array));
+            gl.draw_elements(glow::TRIANGLES, shape.indices, glow::UNSIGNED_INT, 0);
+            gl.bind_vertex_array(None);
+        }
+    }
+}
+
+impl Drop for Llvmpipe {
+    fn drop(&mut self) {
+        let _ = self.egl.make_current(self.display, None, None, None);
+        let _ = self.egl.destroy_context(self.display, self.context);
+    }
+}
+
+/// The display for `threads` rasterizer threads: the surfaceless one,
+/// or, when that one already runs another thread count, the software
+/// device's (see the module docs).
+fn open_display(
+    egl: &egl::DynamicInstance<egl::EGL1_5>,
+    threads: usize,
+) -> Result<egl::Display, String> {
+    let mut displays = DISPLAYS.lock().unwrap_or_else(|e| e.into_inner());
+    let slot = match *displays {
+        [None, _] => 0,
+        [Some(t), _] if t == threads => 0,
+        [_, None] => 1,
+        [_, Some(t)] if t == threads => 1,
+        [Some(a), Some(b)] => {
+            return Err(format!(
+                "llvmpipe already runs with {a} and {b} threads in this process (at most two thread counts at once)"
+            ))
+        }
+    };
+    // SAFETY: the native display of the surfaceless platform is
+    // EGL_DEFAULT_DISPLAY; the device's is the EGLDeviceEXT found below.
+    let display = unsafe {
+        if slot == 0 {
+            egl.get_platform_display(
+                PLATFORM_SURFACELESS,
+                egl::DEFAULT_DISPLAY,
+                &[egl::ATTRIB_NONE],
+            )
+        } else {
+            let device = software_device(egl)?;
+            egl.get_platform_display(PLATFORM_DEVICE, device, &[egl::ATTRIB_NONE])
+        }
+    }
+    .map_err(|e| {
+        format!("no EGL surfaceless display ({e}): install Mesa's EGL (Debian: libegl-mesa0)")
+    })?;
+    if displays[slot].is_none() {
+        let before = std::env::var_os("LP_NUM_THREADS");
+        std::env::set_var("LP_NUM_THREADS", threads.to_string());
+        let initialised = egl.initialize(display);
+        match before {
+            Some(value) => std::env::set_var("LP_NUM_THREADS", value),
+            None => std::env::remove_var("LP_NUM_THREADS"),
+        }
+        initialised.map_err(|e| {
+            format!("eglInitialize: {e} (Mesa's DRI drivers missing? Debian: libgl1-mesa-dri)")
+        })?;
+        displays[slot] = Some(threads);
+    }
+    Ok(display)
+}
+
+/// Mesa's software EGL device (`EGL_MESA_device_software`).
+fn software_device(
+    egl: &egl::DynamicInstance<egl::EGL1_5>,
+) -> Result<egl::NativeDisplayType, String> {
+    type QueryDevices = unsafe extern "system" fn(i32, *mut *mut std::ffi::c_void, *mut i32) -> u32;
+    type QueryDeviceString =
+        unsafe extern "system" fn(*mut std::ffi::c_void, i32) -> *const std::ffi::c_char;
+    let (Some(devices_fn), Some(string_fn)) = (
+        egl.get_proc_address("eglQueryDevicesEXT"),
+        egl.get_proc_address("eglQueryDeviceStringEXT"),
+    ) else {
+        return Err("EGL has no EGL_EXT_device_enumeration for a second llvmpipe display".into());
+    };
+    // SAFETY: the two entry points have the signatures of
+    // EGL_EXT_device_enumeration and EGL_EXT_device_query; the array holds
+    // the 16 devices asked for at most, and a device string is a C string
+    // owned by EGL.
+    unsafe {
+        let query_devices: QueryDevices = std::mem::transmute(devices_fn);
+        let query_string: QueryDeviceString = std::mem::transmute(string_fn);
+        let mut devices = [std::ptr::null_mut(); 16];
+        let mut count = 0;
+        if query_devices(16, devices.as_mut_ptr(), &mut count) == 0 {
+            return Err("eglQueryDevicesEXT failed".into());
+        }
+        for &device in &devices[..count.clamp(0, 16) as usize] {
+            let extensions = query_string(device, egl::EXTENSIONS);
+            if !extensions.is_null()
+                && std::ffi::CStr::from_ptr(extensions)
+                    .to_string_lossy()
+                    .contains("EGL_MESA_device_software")
+            {
+                return Ok(device);
+            }
+        }
+    }
+    Err("no Mesa software EGL device for a second llvmpipe display".into())
+}
+
+/// The framebuffer (RGBA8 colour, 32-bit float depth), the program and
+/// the occlusion query.
+///
+/// # Safety
+///
+/// A GL context must be current.
+unsafe fn set_up(
+    gl: &glow::Context,
+    width: u32,
+    height: u32,
+) -> Result<(glow::Program, glow::UniformLocation, glow::Query), String> {
+    let framebuffer = gl.create_framebuffer()?;
+    gl.bind_framebuffer(glow::FRAMEBUFFER, Some(framebuffer));
+    for (format, attachment) in [
+        (glow::RGBA8, glow::COLOR_ATTACHMENT0),
+        (glow::DEPTH_COMPONENT32F, glow::DEPTH_ATTACHMENT),
+    ] {
+        let buffer = gl.create_renderbuffer()?;
+        gl.bind_renderbuffer(glow::RENDERBUFFER, Some(buffer));
+        gl.renderbuffer_storage(glow::RENDERBUFFER, format, width as i32, height as i32);
+        gl.framebuffer_renderbuffer(
+            glow::FRAMEBUFFER,
+            attachment,
+            glow::RENDERBUFFER,
+            Some(buffer),
+        );
+    }
+    let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
+    if status != glow::FRAMEBUFFER_COMPLETE {
+        return Err(format!("framebuffer incomplete: 0x{status:x}"));
+    }
+    gl.viewport(0, 0, width as i32, height as i32);
+    gl.clear_color(0.0, 0.0, 0.0, 0.0);
+    gl.clear_depth_f32(1.0);
+    gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+    let program = gl.create_program()?;
+    for (kind, source) in [
+        (
+            glow::VERTEX_SHADER,
+            "#version 330 core\n\
+             layout(location = 0) in vec3 position;\n\
+             layout(location = 1) in float light;\n\
+             uniform mat4 transform;\n\
+             out float grey;\n\
+             void main() { grey = light; gl_Position = transform * vec4(position, 1.0); }\n",
+        ),
+        (
+            glow::FRAGMENT_SHADER,
+            "#version 330 core\n\
+             in float grey;\n\
+             out vec4 colour;\n\
+             void main() { colour = vec4(grey, grey, grey, 1.0); }\n",
+        ),
+    ] {
+        let shader = gl.create_shader(kind)?;
+        gl.shader_source(shader, source);
+        gl.compile_shader(shader);
+        if !gl.get_shader_compile_status(shader) {
+            return Err(gl.get_shader_info_log(shader));
+        }
+        gl.attach_shader(program, shader);
+    }
+    gl.link_program(program);
+    if !gl.get_program_link_status(program) {
+        return Err(gl.get_program_info_log(program));
+    }
+    let transform = gl
+        .get_uniform_location(program, "transform")
+        .ok_or("no uniform `transform`")?;
+    let query = gl.create_query()?;
+    Ok((program, transform, query))
+}
+
+/// The bytes of a slice of plain numbers.
+fn as_bytes<T: Copy>(values: &[T]) -> &[u8] {
+    // SAFETY: T is u32 or Vertex (four f32), plain data without padding.
+    unsafe { std::slice::from_raw_parts(values.as_ptr().cast(), std::mem::size_of_val(values)) }
+}
