@@ -15,7 +15,8 @@ pub struct BenchArgs {
     /// Target size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1920x1080")]
     size: Size,
-    /// Timed runs per back-end and workload (the median is reported).
+    /// Timed runs per back-end and workload (median, minimum and maximum
+    /// are reported).
     #[arg(long, default_value = "5", value_parser = super::args::samples)]
     samples: usize,
     /// Meshes to render (default: the bundled dragon).
@@ -51,16 +52,15 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         bar.set_message(p.pair.to_string());
     });
     bar.finish_and_clear();
-    let results = results?;
+    let report = results?;
     if args.json {
-        say!("{}", benchmark::to_json(&results))?;
+        say!("{}", benchmark::to_json(&report))?;
     } else {
-        say_raw!("{}", benchmark::table(&results))?;
+        say_raw!("{report}")?;
     }
-    benchmark::write_outputs(&results, &args.out)?;
+    benchmark::write_outputs(&report, &args.out)?;
     eprintln!(
-        "threads: {}; wrote bench.json, bench.png, bench.svg in {}",
-        rayon::current_num_threads(),
+        "wrote bench.json, bench.png, bench.svg in {}",
         args.out.display()
     );
     Ok(())

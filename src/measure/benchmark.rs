@@ -352,11 +352,6 @@ impl fmt::Display for BenchReport {
     }
 }
 
-/// The report as a plain-text table, with its context.
-pub fn table(report: &BenchReport) -> String {
-    report.to_string()
-}
-
 /// The report as JSON: the context, the baseline, and every figure.
 pub fn to_json(report: &BenchReport) -> String {
     serde_json::to_string_pretty(report).expect("measurements serialise")
