@@ -3,6 +3,9 @@
 //! primitives, and an outside program passes and fails as it should
 //! through `rasterlab check --exec`.
 
+mod common;
+use common::rasterlab;
+
 use rasterlab::check::judge::LineConvention;
 use rasterlab::check::{
     check, line_fragments, triangle_fragments, Builtin, Case, CheckOptions, Fragment, Property,
@@ -10,7 +13,6 @@ use rasterlab::check::{
 };
 use rasterlab::raster::backend::{line_backend, triangle_backend, triangle_backends};
 use rasterlab::raster::edge::FillRule;
-use std::process::{Command, Output};
 
 fn options(property: Property, cases: u32, seed: u64) -> CheckOptions {
     CheckOptions {
@@ -224,13 +226,6 @@ fn mutants_are_caught_with_at_most_three_primitives() {
     // Vulkan's tolerance of it.
     let diamond = Property::Line(LineConvention::Diamond);
     caught(diamond, |c| line_fragments(bresenham, c));
-}
-
-fn rasterlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rasterlab"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
 }
 
 fn out_dir(name: &str) -> String {

@@ -1,13 +1,9 @@
 //! The command-line contract: `backends`, `fragments` and error handling.
 
-use std::process::{Command, Output};
+mod common;
+use common::rasterlab;
 
-fn rasterlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rasterlab"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use std::process::Output;
 
 /// Asserts that the command succeeded (showing its stderr when not) and
 /// returns its standard output.

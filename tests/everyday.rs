@@ -3,14 +3,9 @@
 //! options refused where they do not apply, `compare` saying which
 //! reference it uses.
 
-use std::process::{Command, Output};
+mod common;
+use common::rasterlab;
 
-fn rasterlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rasterlab"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 fn temp(name: &str) -> String {
     let dir = std::env::temp_dir().join(format!("rasterlab-everyday-{}", std::process::id()));

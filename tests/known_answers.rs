@@ -8,6 +8,7 @@ use rasterlab::raster::edge::FillRule;
 use rasterlab::raster::fixed::FixedPoint;
 use rasterlab::raster::shader::to_rgba8;
 use rasterlab::raster::shader::Flat;
+use rasterlab::teaching::ascii;
 
 fn snap(x: f32, y: f32) -> FixedPoint {
     FixedPoint::snap(x, y).unwrap()
@@ -28,18 +29,9 @@ fn pattern(
     for f in &list.triangles {
         counts[(f.y * w + f.x) as usize] += 1;
     }
-    counts
-        .chunks(w as usize)
-        .map(|row| {
-            row.iter()
-                .map(|&n| match n {
-                    0 => '.',
-                    1 => '#',
-                    n => char::from_digit(n, 10).unwrap(),
-                })
-                .collect()
-        })
-        .collect()
+    ascii::rows(0..i64::from(w), 0..i64::from(h), |x, y| {
+        ascii::count(counts[(y * i64::from(w) + x) as usize])
+    })
 }
 
 #[test]

@@ -235,11 +235,11 @@ impl DevTools {
 #[test]
 fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
     let Some(browser) = chromium() else {
-        assert!(
-            std::env::var_os("RASTERLAB_REQUIRE_BROWSER").is_none(),
-            "RASTERLAB_REQUIRE_BROWSER is set but no chromium was found"
+        common::part_missing(
+            "the lab's browser test",
+            "chromium (Debian's package `chromium`)",
+            "RASTERLAB_REQUIRE_BROWSER",
         );
-        eprintln!("no chromium found: the lab's browser test was not run");
         return;
     };
     let lab = Lab::start();

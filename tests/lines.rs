@@ -17,6 +17,7 @@ use rasterlab::raster::line::{
     Connectivity, Endpoints, LineOptions, LineRasterizer, LineSetup, OctantFrame,
 };
 use rasterlab::raster::target::RenderTarget;
+use rasterlab::teaching::ascii;
 use std::collections::BTreeSet;
 
 type Pixels = Vec<(i64, i64)>;
@@ -354,13 +355,7 @@ fn line_drawing_crate_bresenham_is_our_midpoint_rule_moved_half_a_pixel() {
 }
 
 fn ascii(pixels: &[(i64, i64)], w: i64, h: i64) -> Vec<String> {
-    (0..h)
-        .map(|y| {
-            (0..w)
-                .map(|x| if pixels.contains(&(x, y)) { '#' } else { '.' })
-                .collect()
-        })
-        .collect()
+    ascii::rows(0..w, 0..h, |x, y| ascii::mark(pixels.contains(&(x, y))))
 }
 
 #[test]

@@ -21,6 +21,7 @@ use rasterlab::raster::primitive::{ShadedVertex, Varyings};
 use rasterlab::raster::shader::{Constant, Filter, Flat, Texture, Textured};
 use rasterlab::raster::stage::Interpolation;
 use rasterlab::raster::target::{DepthState, RenderTarget};
+use rasterlab::teaching::ascii;
 use rasterlab::Error;
 use std::path::Path;
 
@@ -34,19 +35,10 @@ fn asset(name: &str) -> Mesh {
 }
 
 fn ascii(target: &RenderTarget) -> Vec<String> {
-    (0..target.height())
-        .map(|y| {
-            (0..target.width())
-                .map(|x| {
-                    if target.coverage[target.index(x, y)] > 0 {
-                        '#'
-                    } else {
-                        '.'
-                    }
-                })
-                .collect()
-        })
-        .collect()
+    let (w, h) = (i64::from(target.width()), i64::from(target.height()));
+    ascii::rows(0..w, 0..h, |x, y| {
+        ascii::mark(target.coverage[target.index(x as u32, y as u32)] > 0)
+    })
 }
 
 /// The course chapter's vertex array, `-1,0,0, 0,-1,0, -1,-1,0`, taken unchanged by

@@ -47,11 +47,11 @@ fn body_data(dom: &str, name: &str) -> usize {
 #[test]
 fn the_report_renders_its_images_and_tables_in_chromium() {
     let Some(browser) = chromium() else {
-        assert!(
-            std::env::var_os("RASTERLAB_REQUIRE_BROWSER").is_none(),
-            "RASTERLAB_REQUIRE_BROWSER is set but no chromium was found"
+        common::part_missing(
+            "the report's browser test",
+            "chromium (Debian's package `chromium`)",
+            "RASTERLAB_REQUIRE_BROWSER",
         );
-        eprintln!("no chromium found: the browser check was not run");
         return;
     };
     let dir = std::env::temp_dir().join(format!("rasterlab-report-{}", std::process::id()));

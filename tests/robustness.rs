@@ -2,16 +2,12 @@
 //! a new user and as an adversarial tester, each with the command that
 //! showed it, and the README's table of exit codes, row by row.
 
+mod common;
+use common::rasterlab;
+
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
-
-fn rasterlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rasterlab"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()

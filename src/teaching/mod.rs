@@ -8,11 +8,13 @@
 //!   and legend uses, and the legends themselves;
 //! * [`report`]: the side-by-side HTML comparison of every back-end on
 //!   one input (images, differences, work and time);
+//! * [`ascii`]: pixel grids as text, one character a pixel;
 //! * [`compare`]: the `compare` command: an input file, every back-end, the report;
 //! * [`explain`]: one algorithm traced on a small input, as `explain` prints it;
 //! * [`demo`]: every back-end on the bundled scenes and meshes, its
 //!   images compared with the reference's.
 
+pub mod ascii;
 pub mod compare;
 pub mod demo;
 pub mod explain;

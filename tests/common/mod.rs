@@ -1,5 +1,34 @@
-//! Generators and helpers shared by the integration tests.
+//! Generators and helpers shared by the integration tests: proptest
+//! strategies, the command-line runner, and the note a test gives when a
+//! part it needs (a browser, a Python package, Mesa) is not installed.
 #![allow(dead_code)]
+
+use std::process::{Command, Output};
+
+/// Runs the `rasterlab` binary with `args` and returns what it did.
+pub fn rasterlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// Reports that `test` did not run because `part` is missing. The note
+/// goes straight to standard error, past the test harness's capture, so
+/// it shows in every run; when the environment variable `required` is set
+/// (as `.ci/run` sets it after installing the part) a missing part fails
+/// the test instead.
+pub fn part_missing(test: &str, part: &str, required: &str) {
+    use std::io::Write;
+    assert!(
+        std::env::var_os(required).is_none(),
+        "{required} is set but {part} was not found: {test} cannot run"
+    );
+    let note = format!(
+        "\nNOT RUN: {test}: {part} was not found (set {required}=1 to make this a failure)\n"
+    );
+    let _ = std::io::stderr().lock().write_all(note.as_bytes());
+}
 
 use proptest::prelude::*;
 use rasterlab::geometry::polygon::Polygon;
