@@ -6,7 +6,6 @@
 mod common;
 use common::rasterlab;
 
-
 fn temp(name: &str) -> String {
     let dir = std::env::temp_dir().join(format!("rasterlab-everyday-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -6,34 +6,7 @@ mod common;
 
 use common::*;
 use proptest::prelude::*;
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::FillRule;
 use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::triangle::naive::Naive;
-
-/// Asserts every back-end's fragments equal `naive`'s, as sorted lists,
-/// and that each back-end emits each pixel's fragments in ascending
-/// triangle order (what makes the shared stage's output identical).
-fn assert_all_match_naive(triangles: &[[FixedPoint; 3]]) {
-    for rule in FillRule::ALL {
-        let reference = fragments(&Naive, triangles, rule).sorted_triangle_fragments();
-        for backend in triangle_backends() {
-            let list = fragments(*backend, triangles, rule);
-            assert_eq!(
-                list.sorted_triangle_fragments(),
-                reference,
-                "{} differs from naive under {rule} on {triangles:?}",
-                backend.name()
-            );
-            let mut last = std::collections::HashMap::new();
-            for f in &list.triangles {
-                if let Some(prev) = last.insert((f.x, f.y), f.triangle) {
-                    assert!(prev < f.triangle, "{}: pixel order", backend.name());
-                }
-            }
-        }
-    }
-}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(3000))]

@@ -33,9 +33,11 @@ pub fn part_missing(test: &str, part: &str, required: &str) {
 use proptest::prelude::*;
 use rasterlab::geometry::polygon::Polygon;
 use rasterlab::geometry::scene::setup_triangles;
+use rasterlab::raster::backend::triangle_backends;
 use rasterlab::raster::edge::{FillRule, PixelRect, TriangleSetup};
 use rasterlab::raster::fixed::FixedPoint;
 use rasterlab::raster::fragment::FragmentList;
+use rasterlab::raster::triangle::naive::Naive;
 use rasterlab::raster::triangle::TriangleRasterizer;
 
 /// Side of the square target used by the property tests.
@@ -140,6 +142,30 @@ pub fn fragments(
     let mut list = FragmentList::default();
     backend.rasterize(&setups, viewport(), &mut list);
     list
+}
+
+/// Asserts every back-end's fragments equal `naive`'s, as sorted lists,
+/// and that each back-end emits each pixel's fragments in ascending
+/// triangle order (what makes the shared stage's output identical).
+pub fn assert_all_match_naive(triangles: &[[FixedPoint; 3]]) {
+    for rule in FillRule::ALL {
+        let reference = fragments(&Naive, triangles, rule).sorted_triangle_fragments();
+        for backend in triangle_backends() {
+            let list = fragments(*backend, triangles, rule);
+            assert_eq!(
+                list.sorted_triangle_fragments(),
+                reference,
+                "{} differs from naive under {rule} on {triangles:?}",
+                backend.name()
+            );
+            let mut last = std::collections::HashMap::new();
+            for f in &list.triangles {
+                if let Some(prev) = last.insert((f.x, f.y), f.triangle) {
+                    assert!(prev < f.triangle, "{}: pixel order", backend.name());
+                }
+            }
+        }
+    }
 }
 
 /// How many fragments each pixel received.
