@@ -6,6 +6,7 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use rasterlab::raster::backend::{line_backends, triangle_backends};
+use rasterlab::raster::descriptor::{within_budget, WorkBudget};
 use rasterlab::raster::edge::{FillRule, PixelRect, TriangleSetup};
 use rasterlab::raster::fixed::FixedPoint;
 use rasterlab::raster::fragment::{FragmentSink, LineFragment, TriangleFragment};
@@ -85,7 +86,14 @@ fn triangles(c: &mut Criterion) {
         for b in triangle_backends() {
             // The naive loop tests every pixel against every triangle:
             // 2 million x thousands of triangles is beyond a benchmark.
-            if !b.affordable(work.len() as u64, 1, 2) {
+            if within_budget(
+                &b.descriptor(),
+                work.len() as u64,
+                viewport.area(),
+                WorkBudget::Timing,
+            )
+            .is_err()
+            {
                 continue;
             }
             group.bench_function(BenchmarkId::from_parameter(b.name()), |bench| {

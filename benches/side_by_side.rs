@@ -56,6 +56,7 @@ use rasterlab::measure::data::{self, Skipped};
 use rasterlab::measure::rounds::{ratio_header, Contender, Side, Workload, WorkloadResult};
 use rasterlab::measure::workload::{self, LineWorkload, TriangleWorkload};
 use rasterlab::raster::backend::{line_backends, triangle_backend, triangle_backends};
+use rasterlab::raster::descriptor::{within_budget, WorkBudget};
 use rasterlab::raster::fixed::FixedPoint;
 use rasterlab::raster::line::pixel_containing;
 use rasterlab::raster::target::RenderTarget;
@@ -302,7 +303,8 @@ fn dragon(name: &str, mesh: &Mesh, zoom: f32, rounds: usize, gls: &Gl) -> Worklo
 
     let mut work = Workload::new(name);
     let affordable = |b: &&&dyn TriangleRasterizer| {
-        b.affordable(mesh.triangles.len() as u64, pixels, 2 * pixels)
+        let triangles = mesh.triangles.len() as u64;
+        within_budget(&b.descriptor(), triangles, pixels, WorkBudget::Timing).is_ok()
     };
     let (draw, one, two) = (&draw, &one, &two);
     for &b in triangle_backends().iter().filter(affordable) {

@@ -47,8 +47,9 @@
 //! * **Comparing performance**: [`measure::workload`] prepares the inputs,
 //!   [`measure::benchmark`] times every back-end; meshes are drawn by
 //!   [`MeshRenderer`].
-//! * **Adding a back-end**: implement [`TriangleRasterizer`] (or
-//!   [`LineRasterizer`]) in a file of its own under `raster/triangle/`
+//! * **Adding a back-end**: implement
+//!   [`TriangleAlgorithm`](raster::triangle::TriangleAlgorithm) (or
+//!   [`AliasedLine`](raster::line::AliasedLine)) in a file of its own under `raster/triangle/`
 //!   (or `raster/line/`), declare it there with one `pub mod` line, and
 //!   list it in [`raster::backend`]; every command, check, report,
 //!   benchmark, trace and test picks it up from there.

@@ -14,7 +14,7 @@ use rasterlab::raster::line::diamond::{exits_diamond, Diamond};
 use rasterlab::raster::line::direct::Direct;
 use rasterlab::raster::line::wu::Wu;
 use rasterlab::raster::line::{
-    Connectivity, Endpoints, LineOptions, LineRasterizer, LineSetup, OctantFrame,
+    AliasedLine, Connectivity, Endpoints, LineOptions, LineRasterizer, LineSetup, OctantFrame,
 };
 use rasterlab::raster::target::RenderTarget;
 use rasterlab::teaching::ascii;

@@ -292,30 +292,28 @@ mod newer_traces {
 /// not looked up by its name.
 #[test]
 fn an_outside_back_end_is_traced_by_its_walk() {
-    use rasterlab::raster::fragment::{FragmentSink, WorkCounters};
-    use rasterlab::raster::triangle::{TriangleRasterizer, TriangleSelection, TriangleWalk};
-    use rasterlab::{triangle_backend, PixelRect};
+    use rasterlab::raster::descriptor::{CostClass, Role};
+    use rasterlab::raster::triangle::bbox::BoundingBox;
+    use rasterlab::raster::triangle::{TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+    use rasterlab::{FragmentSink, PixelRect, TriangleSetup, WorkCounters};
 
     struct MyBox;
-    impl TriangleRasterizer for MyBox {
-        fn name(&self) -> &'static str {
-            "my-box"
-        }
-        fn description(&self) -> &'static str {
-            "the bounding-box loop, under another name"
-        }
-        fn walk(&self) -> TriangleWalk {
-            TriangleWalk::BoundingBox
-        }
-        fn rasterize_selection(
+    impl TriangleAlgorithm for MyBox {
+        const DESCRIPTOR: TriangleDescriptor = TriangleDescriptor {
+            name: "my-box",
+            description: "the bounding-box loop, under another name",
+            walk: TriangleWalk::BoundingBox,
+            role: Role::Alternative,
+            cost: CostClass::FollowsSize,
+        };
+        fn draw_triangle(
             &self,
-            triangles: TriangleSelection<'_>,
+            t: &TriangleSetup,
             viewport: PixelRect,
             sink: &mut dyn FragmentSink,
-        ) -> WorkCounters {
-            triangle_backend("bbox")
-                .unwrap()
-                .rasterize_selection(triangles, viewport, sink)
+            work: &mut WorkCounters,
+        ) {
+            BoundingBox.draw_triangle(t, viewport, sink, work)
         }
     }
     let triangle = [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)];

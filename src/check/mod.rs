@@ -326,6 +326,6 @@ fn line_backend_walking(walk: LineWalk) -> &'static dyn LineRasterizer {
     line_backends()
         .iter()
         .copied()
-        .find(|b| b.walk() == walk)
+        .find(|b| b.descriptor().walk == walk)
         .expect("the registry has a back-end for each line rule")
 }

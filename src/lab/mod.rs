@@ -294,7 +294,7 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
             .collect();
         let scene = Scene2D::with_depths(w, h, &numbers)?;
         let (target, _) = scene.render(
-            crate::raster::backend::triangle_backend("scanline")?,
+            crate::raster::backend::default_triangle_backend(),
             rule,
             &crate::raster::shader::Flat,
         )?;

@@ -24,6 +24,7 @@ use crate::measure::table::Table;
 use crate::measure::timing::{significant, time_runs, Spread, Timing};
 use crate::measure::workload::{self, LineWorkload};
 use crate::raster::backend::{line_backends, triangle_backends};
+use crate::raster::descriptor::{within_budget, WorkBudget};
 use crate::raster::target::RenderTarget;
 use serde::Serialize;
 use std::fmt;
@@ -200,9 +201,10 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
         .iter()
         // As for the triangle workloads: at most two tests per pixel.
         .filter(|b| {
-            meshes
-                .iter()
-                .all(|(_, mesh)| b.affordable(mesh.triangles.len() as u64, 1, 2))
+            meshes.iter().all(|(_, mesh)| {
+                let triangles = mesh.triangles.len() as u64;
+                within_budget(&b.descriptor(), triangles, 1, WorkBudget::Timing).is_ok()
+            })
         })
         .collect();
     let total = triangle_workloads

@@ -16,6 +16,7 @@
 
 use crate::geometry::pipeline::{draw_clearing, Geometry};
 use crate::geometry::scene::setup_triangles;
+use crate::raster::descriptor::{within_budget, WorkBudget};
 use crate::raster::edge::FillRule;
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::FixedPoint;
@@ -69,12 +70,19 @@ impl TriangleWorkload {
         self.geometry.setups.len()
     }
 
-    /// Whether timing `backend` on this workload is sensible: a back-end
-    /// whose work does not follow the triangles' size (the naive loop tests
-    /// every pixel against every triangle) runs only where it tests each
-    /// pixel at most twice, the two-triangle fills.
+    /// Whether timing `backend` on this workload is sensible: within a
+    /// [timing's budget](WorkBudget::Timing), so a back-end whose work does
+    /// not follow the triangles' size (the naive loop tests every pixel
+    /// against every triangle) runs only on the two-triangle fills. The
+    /// budget is per pixel, so the target's size does not matter (1 pixel).
     pub fn suits(&self, backend: &dyn TriangleRasterizer) -> bool {
-        backend.affordable(self.triangles() as u64, 1, 2)
+        within_budget(
+            &backend.descriptor(),
+            self.triangles() as u64,
+            1,
+            WorkBudget::Timing,
+        )
+        .is_ok()
     }
 
     /// Clears `target`'s depth and coverage and draws the workload with

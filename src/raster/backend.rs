@@ -1,9 +1,16 @@
 //! The registry of back-ends, by name.
 //!
 //! `rasterlab backends` prints [`all_backends`], one per line, as
-//! `NAME KIND DESCRIPTION`.
+//! `NAME KIND DESCRIPTION`. The tools find the reference, its fallback and
+//! the default back-ends here, by the [`Role`] each back-end's descriptor
+//! gives, never by name.
+//!
+//! A new back-end takes three places: its file (the algorithm and its
+//! [`Descriptor`](crate::raster::descriptor::Descriptor)), one `pub mod`
+//! line beside the others, and one entry in the lists below.
 
 use crate::error::{Error, Result};
+use crate::raster::descriptor::{within_budget, Role, WorkBudget};
 use crate::raster::line::{
     bresenham::Bresenham, dda::Dda, diamond::Diamond, direct::Direct, wu::Wu, LineRasterizer,
 };
@@ -50,14 +57,45 @@ pub fn triangle_backends() -> &'static [&'static dyn TriangleRasterizer] {
     &TRIANGLE_BACKENDS
 }
 
-/// The reference every triangle back-end is compared with: the one that
-/// says it [is](TriangleRasterizer::is_reference) (`naive`).
-pub fn reference_triangle_backend() -> &'static dyn TriangleRasterizer {
+/// The triangle back-end whose descriptor has `role`.
+fn triangle_backend_in(role: Role) -> &'static dyn TriangleRasterizer {
     triangle_backends()
         .iter()
         .copied()
-        .find(|b| b.is_reference())
-        .expect("the registry holds the reference back-end")
+        .find(|b| b.descriptor().role == role)
+        .expect("the registry holds a triangle back-end of every role")
+}
+
+/// The reference every triangle back-end is compared with: the one whose
+/// role is [`Role::Reference`] (`naive`, the course's loop).
+pub fn reference_triangle_backend() -> &'static dyn TriangleRasterizer {
+    triangle_backend_in(Role::Reference)
+}
+
+/// The reference where the reference is beyond a budget: the one whose
+/// role is [`Role::Fallback`] (`bbox`).
+pub fn fallback_triangle_backend() -> &'static dyn TriangleRasterizer {
+    triangle_backend_in(Role::Fallback)
+}
+
+/// The reference for drawing `triangles` triangles on `pixels` pixels
+/// within `budget`: the [reference](reference_triangle_backend) when it
+/// fits, its [fallback](fallback_triangle_backend) when not.
+pub fn reference_triangle_backend_within(
+    triangles: u64,
+    pixels: u64,
+    budget: WorkBudget,
+) -> &'static dyn TriangleRasterizer {
+    let reference = reference_triangle_backend();
+    match within_budget(&reference.descriptor(), triangles, pixels, budget) {
+        Ok(()) => reference,
+        Err(_) => fallback_triangle_backend(),
+    }
+}
+
+/// The triangle back-end tools draw with when none is named (`scanline`).
+pub fn default_triangle_backend() -> &'static dyn TriangleRasterizer {
+    triangle_backend_in(Role::Default)
 }
 
 /// The triangle back-end called `name`.
@@ -74,6 +112,15 @@ static LINE_BACKENDS: [&dyn LineRasterizer; 5] = [&Direct, &Dda, &Bresenham, &Wu
 /// Every line back-end.
 pub fn line_backends() -> &'static [&'static dyn LineRasterizer] {
     &LINE_BACKENDS
+}
+
+/// The line back-end tools draw with when none is named (`bresenham`).
+pub fn default_line_backend() -> &'static dyn LineRasterizer {
+    line_backends()
+        .iter()
+        .copied()
+        .find(|b| b.descriptor().role == Role::Default)
+        .expect("the registry holds a default line back-end")
 }
 
 /// The line back-end called `name`.
@@ -137,4 +184,44 @@ pub fn all_backends() -> Vec<BackendInfo> {
         description: b.description(),
     });
     triangles.chain(lines).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The roles the tools look up are each held by exactly one back-end
+    /// of the kind, and names are unique.
+    #[test]
+    fn every_role_is_held_once_and_every_name_is_unique() {
+        let count = |roles: Vec<Role>, role: Role| roles.iter().filter(|r| **r == role).count();
+        let triangles: Vec<Role> = triangle_backends()
+            .iter()
+            .map(|b| b.descriptor().role)
+            .collect();
+        for role in [Role::Reference, Role::Fallback, Role::Default] {
+            assert_eq!(count(triangles.clone(), role), 1, "{role:?}");
+        }
+        let lines: Vec<Role> = line_backends()
+            .iter()
+            .map(|b| b.descriptor().role)
+            .collect();
+        assert_eq!(count(lines, Role::Default), 1);
+        let mut names: Vec<&str> = all_backends().iter().map(|b| b.name).collect();
+        let all = names.len();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), all, "{names:?}");
+    }
+
+    #[test]
+    fn the_reference_falls_back_beyond_the_budget() {
+        let within = |triangles| {
+            reference_triangle_backend_within(triangles, 1000 * 1000, WorkBudget::Report).name()
+        };
+        assert_eq!(within(50), "naive");
+        assert_eq!(within(51), "bbox");
+        assert_eq!(default_triangle_backend().name(), "scanline");
+        assert_eq!(default_line_backend().name(), "bresenham");
+    }
 }

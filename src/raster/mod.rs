@@ -9,7 +9,9 @@
 //!   [`TriangleRasterizer`](triangle::TriangleRasterizer) trait;
 //! * [`line`](mod@line): the line back-ends, one file each, the
 //!   [`LineRasterizer`](line::LineRasterizer) trait and line options;
-//! * [`backend`]: the registry of back-ends by name;
+//! * [`descriptor`]: what a back-end is, as data (name, description,
+//!   walk, role, cost class), and the one work budget;
+//! * [`backend`]: the registry of back-ends by name and by role;
 //! * [`fragment`]: fragments, the [`FragmentSink`](fragment::FragmentSink)
 //!   they go into, work counters;
 //! * [`primitive`]: what the stage reads of a draw (per vertex depth,
@@ -23,6 +25,7 @@
 //! teaching and measurement are built on this.
 
 pub mod backend;
+pub mod descriptor;
 pub mod edge;
 pub mod fixed;
 pub mod fragment;

@@ -45,8 +45,9 @@ use crate::raster::fragment::{FragmentSink, LineFragment, TriangleFragment};
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::shader::Flat;
 use crate::raster::target::RenderTarget;
-use crate::raster::triangle::tiled::BlockClass;
+use crate::raster::triangle::tiled::{blocks, BlockClass};
 use crate::raster::triangle::TriangleRasterizer;
+use crate::raster::triangle::TriangleWalk;
 use std::fmt::Write;
 use std::path::Path;
 
@@ -239,10 +240,12 @@ impl GridPicture {
         );
         let mut picture = Self::recorded(&recorder, width, height, caption);
         picture.outlines = outlines(triangles);
-        picture.blocks = setups
-            .iter()
-            .flat_map(|t| backend.blocks(t, PixelRect::of_target(width, height)))
-            .collect();
+        if backend.descriptor().walk == TriangleWalk::Blocks {
+            picture.blocks = setups
+                .iter()
+                .flat_map(|t| blocks(t, PixelRect::of_target(width, height)))
+                .collect();
+        }
         Ok(picture)
     }
 

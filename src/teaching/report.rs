@@ -37,8 +37,10 @@ use crate::geometry::scene::Scene2D;
 use crate::measure::benchmark::median_time;
 use crate::measure::workload::LineWorkload;
 use crate::raster::backend::{
-    line_backends, reference_triangle_backend, triangle_backend, triangle_backends,
+    default_triangle_backend, fallback_triangle_backend, line_backends, reference_triangle_backend,
+    triangle_backends,
 };
+use crate::raster::descriptor::{within_budget, WorkBudget};
 use crate::raster::edge::FillRule;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::LineSetup;
@@ -50,11 +52,6 @@ use base64::Engine;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
-
-/// Largest number of pixel tests a back-end whose work does not follow the
-/// triangles' size (the naive loop: pixels x triangles) may do in a report;
-/// above it `bbox` is the reference and `naive` is left out.
-pub const NAIVE_TEST_BUDGET: u64 = 50_000_000;
 
 /// Largest target (in pixels) that gets zoomed grid pictures.
 pub const GRID_PICTURE_PIXELS: u32 = 48 * 48;
@@ -165,15 +162,21 @@ fn pixel_differs(a: &RenderTarget, b: &RenderTarget, i: usize) -> bool {
 
 /// The triangle back-ends a report runs: all of them, but those whose work
 /// does not follow the triangles' size (the naive loop) only while it stays
-/// within [`NAIVE_TEST_BUDGET`] tests.
+/// within [a report's budget](WorkBudget::Report); the reference is then
+/// left out, and its fallback (listed next) is the reference.
 fn triangle_backends_within_budget(
     pixels: u64,
     triangles: usize,
 ) -> impl Iterator<Item = &'static dyn TriangleRasterizer> {
-    triangle_backends()
-        .iter()
-        .copied()
-        .filter(move |b| b.affordable(triangles as u64, pixels, NAIVE_TEST_BUDGET))
+    triangle_backends().iter().copied().filter(move |b| {
+        within_budget(
+            &b.descriptor(),
+            triangles as u64,
+            pixels,
+            WorkBudget::Report,
+        )
+        .is_ok()
+    })
 }
 
 /// The heat maps of `coverage_of(rule)` for every rule.
@@ -280,7 +283,7 @@ impl Report {
                         grids.push((b.name(), picture));
                     }
                 }
-                let scanline = triangle_backend("scanline")?;
+                let scanline = default_triangle_backend();
                 rules = rule_pictures(width, height, |rule| {
                     Ok(scene.render(scanline, rule, &Flat)?.0.coverage)
                 })?;
@@ -327,7 +330,7 @@ impl Report {
                         frame.target,
                     ));
                 }
-                let scanline = triangle_backend("scanline")?;
+                let scanline = default_triangle_backend();
                 rules = rule_pictures(width, height, |rule| {
                     let frame = MeshRenderer::new(mesh, settings(rule))?.render(scanline)?;
                     Ok(frame.target.coverage)
@@ -357,13 +360,15 @@ impl Report {
                 reference.name
             ),
             _ => format!(
-                "{}: naive was left out, as its {triangles_in} triangles x {pixels} pixels = {} tests are beyond the report's budget of {NAIVE_TEST_BUDGET}",
+                "{}: {} was left out, as its {triangles_in} triangles x {pixels} pixels = {} tests are beyond the report's budget of {}",
                 reference.name,
-                triangles_in as u64 * pixels
+                reference_triangle_backend().name(),
+                triangles_in as u64 * pixels,
+                WorkBudget::Report.tests(pixels)
             ),
         };
         let pinwheel = Scene2D::pinwheel();
-        let bbox = triangle_backend("bbox")?;
+        let bbox = fallback_triangle_backend();
         let pinwheel_rules = rule_pictures(pinwheel.width, pinwheel.height, |rule| {
             Ok(pinwheel.render(bbox, rule, &Flat)?.0.coverage)
         })?;

@@ -191,7 +191,7 @@ pub fn bresenham_trace(ends: &LineEnds) -> String {
 
 /// The step-by-step trace of a triangle back-end on one triangle given in
 /// screen pixels, on a `width` x `height` grid: the trace of the way it
-/// [walks](TriangleRasterizer::walk) the pixels.
+/// [walks](crate::raster::descriptor::Descriptor::walk) the pixels.
 pub fn of_triangle_backend(
     backend: &dyn TriangleRasterizer,
     vertices: [(f64, f64); 3],
@@ -199,20 +199,24 @@ pub fn of_triangle_backend(
     width: u32,
     height: u32,
 ) -> Result<String> {
-    match backend.walk() {
+    match backend.descriptor().walk {
         TriangleWalk::EveryPixel | TriangleWalk::BoundingBox => {
             per_pixel_trace(backend, vertices, rule, width, height)
         }
         TriangleWalk::Scanline => scanline_trace(vertices, rule, width, height),
         TriangleWalk::IncrementalEdges => incremental_trace(vertices, rule, width, height),
         TriangleWalk::Blocks => tiled_trace(vertices, rule, width, height),
+        TriangleWalk::Own(walk) => Err(Error::InvalidArgument(format!(
+            "no trace for `{}`, which walks its own way ({walk})",
+            backend.name()
+        ))),
     }
 }
 
 /// The step-by-step trace of a line back-end on one segment: the trace of
-/// the way it [chooses](LineRasterizer::walk) its pixels.
+/// the way it [chooses](crate::raster::descriptor::Descriptor::walk) its pixels.
 pub fn of_line_backend(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String> {
-    match backend.walk() {
+    match backend.descriptor().walk {
         LineWalk::DirectEvaluation | LineWalk::Incremental => column_trace(backend, ends),
         LineWalk::Midpoint => Ok(bresenham_trace(ends)),
         LineWalk::AntiAliased => Ok(wu_trace(ends)),
@@ -239,7 +243,7 @@ fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String>
         0.0
     };
     let mut out = String::new();
-    let walk = backend.walk();
+    let walk = backend.descriptor().walk;
     let how = match walk {
         LineWalk::DirectEvaluation => {
             "y = m (x - x0) + y0, evaluated exactly per column, then rounded"
@@ -324,7 +328,7 @@ fn per_pixel_trace(
     else {
         return Ok(out);
     };
-    let walk = backend.walk();
+    let walk = backend.descriptor().walk;
     let region = match walk {
         TriangleWalk::BoundingBox => t.bounds_within(grid),
         TriangleWalk::EveryPixel => grid,

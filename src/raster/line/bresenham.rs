@@ -21,12 +21,11 @@
 //! start). Other octants by symmetry ([`super::OctantFrame`]).
 
 use super::{
-    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup, LineWalk,
+    finish_pixels, walk_frame, AliasedLine, LineDescriptor, LineOptions, LineSetup, LineWalk,
     OctantFrame,
 };
-use crate::raster::edge::PixelRect;
+use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
-use crate::raster::fragment::{FragmentSink, WorkCounters};
 
 /// Midpoint / Bresenham with an integer decision variable.
 #[derive(Copy, Clone, Debug, Default)]
@@ -69,35 +68,24 @@ impl Bresenham {
         }
         steps
     }
-
-    /// The pixels of one segment, in the order of travel.
-    pub fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
-        let (frame, reversed) = walk_frame(line, options);
-        let rows: Vec<(i64, i64)> = Self::steps(&frame).iter().map(|s| (s.i, s.k)).collect();
-        finish_pixels(&frame, &rows, reversed, options)
-    }
 }
 
-impl LineRasterizer for Bresenham {
-    fn walk(&self) -> LineWalk {
-        LineWalk::Midpoint
-    }
+impl AliasedLine for Bresenham {
+    const DESCRIPTOR: LineDescriptor = LineDescriptor {
+        name: "bresenham",
+        description:
+            "midpoint / Bresenham: integer decision variable d = f(x+1, y+0.5), additions only",
+        walk: LineWalk::Midpoint,
+        role: Role::Default,
+        cost: CostClass::FollowsSize,
+    };
 
-    fn name(&self) -> &'static str {
-        "bresenham"
-    }
-
-    fn description(&self) -> &'static str {
-        "midpoint / Bresenham: integer decision variable d = f(x+1, y+0.5), additions only"
-    }
-
-    fn rasterize(
-        &self,
-        lines: &[LineSetup],
-        options: &LineOptions,
-        viewport: PixelRect,
-        sink: &mut dyn FragmentSink,
-    ) -> WorkCounters {
-        rasterize_aliased(lines, options, viewport, sink, Self::pixels)
+    fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
+        let (frame, reversed) = walk_frame(line, options);
+        let rows: Vec<(i64, i64)> = Bresenham::steps(&frame)
+            .iter()
+            .map(|s| (s.i, s.k))
+            .collect();
+        finish_pixels(&frame, &rows, reversed, options)
     }
 }

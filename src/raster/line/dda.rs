@@ -16,28 +16,17 @@
 //! the ideal line, which the property tests check.
 
 use super::{
-    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup, LineWalk,
+    finish_pixels, walk_frame, AliasedLine, LineDescriptor, LineOptions, LineSetup, LineWalk,
     OctantFrame,
 };
-use crate::raster::edge::PixelRect;
+use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::fixed::SUBPIXEL_SCALE;
-use crate::raster::fragment::{FragmentSink, WorkCounters};
 
 /// Digital differential analyser: `y += m` per column.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Dda;
 
 impl Dda {
-    /// The pixels of one segment, in the order of travel.
-    pub fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
-        let (frame, reversed) = walk_frame(line, options);
-        let rows: Vec<(i64, i64)> = Dda::columns(&frame)
-            .into_iter()
-            .map(|(i, _, k)| (i, k))
-            .collect();
-        finish_pixels(&frame, &rows, reversed, options)
-    }
-
     /// Each column of a frame as `(i, y, k)`: the accumulated `y` (in
     /// pixels, `y += m` per column) and the row it rounds to.
     pub fn columns(frame: &OctantFrame) -> Vec<(i64, f64, i64)> {
@@ -56,26 +45,22 @@ impl Dda {
     }
 }
 
-impl LineRasterizer for Dda {
-    fn walk(&self) -> LineWalk {
-        LineWalk::Incremental
-    }
+impl AliasedLine for Dda {
+    const DESCRIPTOR: LineDescriptor = LineDescriptor {
+        name: "dda",
+        description:
+            "incremental (DDA): y += m per column in floating point, no multiplication in the loop",
+        walk: LineWalk::Incremental,
+        role: Role::Alternative,
+        cost: CostClass::FollowsSize,
+    };
 
-    fn name(&self) -> &'static str {
-        "dda"
-    }
-
-    fn description(&self) -> &'static str {
-        "incremental (DDA): y += m per column in floating point, no multiplication in the loop"
-    }
-
-    fn rasterize(
-        &self,
-        lines: &[LineSetup],
-        options: &LineOptions,
-        viewport: PixelRect,
-        sink: &mut dyn FragmentSink,
-    ) -> WorkCounters {
-        rasterize_aliased(lines, options, viewport, sink, Self::pixels)
+    fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
+        let (frame, reversed) = walk_frame(line, options);
+        let rows: Vec<(i64, i64)> = Dda::columns(&frame)
+            .into_iter()
+            .map(|(i, _, k)| (i, k))
+            .collect();
+        finish_pixels(&frame, &rows, reversed, options)
     }
 }

@@ -24,8 +24,9 @@
 //! column (or row), and the tests check it against applying it to every
 //! pixel.
 
-use super::{emit_pixels, LineOptions, LineRasterizer, LineSetup, LineWalk};
+use super::{emit_pixels, LineDescriptor, LineOptions, LineRasterizer, LineSetup, LineWalk};
 use crate::error::{Error, Result};
+use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
@@ -223,16 +224,15 @@ impl Diamond {
 }
 
 impl LineRasterizer for Diamond {
-    fn walk(&self) -> LineWalk {
-        LineWalk::DiamondExit
-    }
-
-    fn name(&self) -> &'static str {
-        "diamond"
-    }
-
-    fn description(&self) -> &'static str {
-        "Direct3D / Vulkan diamond-exit rule, exact; the end point's diamond is not drawn"
+    fn descriptor(&self) -> LineDescriptor {
+        LineDescriptor {
+            name: "diamond",
+            description:
+                "Direct3D / Vulkan diamond-exit rule, exact; the end point's diamond is not drawn",
+            walk: LineWalk::DiamondExit,
+            role: Role::Reference,
+            cost: CostClass::FollowsSize,
+        }
     }
 
     fn check_options(&self, options: &LineOptions) -> Result<()> {

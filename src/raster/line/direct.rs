@@ -16,46 +16,28 @@
 //! ([`super::OctantFrame`]).
 
 use super::{
-    finish_pixels, rasterize_aliased, walk_frame, LineOptions, LineRasterizer, LineSetup, LineWalk,
+    finish_pixels, walk_frame, AliasedLine, LineDescriptor, LineOptions, LineSetup, LineWalk,
 };
-use crate::raster::edge::PixelRect;
-use crate::raster::fragment::{FragmentSink, WorkCounters};
+use crate::raster::descriptor::{CostClass, Role};
 
 /// Direct evaluation of `y = m x + b`, rounded, at every column.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Direct;
 
-impl Direct {
-    /// The pixels of one segment, in the order of travel.
-    pub fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
+impl AliasedLine for Direct {
+    const DESCRIPTOR: LineDescriptor = LineDescriptor {
+        name: "direct",
+        description: "direct evaluation of y = m(x - x0) + y0, rounded at every column",
+        walk: LineWalk::DirectEvaluation,
+        role: Role::Alternative,
+        cost: CostClass::FollowsSize,
+    };
+
+    fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
         let (frame, reversed) = walk_frame(line, options);
         let rows: Vec<(i64, i64)> = (frame.i0..=frame.i1)
             .map(|i| (i, frame.nearest_row(i)))
             .collect();
         finish_pixels(&frame, &rows, reversed, options)
-    }
-}
-
-impl LineRasterizer for Direct {
-    fn walk(&self) -> LineWalk {
-        LineWalk::DirectEvaluation
-    }
-
-    fn name(&self) -> &'static str {
-        "direct"
-    }
-
-    fn description(&self) -> &'static str {
-        "direct evaluation of y = m(x - x0) + y0, rounded at every column"
-    }
-
-    fn rasterize(
-        &self,
-        lines: &[LineSetup],
-        options: &LineOptions,
-        viewport: PixelRect,
-        sink: &mut dyn FragmentSink,
-    ) -> WorkCounters {
-        rasterize_aliased(lines, options, viewport, sink, Self::pixels)
     }
 }

@@ -31,6 +31,7 @@ pub mod fast;
 pub mod wu;
 
 use crate::error::{Error, Result};
+use crate::raster::descriptor::Descriptor;
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::fragment::{FragmentSink, LineFragment, WorkCounters};
@@ -160,18 +161,25 @@ pub enum LineWalk {
     DiamondExit,
 }
 
+/// A line back-end's facts ([`Descriptor`] of a [`LineWalk`]).
+pub type LineDescriptor = Descriptor<LineWalk>;
+
 /// A line rasterization algorithm.
 pub trait LineRasterizer: Send + Sync {
-    /// Short name used on the command line.
-    fn name(&self) -> &'static str;
-    /// One-line description.
-    fn description(&self) -> &'static str;
-    /// How it chooses its pixels, which its trace shows.
-    fn walk(&self) -> LineWalk;
+    /// The back-end's facts.
+    fn descriptor(&self) -> LineDescriptor;
+    /// Short name used on the command line (the descriptor's).
+    fn name(&self) -> &'static str {
+        self.descriptor().name
+    }
+    /// One-line description (the descriptor's).
+    fn description(&self) -> &'static str {
+        self.descriptor().description
+    }
     /// True for an anti-aliased back-end, whose fragments carry a coverage
     /// weight below 1 (`rasterlab fragments` prints it as a fourth column).
     fn anti_aliased(&self) -> bool {
-        false
+        self.descriptor().walk == LineWalk::AntiAliased
     }
     /// Errors when the back-end cannot honour `options`.
     fn check_options(&self, options: &LineOptions) -> Result<()> {
@@ -187,6 +195,40 @@ pub trait LineRasterizer: Send + Sync {
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters;
+}
+
+/// An aliased line algorithm, as its file writes it: its facts and the
+/// pixels of one segment. Drawing (each segment's pixels clipped to the
+/// viewport, coverage 1, counted) is provided once, by the
+/// [`LineRasterizer`] every such algorithm is.
+pub trait AliasedLine: Send + Sync {
+    /// The back-end's name, description, walk, role and cost class.
+    const DESCRIPTOR: LineDescriptor;
+    /// The pixels of one segment, in the order of travel.
+    fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)>;
+}
+
+impl<A: AliasedLine> LineRasterizer for A {
+    fn descriptor(&self) -> LineDescriptor {
+        A::DESCRIPTOR
+    }
+
+    fn rasterize(
+        &self,
+        lines: &[LineSetup],
+        options: &LineOptions,
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+    ) -> WorkCounters {
+        let mut work = WorkCounters::default();
+        for line in lines {
+            work.primitives += 1;
+            let pixels = A::pixels(line, options);
+            work.samples_tested += pixels.len() as u64;
+            emit_pixels(line, &pixels, viewport, sink, &mut work);
+        }
+        work
+    }
 }
 
 /// Back-ends are told apart by name (so settings holding one can be
@@ -387,26 +429,6 @@ pub(crate) fn finish_pixels(
         pixels.pop();
     }
     pixels
-}
-
-/// The `rasterize` of an aliased algorithm of the line-drawing slides given its pixel
-/// function: each segment's pixels, in the order of travel, clipped to the
-/// viewport.
-pub(crate) fn rasterize_aliased(
-    lines: &[LineSetup],
-    options: &LineOptions,
-    viewport: PixelRect,
-    sink: &mut dyn FragmentSink,
-    pixels_of: fn(&LineSetup, &LineOptions) -> Vec<(i64, i64)>,
-) -> WorkCounters {
-    let mut work = WorkCounters::default();
-    for line in lines {
-        work.primitives += 1;
-        let pixels = pixels_of(line, options);
-        work.samples_tested += pixels.len() as u64;
-        emit_pixels(line, &pixels, viewport, sink, &mut work);
-    }
-    work
 }
 
 /// Emits aliased pixels (coverage 1) that lie in the viewport.

@@ -9,8 +9,11 @@
 //! Fragments of zero coverage are not emitted. The columns are those of the
 //! aliased algorithms; endpoints get no special weighting.
 
-use super::{walk_frame, Endpoints, LineOptions, LineRasterizer, LineSetup, LineWalk};
+use super::{
+    walk_frame, Endpoints, LineDescriptor, LineOptions, LineRasterizer, LineSetup, LineWalk,
+};
 use crate::error::{Error, Result};
+use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::SUBPIXEL_SCALE;
 use crate::raster::fragment::{FragmentSink, LineFragment, WorkCounters};
@@ -58,20 +61,15 @@ impl Wu {
 }
 
 impl LineRasterizer for Wu {
-    fn walk(&self) -> LineWalk {
-        LineWalk::AntiAliased
-    }
-
-    fn anti_aliased(&self) -> bool {
-        true
-    }
-
-    fn name(&self) -> &'static str {
-        "wu"
-    }
-
-    fn description(&self) -> &'static str {
-        "Xiaolin Wu anti-aliased: two pixels per column weighted by distance to the line"
+    fn descriptor(&self) -> LineDescriptor {
+        LineDescriptor {
+            name: "wu",
+            description:
+                "Xiaolin Wu anti-aliased: two pixels per column weighted by distance to the line",
+            walk: LineWalk::AntiAliased,
+            role: Role::Alternative,
+            cost: CostClass::FollowsSize,
+        }
     }
 
     fn check_options(&self, options: &LineOptions) -> Result<()> {

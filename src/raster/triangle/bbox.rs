@@ -14,52 +14,46 @@
 //!     if p is inside t: emit a fragment
 //! ```
 
-use super::{emit, TriangleRasterizer, TriangleSelection, TriangleWalk};
-use crate::raster::edge::PixelRect;
+use super::{emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+use crate::raster::descriptor::{CostClass, Role};
+use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
 
 /// Bounding box plus a direct edge-function test per pixel.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct BoundingBox;
 
-impl TriangleRasterizer for BoundingBox {
-    fn walk(&self) -> TriangleWalk {
-        TriangleWalk::BoundingBox
-    }
+impl TriangleAlgorithm for BoundingBox {
+    const DESCRIPTOR: TriangleDescriptor = TriangleDescriptor {
+        name: "bbox",
+        description: "bounding box, then the barycentric / edge-function test evaluated per pixel",
+        walk: TriangleWalk::BoundingBox,
+        role: Role::Fallback,
+        cost: CostClass::FollowsSize,
+    };
 
-    fn name(&self) -> &'static str {
-        "bbox"
-    }
-
-    fn description(&self) -> &'static str {
-        "bounding box, then the barycentric / edge-function test evaluated per pixel"
-    }
-
-    fn rasterize_selection(
+    #[inline]
+    fn draw_triangle(
         &self,
-        triangles: TriangleSelection<'_>,
+        t: &TriangleSetup,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
-    ) -> WorkCounters {
-        let mut work = WorkCounters::default();
-        for t in triangles.iter() {
-            work.primitives += 1;
-            let r = t.bounds_within(viewport);
-            if r.is_empty() {
-                continue;
-            }
-            for y in r.y0..=r.y1 {
-                sink.samples_tested(t.id, y as u32, r.x0 as u32, r.x1 as u32);
-                for x in r.x0..=r.x1 {
-                    work.samples_tested += 1;
-                    let e = t.edge_values_at_pixel(x, y);
-                    if t.inside(e) {
-                        work.fragments += 1;
-                        emit(sink, t, x, y, e);
-                    }
+        work: &mut WorkCounters,
+    ) {
+        let r = t.bounds_within(viewport);
+        if r.is_empty() {
+            return;
+        }
+        for y in r.y0..=r.y1 {
+            sink.samples_tested(t.id, y as u32, r.x0 as u32, r.x1 as u32);
+            for x in r.x0..=r.x1 {
+                work.samples_tested += 1;
+                let e = t.edge_values_at_pixel(x, y);
+                if t.inside(e) {
+                    work.fragments += 1;
+                    emit(sink, t, x, y, e);
                 }
             }
         }
-        work
     }
 }

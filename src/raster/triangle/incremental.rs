@@ -20,7 +20,8 @@
 //!   row += step_y
 //! ```
 
-use super::{emit_span, TriangleRasterizer, TriangleSelection, TriangleWalk};
+use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
 
@@ -28,34 +29,27 @@ use crate::raster::fragment::{FragmentSink, WorkCounters};
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Incremental;
 
-impl TriangleRasterizer for Incremental {
-    fn walk(&self) -> TriangleWalk {
-        TriangleWalk::IncrementalEdges
-    }
+impl TriangleAlgorithm for Incremental {
+    const DESCRIPTOR: TriangleDescriptor = TriangleDescriptor {
+        name: "incremental",
+        description: "bounding box with edge functions stepped by additions (Pineda), no multiplication per pixel",
+        walk: TriangleWalk::IncrementalEdges,
+        role: Role::Alternative,
+        cost: CostClass::FollowsSize,
+    };
 
-    fn name(&self) -> &'static str {
-        "incremental"
-    }
-
-    fn description(&self) -> &'static str {
-        "bounding box with edge functions stepped by additions (Pineda), no multiplication per pixel"
-    }
-
-    fn rasterize_selection(
+    #[inline]
+    fn draw_triangle(
         &self,
-        triangles: TriangleSelection<'_>,
+        t: &TriangleSetup,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
-    ) -> WorkCounters {
-        let mut work = WorkCounters::default();
-        for t in triangles.iter() {
-            work.primitives += 1;
-            let r = t.bounds_within(viewport);
-            if !r.is_empty() {
-                step_over(t, r, true, sink, &mut work);
-            }
+        work: &mut WorkCounters,
+    ) {
+        let r = t.bounds_within(viewport);
+        if !r.is_empty() {
+            step_over(t, r, true, sink, work);
         }
-        work
     }
 }
 

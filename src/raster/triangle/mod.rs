@@ -1,7 +1,10 @@
 //! Triangle rasterizer back-ends.
 //!
-//! Each back-end is a unit struct named after its algorithm, behind the
-//! object-safe [`TriangleRasterizer`] trait, so tools and tests loop over
+//! Each back-end is a unit struct named after its algorithm that states
+//! its facts once ([`TriangleAlgorithm::DESCRIPTOR`]) and draws one
+//! triangle ([`TriangleAlgorithm::draw_triangle`]); the loop over a draw's
+//! triangles is written once, and makes every algorithm an object-safe
+//! [`TriangleRasterizer`], so tools and tests loop over
 //! [`crate::raster::backend::triangle_backends`] by name. A back-end only decides
 //! *which* pixels each triangle covers; every one of them applies the same
 //! exact inside test ([`TriangleSetup::inside`](crate::raster::edge::TriangleSetup::inside)) to the same sample points,
@@ -26,11 +29,15 @@ pub mod naive;
 pub mod scanline;
 pub mod tiled;
 
+use crate::raster::descriptor::Descriptor;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, TriangleFragment, TriangleSpan, WorkCounters};
 
+/// A triangle back-end's facts ([`Descriptor`] of a [`TriangleWalk`]).
+pub type TriangleDescriptor = Descriptor<TriangleWalk>;
+
 /// How a triangle back-end walks the pixels: what its step-by-step trace
-/// ([`crate::teaching::trace::of_triangle_backend`]) shows.
+/// ([`crate::teaching::trace::of_triangle_backend`]) is headed with.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum TriangleWalk {
     /// Every pixel of the target, each tested on its own (the course's
@@ -44,22 +51,89 @@ pub enum TriangleWalk {
     IncrementalEdges,
     /// Blocks classified as a whole, partial blocks pixel by pixel.
     Blocks,
+    /// A walk of its own, said in a few words.
+    Own(&'static str),
 }
 
-/// A triangle rasterization algorithm.
+/// A triangle rasterization algorithm, as its file writes it: its facts
+/// and the per-triangle step. The loop over the triangles a draw selects
+/// is provided once, by the [`TriangleRasterizer`] every algorithm is.
+///
+/// ```
+/// use rasterlab::raster::descriptor::{CostClass, Role};
+/// use rasterlab::raster::triangle::{emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+/// use rasterlab::{FragmentSink, PixelRect, TriangleRasterizer, TriangleSetup, WorkCounters};
+///
+/// /// The bounding box, walked bottom row first.
+/// struct BottomUp;
+///
+/// impl TriangleAlgorithm for BottomUp {
+///     const DESCRIPTOR: TriangleDescriptor = TriangleDescriptor {
+///         name: "bottom-up",
+///         description: "the bounding box, bottom row first",
+///         walk: TriangleWalk::Own("bounding box, bottom row first"),
+///         role: Role::Alternative,
+///         cost: CostClass::FollowsSize,
+///     };
+///     fn draw_triangle(&self, t: &TriangleSetup, viewport: PixelRect,
+///                      sink: &mut dyn FragmentSink, work: &mut WorkCounters) {
+///         let r = t.bounds_within(viewport);
+///         for y in (r.y0..=r.y1).rev() {
+///             for x in r.x0..=r.x1 {
+///                 work.samples_tested += 1;
+///                 let e = t.edge_values_at_pixel(x, y);
+///                 if t.inside(e) {
+///                     work.fragments += 1;
+///                     emit(sink, t, x, y, e);
+///                 }
+///             }
+///         }
+///     }
+/// }
+/// assert_eq!(BottomUp.name(), "bottom-up");
+/// ```
+pub trait TriangleAlgorithm: Send + Sync {
+    /// The back-end's name, description, walk, role and cost class.
+    const DESCRIPTOR: TriangleDescriptor;
+
+    /// Emits every fragment of triangle `t` whose pixel lies in
+    /// `viewport`, for each pixel in ascending triangle order (one call per
+    /// triangle does that), and adds the samples tested, fragments and
+    /// spans to `work`.
+    fn draw_triangle(
+        &self,
+        t: &TriangleSetup,
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+        work: &mut WorkCounters,
+    );
+}
+
+/// A triangle back-end, as tools hold it (`&dyn TriangleRasterizer`):
+/// every [`TriangleAlgorithm`] is one.
 pub trait TriangleRasterizer: Send + Sync {
-    /// Short name used on the command line.
-    fn name(&self) -> &'static str;
-    /// One-line description.
-    fn description(&self) -> &'static str;
-    /// How it walks the pixels, which its trace shows.
-    fn walk(&self) -> TriangleWalk;
-    /// Whether it is the reference the others are compared with: the
-    /// course's loop, testing every sample on its own. One back-end of the
-    /// registry says so ([`reference_triangle_backend`](crate::raster::backend::reference_triangle_backend)).
-    fn is_reference(&self) -> bool {
-        false
+    /// The back-end's facts.
+    fn descriptor(&self) -> TriangleDescriptor;
+
+    /// Short name used on the command line (the descriptor's).
+    fn name(&self) -> &'static str {
+        self.descriptor().name
     }
+
+    /// One-line description (the descriptor's).
+    fn description(&self) -> &'static str {
+        self.descriptor().description
+    }
+
+    /// The samples the back-end tests to draw `triangles` triangles on
+    /// `pixels` pixels when that does not depend on their size (its
+    /// descriptor's [cost class](crate::raster::descriptor::CostClass)).
+    fn tests_whatever_the_size(&self, triangles: u64, pixels: u64) -> Option<u64> {
+        self.descriptor()
+            .cost
+            .tests_whatever_the_size(triangles, pixels)
+    }
+
     /// Emits every fragment of the selected triangles whose pixel lies in
     /// `viewport`, and returns the work done.
     fn rasterize_selection(
@@ -68,36 +142,6 @@ pub trait TriangleRasterizer: Send + Sync {
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters;
-
-    /// A cost hint: the samples this back-end tests to draw `triangles`
-    /// triangles on a target of `pixels` pixels, when that does not depend
-    /// on the triangles' size (the naive loop: every pixel for every
-    /// triangle); `None` (the default) when its work follows the triangles'
-    /// area. Tools use it to leave out or refuse runs that would take hours.
-    fn tests_whatever_the_size(&self, triangles: u64, pixels: u64) -> Option<u64> {
-        let _ = (triangles, pixels);
-        None
-    }
-
-    /// The blocks this back-end classifies as a whole for triangle `t`
-    /// (hierarchical back-ends such as `tiled`), with their classes, for
-    /// traces and grid pictures; empty (the default) for back-ends that
-    /// visit pixels one by one.
-    fn blocks(
-        &self,
-        t: &TriangleSetup,
-        viewport: PixelRect,
-    ) -> Vec<(PixelRect, tiled::BlockClass)> {
-        let _ = (t, viewport);
-        Vec::new()
-    }
-
-    /// Whether drawing `triangles` triangles on `pixels` pixels stays
-    /// within `budget` sample tests by [`Self::tests_whatever_the_size`].
-    fn affordable(&self, triangles: u64, pixels: u64, budget: u64) -> bool {
-        self.tests_whatever_the_size(triangles, pixels)
-            .is_none_or(|tests| tests <= budget)
-    }
 
     /// Emits every fragment of `triangles` whose pixel lies in `viewport`,
     /// and returns the work done.
@@ -108,6 +152,28 @@ pub trait TriangleRasterizer: Send + Sync {
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
         self.rasterize_selection(TriangleSelection::all(triangles), viewport, sink)
+    }
+}
+
+impl<A: TriangleAlgorithm> TriangleRasterizer for A {
+    fn descriptor(&self) -> TriangleDescriptor {
+        A::DESCRIPTOR
+    }
+
+    /// The loop every back-end shares: each selected triangle, in order,
+    /// through the algorithm's step.
+    fn rasterize_selection(
+        &self,
+        triangles: TriangleSelection<'_>,
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+    ) -> WorkCounters {
+        let mut work = WorkCounters::default();
+        for t in triangles.iter() {
+            work.primitives += 1;
+            self.draw_triangle(t, viewport, sink, &mut work);
+        }
+        work
     }
 }
 
@@ -155,9 +221,10 @@ impl<'a> TriangleSelection<'a> {
     }
 }
 
-/// Emits one fragment (pixel indices already inside the viewport).
+/// Emits one fragment of `triangle` at pixel `(x, y)` (inside the
+/// viewport) with the edge values `edges` there.
 #[inline]
-pub(crate) fn emit(
+pub fn emit(
     sink: &mut dyn FragmentSink,
     triangle: &TriangleSetup,
     x: i64,
@@ -177,7 +244,7 @@ pub(crate) fn emit(
 /// rows of a small triangle) as a plain fragment, which costs the stage
 /// less.
 #[inline]
-pub(crate) fn emit_span(
+pub fn emit_span(
     sink: &mut dyn FragmentSink,
     triangle: &TriangleSetup,
     y: i64,

@@ -28,7 +28,8 @@
 //! is tested: the work is one solve per active edge per row, and each
 //! row's pixels go to the fragment stage as one span.
 
-use super::{emit_span, TriangleRasterizer, TriangleSelection, TriangleWalk};
+use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{EdgeFunction, PixelRect, TriangleSetup};
 use crate::raster::fixed::{
     first_sample_at_or_after, last_sample_at_or_before, HALF_PIXEL, SUBPIXEL_SCALE,
@@ -132,47 +133,40 @@ pub(crate) fn row_range(t: &TriangleSetup, order: [usize; 3], viewport: PixelRec
     )
 }
 
-impl TriangleRasterizer for Scanline {
-    fn walk(&self) -> TriangleWalk {
-        TriangleWalk::Scanline
-    }
+impl TriangleAlgorithm for Scanline {
+    const DESCRIPTOR: TriangleDescriptor = TriangleDescriptor {
+        name: "scanline",
+        description: "classic scanline: sort vertices by y, walk the edges row by row, fill exact integer spans",
+        walk: TriangleWalk::Scanline,
+        role: Role::Default,
+        cost: CostClass::FollowsSize,
+    };
 
-    fn name(&self) -> &'static str {
-        "scanline"
-    }
-
-    fn description(&self) -> &'static str {
-        "classic scanline: sort vertices by y, walk the edges row by row, fill exact integer spans"
-    }
-
-    fn rasterize_selection(
+    #[inline]
+    fn draw_triangle(
         &self,
-        triangles: TriangleSelection<'_>,
+        t: &TriangleSetup,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
-    ) -> WorkCounters {
-        let mut work = WorkCounters::default();
-        for t in triangles.iter() {
-            work.primitives += 1;
-            let order = sorted_by_y(t);
-            let (first_row, last_row) = row_range(t, order, viewport);
-            for j in first_row..=last_row {
-                work.spans += 1;
-                let span = row_span(t, order, j, viewport);
-                if span.is_empty() {
-                    continue;
-                }
-                let e = t.edge_values_at_pixel(span.first, j);
-                debug_assert!(
-                    t.inside(e),
-                    "span start ({}, {j}) fails the inside test",
-                    span.first
-                );
-                work.fragments += (span.last - span.first + 1) as u64;
-                emit_span(sink, t, j, span.first, span.last, e);
+        work: &mut WorkCounters,
+    ) {
+        let order = sorted_by_y(t);
+        let (first_row, last_row) = row_range(t, order, viewport);
+        for j in first_row..=last_row {
+            work.spans += 1;
+            let span = row_span(t, order, j, viewport);
+            if span.is_empty() {
+                continue;
             }
+            let e = t.edge_values_at_pixel(span.first, j);
+            debug_assert!(
+                t.inside(e),
+                "span start ({}, {j}) fails the inside test",
+                span.first
+            );
+            work.fragments += (span.last - span.first + 1) as u64;
+            emit_span(sink, t, j, span.first, span.last, e);
         }
-        work
     }
 }
 

@@ -45,7 +45,8 @@
 //! ```
 
 use super::incremental::{report_tested, run_in_row, step_over, Run};
-use super::{emit_span, TriangleRasterizer, TriangleSelection, TriangleWalk};
+use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
 
@@ -135,104 +136,112 @@ fn classify_from_corner(
     }
 }
 
-impl TriangleRasterizer for Tiled {
-    fn walk(&self) -> TriangleWalk {
-        TriangleWalk::Blocks
-    }
+impl TriangleAlgorithm for Tiled {
+    const DESCRIPTOR: TriangleDescriptor = TriangleDescriptor {
+        name: "tiled",
+        description: "8x8 blocks: trivial reject and trivial accept from the corners, per-pixel edge tests only where a block straddles an edge",
+        walk: TriangleWalk::Blocks,
+        role: Role::Alternative,
+        cost: CostClass::FollowsSize,
+    };
 
-    fn blocks(&self, t: &TriangleSetup, viewport: PixelRect) -> Vec<(PixelRect, BlockClass)> {
-        blocks(t, viewport)
-    }
-
-    fn name(&self) -> &'static str {
-        "tiled"
-    }
-
-    fn description(&self) -> &'static str {
-        "8x8 blocks: trivial reject and trivial accept from the corners, per-pixel edge tests only where a block straddles an edge"
-    }
-
-    fn rasterize_selection(
+    #[inline]
+    fn draw_triangle(
         &self,
-        triangles: TriangleSelection<'_>,
+        t: &TriangleSetup,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
-    ) -> WorkCounters {
-        let mut work = WorkCounters::default();
-        let mut blocks: Vec<(PixelRect, BlockClass)> = Vec::new();
-        for t in triangles.iter() {
-            work.primitives += 1;
-            let r = t.bounds_within(viewport);
-            if r.is_empty() {
-                continue;
-            }
-            if r.x1 - r.x0 <= 1 && r.y1 - r.y0 <= 1 {
-                tiny_box(t, r, sink, &mut work);
-                continue;
-            }
-            if r.x1 - r.x0 < BLOCK && r.y1 - r.y0 < BLOCK {
-                step_over(t, r, true, sink, &mut work);
-                continue;
-            }
-            let (step_x, step_y) = t.pixel_steps();
-            let (bx0, by0) = (r.x0.div_euclid(BLOCK), r.y0.div_euclid(BLOCK));
-            let (bx1, by1) = (r.x1.div_euclid(BLOCK), r.y1.div_euclid(BLOCK));
-            // Stretches pay only where one can be wholly inside or outside.
-            let stretch = if r.x1 - r.x0 >= STRETCH * BLOCK {
-                STRETCH
+        work: &mut WorkCounters,
+    ) {
+        let r = t.bounds_within(viewport);
+        if r.is_empty() {
+            return;
+        }
+        if r.x1 - r.x0 <= 1 && r.y1 - r.y0 <= 1 {
+            tiny_box(t, r, sink, work);
+            return;
+        }
+        if r.x1 - r.x0 < BLOCK && r.y1 - r.y0 < BLOCK {
+            step_over(t, r, true, sink, work);
+            return;
+        }
+        BLOCK_ROW.with_borrow_mut(|blocks| walk_blocks(t, r, blocks, sink, work));
+    }
+}
+
+thread_local! {
+    /// One block row's classified blocks, kept from triangle to triangle
+    /// (a draw's large triangles share one allocation per thread).
+    static BLOCK_ROW: std::cell::RefCell<Vec<(PixelRect, BlockClass)>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The block walk of a triangle whose box `r` (non-empty, within the
+/// viewport) is at least a block wide or high: block rows classified,
+/// then their pixel rows walked across them; `blocks` is scratch space.
+fn walk_blocks(
+    t: &TriangleSetup,
+    r: PixelRect,
+    blocks: &mut Vec<(PixelRect, BlockClass)>,
+    sink: &mut dyn FragmentSink,
+    work: &mut WorkCounters,
+) {
+    let (step_x, step_y) = t.pixel_steps();
+    let (bx0, by0) = (r.x0.div_euclid(BLOCK), r.y0.div_euclid(BLOCK));
+    let (bx1, by1) = (r.x1.div_euclid(BLOCK), r.y1.div_euclid(BLOCK));
+    // Stretches pay only where one can be wholly inside or outside.
+    let stretch = if r.x1 - r.x0 >= STRETCH * BLOCK {
+        STRETCH
+    } else {
+        1
+    };
+    let mut row = t.edge_values_at_pixel(r.x0, r.y0);
+    for by in by0..=by1 {
+        // One row of blocks: classify each block once ...
+        let y0 = (by * BLOCK).max(r.y0);
+        let y1 = (by * BLOCK + BLOCK - 1).min(r.y1);
+        blocks.clear();
+        // Blocks `b0..=b1` of the row: their pixels, as a rectangle,
+        // and its class.
+        let classify = |b0: i64, b1: i64| {
+            let x0 = (b0 * BLOCK).max(r.x0);
+            let x1 = (b1 * BLOCK + BLOCK - 1).min(r.x1);
+            let top_left = [0, 1, 2].map(|k| row[k] + step_x[k] * (x0 - r.x0));
+            let class = classify_from_corner(t, top_left, step_x, step_y, x1 - x0, y1 - y0);
+            (PixelRect { x0, y0, x1, y1 }, class)
+        };
+        let mut bx = bx0;
+        while bx <= bx1 {
+            // A stretch of aligned blocks is classified as a whole
+            // first; only a straddling one is looked into.
+            let last = ((bx / stretch + 1) * stretch - 1).min(bx1);
+            work.spans += 1;
+            let (stretch_rect, class) = classify(bx, last);
+            if class != BlockClass::Partial || last == bx {
+                push_merged(blocks, stretch_rect, class);
             } else {
-                1
-            };
-            let mut row = t.edge_values_at_pixel(r.x0, r.y0);
-            for by in by0..=by1 {
-                // One row of blocks: classify each block once ...
-                let y0 = (by * BLOCK).max(r.y0);
-                let y1 = (by * BLOCK + BLOCK - 1).min(r.y1);
-                blocks.clear();
-                // Blocks `b0..=b1` of the row: their pixels, as a rectangle,
-                // and its class.
-                let classify = |b0: i64, b1: i64| {
-                    let x0 = (b0 * BLOCK).max(r.x0);
-                    let x1 = (b1 * BLOCK + BLOCK - 1).min(r.x1);
-                    let top_left = [0, 1, 2].map(|k| row[k] + step_x[k] * (x0 - r.x0));
-                    let class = classify_from_corner(t, top_left, step_x, step_y, x1 - x0, y1 - y0);
-                    (PixelRect { x0, y0, x1, y1 }, class)
-                };
-                let mut bx = bx0;
-                while bx <= bx1 {
-                    // A stretch of aligned blocks is classified as a whole
-                    // first; only a straddling one is looked into.
-                    let last = ((bx / stretch + 1) * stretch - 1).min(bx1);
+                for b in bx..=last {
                     work.spans += 1;
-                    let (stretch_rect, class) = classify(bx, last);
-                    if class != BlockClass::Partial || last == bx {
-                        push_merged(&mut blocks, stretch_rect, class);
-                    } else {
-                        for b in bx..=last {
-                            work.spans += 1;
-                            let (block, class) = classify(b, b);
-                            push_merged(&mut blocks, block, class);
-                        }
-                    }
-                    bx = last + 1;
+                    let (block, class) = classify(b, b);
+                    push_merged(blocks, block, class);
                 }
-                // ... then walk its pixel rows across the blocks.
-                for y in y0..=y1 {
-                    let at = |x: i64| {
-                        let n = x - r.x0;
-                        [0, 1, 2].map(|k| row[k] + step_x[k] * n)
-                    };
-                    if let Some(run) = row_run(t, y, &blocks, step_x, at, sink, &mut work) {
-                        work.fragments += (run.last - run.first + 1) as u64;
-                        emit_span(sink, t, y, run.first, run.last, run.edges);
-                    }
-                    for k in 0..3 {
-                        row[k] += step_y[k];
-                    }
-                }
+            }
+            bx = last + 1;
+        }
+        // ... then walk its pixel rows across the blocks.
+        for y in y0..=y1 {
+            let at = |x: i64| {
+                let n = x - r.x0;
+                [0, 1, 2].map(|k| row[k] + step_x[k] * n)
+            };
+            if let Some(run) = row_run(t, y, blocks, step_x, at, sink, work) {
+                work.fragments += (run.last - run.first + 1) as u64;
+                emit_span(sink, t, y, run.first, run.last, run.edges);
+            }
+            for k in 0..3 {
+                row[k] += step_y[k];
             }
         }
-        work
     }
 }
 
