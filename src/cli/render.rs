@@ -9,7 +9,10 @@ use rasterlab::geometry::mesh::Mesh;
 use rasterlab::geometry::pipeline::PipelineOptions;
 use rasterlab::geometry::render::{MeshRenderer, RenderSettings};
 use rasterlab::geometry::scene::Scene2D;
-use rasterlab::raster::backend::{backend, line_backend, Backend};
+use rasterlab::raster::backend::{
+    backend, default_line_backend, default_triangle_backend, line_backend, Backend,
+};
+use rasterlab::raster::descriptor::{within_budget, WorkBudget};
 use rasterlab::raster::edge::FillRule;
 use rasterlab::raster::fragment::WorkCounters;
 use rasterlab::raster::line::LineSetup;
@@ -162,7 +165,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                     .into(),
             ));
         }
-        let Backend::Triangle(backend) = named("scanline")? else {
+        let Backend::Triangle(backend) = named(default_triangle_backend().name())? else {
             return Err(Error::InvalidArgument(format!(
                 "{}: a mesh is drawn by a triangle back-end; draw its edges with --wireframe LINE-BACKEND",
                 path.display()
@@ -245,11 +248,17 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     // The back-end is looked up once, and must draw what the input holds.
     let (name, chosen) = match &shapes {
         Drawing::Triangles(_) => {
-            let name = args.backend.as_deref().unwrap_or("scanline");
+            let name = args
+                .backend
+                .as_deref()
+                .unwrap_or(default_triangle_backend().name());
             (name, backend(name)?)
         }
         Drawing::Lines(..) => {
-            let name = args.backend.as_deref().unwrap_or("bresenham");
+            let name = args
+                .backend
+                .as_deref()
+                .unwrap_or(default_line_backend().name());
             (name, backend(name)?)
         }
     };
@@ -314,11 +323,14 @@ fn render_mesh(
     let renderer = MeshRenderer::new(&mesh, args.mesh.settings(args.size, rule, depth)?)?;
     if !args.force {
         let (width, height) = (renderer.settings().width, renderer.settings().height);
-        check_estimate(
-            backend,
-            mesh.triangles.len() as u64 * u64::from(args.mesh.frames),
-            u64::from(width) * u64::from(height),
-        )?;
+        let triangles = mesh.triangles.len() as u64 * u64::from(args.mesh.frames);
+        let pixels = u64::from(width) * u64::from(height);
+        within_budget(&backend.descriptor(), triangles, pixels, WorkBudget::Run).map_err(|e| {
+            match e {
+                Error::TooMuchWork(why) => Error::TooMuchWork(format!("{why}, or give --force")),
+                e => e,
+            }
+        })?;
     }
     // One framebuffer, redrawn frame after frame as an application does;
     // coverage is not counted (nothing here reads it).
@@ -374,25 +386,4 @@ fn render_mesh(
     )?;
     say!("wrote {}", args.out.display())?;
     Ok(())
-}
-
-/// Sample tests a back-end may be asked for without `--force`: about a
-/// minute of the naive loop.
-const TEST_BUDGET: u64 = 10_000_000_000;
-
-/// Sample tests per second the naive loop manages, for the estimate.
-const NAIVE_TESTS_PER_SECOND: f64 = 1e8;
-
-/// Refuses, with an estimate, a run whose tests do not follow the
-/// triangles' size and are beyond [`TEST_BUDGET`].
-fn check_estimate(backend: &dyn TriangleRasterizer, triangles: u64, pixels: u64) -> Result<()> {
-    match backend.tests_whatever_the_size(triangles, pixels) {
-        Some(tests) if tests > TEST_BUDGET => Err(Error::TooMuchWork(format!(
-            "`{}` would test about {tests:.2e} samples ({triangles} triangles x {pixels} pixels), \
-             roughly {:.0} minutes; choose a faster back-end (scanline, tiled) or give --force",
-            backend.name(),
-            tests as f64 / NAIVE_TESTS_PER_SECOND / 60.0
-        ))),
-        _ => Ok(()),
-    }
 }

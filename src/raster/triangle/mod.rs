@@ -125,15 +125,6 @@ pub trait TriangleRasterizer: Send + Sync {
         self.descriptor().description
     }
 
-    /// The samples the back-end tests to draw `triangles` triangles on
-    /// `pixels` pixels when that does not depend on their size (its
-    /// descriptor's [cost class](crate::raster::descriptor::CostClass)).
-    fn tests_whatever_the_size(&self, triangles: u64, pixels: u64) -> Option<u64> {
-        self.descriptor()
-            .cost
-            .tests_whatever_the_size(triangles, pixels)
-    }
-
     /// Emits every fragment of the selected triangles whose pixel lies in
     /// `viewport`, and returns the work done.
     fn rasterize_selection(
