@@ -176,3 +176,30 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
+
+/// The font pictures' text is drawn with when an SVG becomes a PNG
+/// (DejaVu Sans, bundled in `assets/fonts` with its licence), so a
+/// picture looks the same on any machine.
+#[cfg(feature = "png-text")]
+const FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
+
+/// An SVG picture (a chart, a labelled grid) drawn as an image by
+/// `resvg`, its text in the bundled font; `None` when the SVG cannot be
+/// read or is empty. Only with the `png-text` feature (on by default).
+#[cfg(feature = "png-text")]
+pub fn svg_to_png(svg: &str) -> Option<image::RgbaImage> {
+    let mut options = resvg::usvg::Options::default();
+    options.fontdb_mut().load_font_data(FONT.to_vec());
+    options.font_family = "DejaVu Sans".into();
+    let tree = resvg::usvg::Tree::from_str(svg, &options).ok()?;
+    let size = tree.size().to_int_size();
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(size.width(), size.height())?;
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
+    // Pictures have an opaque background, so premultiplied and straight
+    // RGBA agree.
+    image::RgbaImage::from_raw(size.width(), size.height(), pixmap.take())
+}

@@ -57,6 +57,7 @@ pub fn page() -> String {
     )
 }
 
+#[cfg(feature = "lab")]
 pub mod server;
 
 /// The largest grid side a request may ask for.

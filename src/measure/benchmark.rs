@@ -402,33 +402,13 @@ fn group<'a>(results: &'a [Measurement], workload: &str) -> Vec<&'a Measurement>
     results.iter().filter(|m| m.workload == workload).collect()
 }
 
-/// The font the PNG chart's text is drawn with (DejaVu Sans, bundled in
-/// `assets/fonts` with its licence), so the picture looks the same on any
-/// machine.
-const CHART_FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
-
-/// The chart as an image: [`chart_svg`] rendered by `resvg` with the
-/// bundled font, so the PNG has the same axis, labels and values.
+/// The chart as an image: [`chart_svg`] rendered with the bundled font
+/// ([`crate::output::svg_to_png`]), so the PNG has the same axis, labels
+/// and values. Only with the `png-text` feature (on by default).
+#[cfg(feature = "png-text")]
 pub fn chart_png(report: &BenchReport) -> image::RgbaImage {
-    let svg = chart_svg(report);
-    let mut options = resvg::usvg::Options::default();
-    options.fontdb_mut().load_font_data(CHART_FONT.to_vec());
-    options.font_family = "DejaVu Sans".into();
-    let blank = || image::RgbaImage::from_pixel(1, 1, image::Rgba([255, 255, 255, 255]));
-    let Ok(tree) = resvg::usvg::Tree::from_str(&svg, &options) else {
-        return blank();
-    };
-    let size = tree.size().to_int_size();
-    let Some(mut pixmap) = resvg::tiny_skia::Pixmap::new(size.width(), size.height()) else {
-        return blank();
-    };
-    resvg::render(
-        &tree,
-        resvg::tiny_skia::Transform::default(),
-        &mut pixmap.as_mut(),
-    );
-    // The background is opaque white, so premultiplied and straight RGBA agree.
-    image::RgbaImage::from_raw(size.width(), size.height(), pixmap.take()).unwrap_or_else(blank)
+    crate::output::svg_to_png(&chart_svg(report))
+        .unwrap_or_else(|| image::RgbaImage::from_pixel(1, 1, image::Rgba([255, 255, 255, 255])))
 }
 
 /// A horizontal bar chart: one group per workload, one labelled bar per
@@ -519,12 +499,15 @@ fn escape(text: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// Writes `bench.json`, `bench.png` and `bench.svg` into `dir`.
+/// Writes `bench.json`, `bench.svg` and (with the `png-text` feature, on
+/// by default) `bench.png` into `dir`.
 pub fn write_outputs(report: &BenchReport, dir: &Path) -> Result<()> {
     crate::output::check_dir(dir)?;
     crate::output::write_file(&dir.join("bench.json"), to_json(report).as_bytes())?;
     crate::output::write_file(&dir.join("bench.svg"), chart_svg(report).as_bytes())?;
-    crate::output::write_png(&dir.join("bench.png"), &chart_png(report))
+    #[cfg(feature = "png-text")]
+    crate::output::write_png(&dir.join("bench.png"), &chart_png(report))?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -568,9 +551,12 @@ mod tests {
         assert!(results.iter().all(|m| m.vs_fastest >= 1.0));
         let json: serde_json::Value = serde_json::from_str(&to_json(report)).unwrap();
         assert_eq!(json["results"].as_array().unwrap().len(), results.len());
-        let png = chart_png(report);
-        let coloured = png.pixels().filter(|p| p.0 != [255, 255, 255, 255]).count();
-        assert!(coloured > 100);
+        #[cfg(feature = "png-text")]
+        {
+            let png = chart_png(report);
+            let coloured = png.pixels().filter(|p| p.0 != [255, 255, 255, 255]).count();
+            assert!(coloured > 100);
+        }
         assert!(chart_svg(report).matches("<title>").count() == results.len());
     }
 
