@@ -262,3 +262,168 @@ fn the_tiled_picture_frames_its_blocks_by_class() {
     let picture = GridPicture::of_triangles(bbox, &[triangle], FillRule::TopLeft, 64, 48).unwrap();
     assert!(picture.blocks.is_empty());
 }
+
+/// A grid picture names what the traces name: pixel indices on both axes,
+/// the vertices v0-v2 and the edges E0-E2, and carries the palette's
+/// legend for what its colours say.
+#[test]
+fn a_grid_picture_has_axes_vertex_and_edge_labels_and_its_legend() {
+    use rasterlab::teaching::palette::Role;
+    let bbox = triangle_backend("bbox").unwrap();
+    let p = GridPicture::of_triangles(
+        bbox,
+        &[[(1.0, 1.0), (9.0, 2.0), (3.0, 7.0)]],
+        FillRule::TopLeft,
+        10,
+        8,
+    )
+    .unwrap();
+    let svg = p.to_svg();
+    for label in ["v0", "v1", "v2", "E0", "E1", "E2"] {
+        assert_eq!(
+            svg.matches(&format!(">{label}</text>")).count(),
+            1,
+            "{label}"
+        );
+    }
+    let axes = svg.split("<g class=\"axes\"").nth(1).unwrap();
+    let axes = &axes[..axes.find("</g>").unwrap()];
+    for i in 0..10 {
+        assert!(axes.contains(&format!(">{i}</text>")), "column {i}");
+    }
+    assert_eq!(axes.matches("</text>").count(), 10 + 8);
+    for role in [Role::Drawn, Role::TestedOutside, Role::Geometry] {
+        assert!(p.legend.has(role), "{role:?}");
+        assert!(svg.contains(role.label()), "{role:?}");
+    }
+    assert!(!p.legend.has(Role::BlockPartial));
+    // Several triangles: told apart by colour, no vertex names.
+    let two = GridPicture::of_triangles(
+        bbox,
+        &[
+            [(1.0, 1.0), (9.0, 2.0), (3.0, 7.0)],
+            [(9.0, 2.0), (9.0, 7.0), (3.0, 7.0)],
+        ],
+        FillRule::TopLeft,
+        10,
+        8,
+    )
+    .unwrap();
+    assert!(!two.to_svg().contains(">v0</text>"));
+}
+
+/// Pictures meant for a person are at least 256 pixels on their short
+/// side, however small the grid; a large grid keeps its cells at 32
+/// pixels.
+#[test]
+fn pictures_are_large_enough_to_see() {
+    use rasterlab::teaching::grid_picture::{for_people, MIN_SHORT_SIDE};
+    let bbox = triangle_backend("bbox").unwrap();
+    for (w, h) in [(1, 1), (5, 5), (9, 9), (14, 9), (3, 40), (64, 48)] {
+        let p = GridPicture::of_triangles(
+            bbox,
+            &[[(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)]],
+            FillRule::TopLeft,
+            w,
+            h,
+        )
+        .unwrap();
+        let png = p.to_picture_png().unwrap();
+        assert!(
+            png.width().min(png.height()) >= MIN_SHORT_SIDE,
+            "{w}x{h}: {}x{}",
+            png.width(),
+            png.height()
+        );
+        assert!(p.svg_cell() >= 32.0);
+    }
+    for name in Scene2D::BUILT_IN {
+        let scene = Scene2D::built_in(name).unwrap();
+        let (target, _) = scene.render(bbox, FillRule::TopLeft, &Flat).unwrap();
+        let picture = for_people(&target);
+        assert!(
+            picture.width().min(picture.height()) >= MIN_SHORT_SIDE,
+            "{name}"
+        );
+        // Enlarged by a whole number: every pixel one framed cell.
+        assert_eq!(picture.width() % target.width(), 0, "{name}");
+    }
+}
+
+/// The depth-buffer picture of the course's example: each pixel in the
+/// colour of the triangle kept there, the 4 pixels where the red
+/// triangle's fragments lost to the blue one marked hidden, and the PNG
+/// showing the depths the SVG shows (drawing it without its labels
+/// changes it).
+#[test]
+fn the_depth_buffer_picture_shows_kept_and_hidden_fragments_and_its_numbers() {
+    use rasterlab::teaching::grid_picture::DepthCells;
+    use rasterlab::teaching::palette::Role;
+    let scene = Scene2D::depth_example(true);
+    let bbox = triangle_backend("bbox").unwrap();
+    let cells = DepthCells::of_scene(&scene, bbox, FillRule::TopLeft).unwrap();
+    let kept = |t: u32| cells.kept.iter().filter(|k| k.last() == Some(&t)).count();
+    assert_eq!((kept(0), kept(1)), (19, 8));
+    let hidden: Vec<usize> = (0..cells.hidden.len())
+        .filter(|&i| !cells.hidden[i].is_empty())
+        .collect();
+    assert_eq!(hidden.len(), 4);
+    assert!(hidden
+        .iter()
+        .all(|&i| cells.hidden[i] == [1] && cells.kept[i] == [0]));
+    // Drawn the other way round, the red fragments are kept, then
+    // overwritten: nothing is hidden, the same buffer results.
+    let red_first = Scene2D::depth_example(false);
+    let other = DepthCells::of_scene(&red_first, bbox, FillRule::TopLeft).unwrap();
+    assert_eq!(other.depth, cells.depth);
+    assert!(other.hidden.iter().all(Vec::is_empty));
+    assert_eq!(other.kept.iter().filter(|k| k.len() == 2).count(), 4);
+
+    let p = GridPicture::depth_buffer(&scene, FillRule::TopLeft).unwrap();
+    assert_eq!(p.hidden.len(), 4);
+    assert!(p.legend.has(Role::Hidden));
+    assert!(p.caption.contains("27 fragments kept, 4 hidden"));
+    assert_eq!(p.to_svg().matches("class=\"hidden\"").count(), 4);
+    let with_numbers = p.to_picture_png().unwrap();
+    let without = GridPicture {
+        labels: Vec::new(),
+        ..p.clone()
+    }
+    .to_picture_png()
+    .unwrap();
+    assert_eq!(with_numbers.dimensions(), without.dimensions());
+    let differing = with_numbers
+        .pixels()
+        .zip(without.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    // Text in every one of the 126 cells.
+    assert!(differing > 126 * 10, "{differing}");
+}
+
+/// Many triangles over one grid: `tiled` frames each block once, with
+/// the strongest class any triangle gave it, not one frame per triangle.
+#[test]
+fn tiled_frames_each_block_once_for_many_triangles() {
+    use rasterlab::raster::triangle::tiled::BlockClass;
+    let tiled = triangle_backend("tiled").unwrap();
+    let scene = Scene2D::pinwheel();
+    let triangles: Vec<[(f64, f64); 3]> = scene
+        .triangles
+        .iter()
+        .map(|t| t.map(|p| p.to_f64()))
+        .map(|t| t.map(|(x, y)| (x * 4.0, y * 4.0)))
+        .collect();
+    let p = GridPicture::of_triangles(tiled, &triangles, FillRule::TopLeft, 36, 36).unwrap();
+    let mut rects: Vec<_> = p
+        .blocks
+        .iter()
+        .map(|(r, _)| (r.x0, r.y0, r.x1, r.y1))
+        .collect();
+    let n = rects.len();
+    rects.sort_unstable();
+    rects.dedup();
+    assert_eq!(rects.len(), n, "a block framed twice");
+    assert!(p.blocks.iter().any(|b| b.1 == BlockClass::Partial));
+    assert_eq!(p.to_svg().matches("class=\"block\"").count(), n);
+}

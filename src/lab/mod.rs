@@ -33,7 +33,7 @@ use crate::raster::backend::{backend, line_backends, triangle_backends, Backend}
 use crate::raster::edge::{FillRule, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::line::LineOptions;
-use crate::teaching::grid_picture::{is_fragment_green, GridPicture, TESTED_OUTSIDE};
+use crate::teaching::grid_picture::{is_fragment_green, GridPicture, INSIDE, TESTED_OUTSIDE};
 use crate::teaching::trace::{self, LineEnds};
 use serde::{Deserialize, Serialize};
 
@@ -328,7 +328,7 @@ fn view(name: &str, picture: &GridPicture) -> BackendView {
             tested.push([x, y]);
         } else if is_fragment_green(c) {
             // The green shade tells the weight (Wu); full green is 1.
-            let weight = (255.0 - f32::from(c[0])) / (255.0 - 70.0);
+            let weight = (255.0 - f32::from(c[0])) / (255.0 - f32::from(INSIDE[0]));
             fragments.push([x, y, (weight.clamp(0.0, 1.0) * 1000.0).round() as u32]);
         }
     }

@@ -2,26 +2,36 @@
 //!
 //! Each pixel is drawn as a large cell with its centre marked (the sample
 //! point every test is made at), and over the grid the **true** geometry:
-//! the snapped triangle edges, or the ideal line between a line's
-//! endpoints. The cells say what a back-end did:
+//! the snapped triangle edges with their vertices `v0`-`v2` and edges
+//! `E0`-`E2` named as the traces name them (edge `Ek` is opposite vertex
+//! `vk`), or the ideal line between a line's endpoints. The cells say what
+//! a back-end did, in the colours of the one [palette](super::palette):
 //!
-//! * **green**: a fragment was emitted (for `wu`, the green is as strong as
-//!   the fragment's coverage);
-//! * **red**: the back-end evaluated the inside test there and it failed;
+//! * **bluish green**: a fragment was emitted (for `wu`, the green is as
+//!   strong as the fragment's coverage);
+//! * **sky blue**: the back-end evaluated the inside test there and it
+//!   failed;
 //! * **white**: never looked at.
 //!
-//! So the bounding box shows as a red rectangle around the green
-//! triangle, the naive loop as a red grid, scanline with no red at all
-//! (it solves each row's span instead of testing pixels), and `tiled` red
-//! only in the blocks that straddle an edge.
+//! So the bounding box shows as a sky-blue rectangle around the green
+//! triangle, the naive loop as a sky-blue grid, scanline with no sky blue
+//! at all (it solves each row's span instead of testing pixels), and
+//! `tiled` sky blue only in the blocks that straddle an edge, each block
+//! framed once with its class.
 //!
 //! [`GridPicture::coverage_heat_map`] draws the fill-rule pictures instead:
 //! each pixel's fragment count against a watertight reference, so that
-//! the inclusive rule's double draws (orange) and the exclusive rule's gaps
-//! (red) on shared edges stand out.
+//! the inclusive rule's double draws (vermillion) and the exclusive rule's
+//! gaps (orange) on shared edges stand out. [`GridPicture::depth_buffer`]
+//! draws the depth buffer: each pixel in the colour of the triangle whose
+//! fragment the depth test kept, labelled with the stored depth, and
+//! marked where a farther fragment was hidden.
 //!
-//! Pictures are written as SVG (sharp at any zoom, with labels such as the
-//! depth values of [`GridPicture::depth_buffer`]) or PNG.
+//! Every picture carries its legend, pixel indices on its axes and a
+//! caption. Pictures are written as SVG (sharp at any zoom) or PNG (the
+//! same SVG rendered with the bundled font: the same labels and legend);
+//! cells are enlarged so that the picture's short side is at least
+//! [`MIN_SHORT_SIDE`] pixels.
 //!
 //! ```
 //! use rasterlab::raster::backend::triangle_backend;
@@ -44,30 +54,44 @@ use crate::raster::fixed::FixedPoint;
 use crate::raster::fragment::{FragmentSink, LineFragment, TriangleFragment};
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::shader::Flat;
-use crate::raster::target::RenderTarget;
+use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::tiled::{blocks, BlockClass};
 use crate::raster::triangle::TriangleRasterizer;
 use crate::raster::triangle::TriangleWalk;
+pub(crate) use crate::teaching::palette::escape;
+use crate::teaching::palette::{faded, hex, triangle_colour, Legend, Role};
 use std::fmt::Write;
 use std::path::Path;
 
-/// A cell no back-end looked at.
-pub const UNTESTED: [u8; 3] = [255, 255, 255];
-/// A cell whose inside test failed (the rasterization slides' red).
-pub const TESTED_OUTSIDE: [u8; 3] = [235, 110, 100];
-/// A cell that became a fragment (the rasterization slides' green).
-pub const INSIDE: [u8; 3] = [70, 180, 90];
-/// Heat map: covered as often as a watertight rule covers it.
-pub const AS_REFERENCE: [u8; 3] = [200, 225, 205];
-/// Heat map: covered less often than every watertight rule (a gap).
-pub const GAP: [u8; 3] = [220, 40, 40];
-/// Heat map: covered once more than any watertight rule (drawn twice).
-pub const OVERDRAWN: [u8; 3] = [250, 160, 30];
-/// Heat map: covered two or more times more than any watertight rule.
-pub const OVERDRAWN_MORE: [u8; 3] = [140, 40, 160];
+/// A cell no back-end looked at ([`Role::Untested`]).
+pub const UNTESTED: [u8; 3] = Role::Untested.rgb();
+/// A cell whose inside test failed ([`Role::TestedOutside`]).
+pub const TESTED_OUTSIDE: [u8; 3] = Role::TestedOutside.rgb();
+/// A cell that became a fragment ([`Role::Drawn`]).
+pub const INSIDE: [u8; 3] = Role::Drawn.rgb();
+/// Heat map: covered as often as a watertight rule covers it
+/// ([`Role::AsReference`]).
+pub const AS_REFERENCE: [u8; 3] = Role::AsReference.rgb();
+/// Heat map: covered less often than every watertight rule, a gap
+/// ([`Role::Gap`]).
+pub const GAP: [u8; 3] = Role::Gap.rgb();
+/// Heat map: covered once more than any watertight rule, drawn twice
+/// ([`Role::DoubleDraw`]).
+pub const OVERDRAWN: [u8; 3] = Role::DoubleDraw.rgb();
+/// Heat map: covered two or more times more than any watertight rule
+/// ([`Role::DrawnTwiceMore`]).
+pub const OVERDRAWN_MORE: [u8; 3] = Role::DrawnTwiceMore.rgb();
 
-/// Pixels per cell in the SVG.
+/// Pixels per cell in the SVG, at least.
 const SVG_CELL: f64 = 32.0;
+/// Pixels per cell in the SVG, at most (a grid of one cell).
+const SVG_CELL_MAX: f64 = 256.0;
+/// The longest side of the grid drawn in an SVG picture, in pixels: large
+/// grids get smaller cells.
+const SVG_GRID_MAX: f64 = 4096.0;
+/// The short side of a picture meant for a person, at least (small
+/// grids get larger cells).
+pub const MIN_SHORT_SIDE: u32 = 256;
 /// Largest grid drawn (4096 x 4096 cells).
 pub const MAX_CELLS: u32 = 4096 * 4096;
 
@@ -87,10 +111,15 @@ pub struct GridPicture {
     /// Open segments (ideal lines), in pixel coordinates.
     pub segments: Vec<[(f64, f64); 2]>,
     /// Blocks a hierarchical back-end classified as a whole, with their
-    /// classes (`tiled`'s 8 x 8 blocks), drawn as framed rectangles.
+    /// classes (`tiled`'s 8 x 8 blocks), drawn as framed rectangles: one
+    /// frame per block, however many triangles classified it.
     pub blocks: Vec<(PixelRect, BlockClass)>,
+    /// Pixels where the depth test hid a fragment, with how many.
+    pub hidden: Vec<(u32, u32, u32)>,
     /// One line saying what the picture shows.
     pub caption: String,
+    /// What the colours say.
+    pub legend: Legend,
 }
 
 /// Records what a back-end did to each pixel of a small grid.
@@ -185,7 +214,9 @@ impl GridPicture {
             outlines: Vec::new(),
             segments: Vec::new(),
             blocks: Vec::new(),
+            hidden: Vec::new(),
             caption,
+            legend: Legend::default(),
         }
     }
 
@@ -232,7 +263,7 @@ impl GridPicture {
         let setups = setup_triangles(triangles, rule);
         let work = backend.rasterize(&setups, PixelRect::of_target(width, height), &mut recorder);
         let caption = format!(
-            "{}, {} rule: {} pixels tested (red: outside), {} fragments (green)",
+            "{}, {} rule: {} pixels tested (sky blue: outside), {} fragments (green)",
             backend.name(),
             rule.name(),
             work.samples_tested,
@@ -241,10 +272,24 @@ impl GridPicture {
         let mut picture = Self::recorded(&recorder, width, height, caption);
         picture.outlines = outlines(triangles);
         if backend.descriptor().walk == TriangleWalk::Blocks {
-            picture.blocks = setups
-                .iter()
-                .flat_map(|t| blocks(t, PixelRect::of_target(width, height)))
-                .collect();
+            picture.blocks = merged_blocks(
+                setups
+                    .iter()
+                    .flat_map(|t| blocks(t, PixelRect::of_target(width, height))),
+            );
+        }
+        picture.legend = Legend::new(&[
+            Role::Drawn,
+            Role::TestedOutside,
+            Role::Untested,
+            Role::Geometry,
+        ]);
+        if !picture.blocks.is_empty() {
+            picture.legend = picture
+                .legend
+                .with(Role::BlockInside)
+                .with(Role::BlockPartial)
+                .with(Role::BlockOutside);
         }
         Ok(picture)
     }
@@ -288,32 +333,45 @@ impl GridPicture {
             .iter()
             .map(|s| [s.from.to_f64(), s.to.to_f64()])
             .collect();
+        picture.legend = Legend::new(&[Role::Drawn, Role::Untested, Role::Geometry]);
         Ok(picture)
     }
 
-    /// The rasterization slides' depth buffer after the whole scene: each cell in the
-    /// colour it was drawn, labelled with its depth (1.0 where nothing
-    /// was drawn).
+    /// The rasterization slides' depth buffer after the whole scene: each
+    /// cell in the colour of the triangle whose fragment the depth test
+    /// kept, labelled with its depth (1.0 where nothing was drawn), and
+    /// marked where a farther fragment was hidden.
     pub fn depth_buffer(scene: &Scene2D, rule: FillRule) -> Result<GridPicture> {
-        check_grid(scene.width, scene.height)?;
         let bbox = crate::raster::backend::triangle_backend("bbox")?;
-        let (target, _) = scene.render(bbox, rule, &Flat)?;
+        let cells = DepthCells::of_scene(scene, bbox, rule)?;
+        let hidden: usize = cells.hidden.iter().map(Vec::len).sum();
+        let kept: usize = cells.kept.iter().map(Vec::len).sum();
         let mut picture = Self::blank(
             scene.width,
             scene.height,
             format!(
-                "depth buffer after {} triangles (1.0 = nothing drawn)",
+                "depth buffer after {} triangles: {kept} fragments kept, {hidden} hidden (1.0 = nothing drawn)",
                 scene.triangles.len()
             ),
         );
-        picture.labels = target.depth.iter().map(|z| format!("{z:.1}")).collect();
-        for i in 0..target.depth.len() {
-            if target.coverage[i] > 0 {
-                let [r, g, b, _] = target.color[i];
-                picture.cells[i] = mix(UNTESTED, [r, g, b], 0.55);
+        picture.labels = cells.depth.iter().map(|z| format!("{z:.1}")).collect();
+        for (i, kept) in cells.kept.iter().enumerate() {
+            if let Some(&t) = kept.last() {
+                picture.cells[i] = faded(triangle_colour(t as usize), 0.55);
+            }
+            if !cells.hidden[i].is_empty() {
+                let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
+                picture.hidden.push((x, y, cells.hidden[i].len() as u32));
             }
         }
         picture.outlines = outlines(&scene.triangles);
+        let labels: Vec<String> = scene
+            .vertices
+            .iter()
+            .enumerate()
+            .map(|(i, v)| format!("triangle {} (z = {})", i + 1, v[0].depth))
+            .collect();
+        picture.legend = Legend::default().with_triangles(&labels).with(Role::Hidden);
         Ok(picture)
     }
 
@@ -340,6 +398,12 @@ impl GridPicture {
             )));
         }
         let mut picture = Self::blank(width, height, caption);
+        picture.legend = Legend::new(&[
+            Role::AsReference,
+            Role::Gap,
+            Role::DoubleDraw,
+            Role::DrawnTwiceMore,
+        ]);
         for (i, &c) in coverage.iter().enumerate() {
             let lo = watertight.iter().map(|w| w[i]).min().unwrap_or(0);
             let hi = watertight.iter().map(|w| w[i]).max().unwrap_or(0);
@@ -373,45 +437,117 @@ impl GridPicture {
         self.cells.iter().filter(|&&x| x == c).count()
     }
 
-    /// The picture as a standalone SVG document.
+    /// Pixels per cell in the SVG: at least 32, more for a small grid (its
+    /// short side at least [`MIN_SHORT_SIDE`]), fewer for a grid whose
+    /// long side would pass 4096 pixels.
+    pub fn svg_cell(&self) -> f64 {
+        let short = f64::from(self.width.min(self.height));
+        let long = f64::from(self.width.max(self.height));
+        (f64::from(MIN_SHORT_SIDE) / short)
+            .ceil()
+            .clamp(SVG_CELL, SVG_CELL_MAX)
+            .min((SVG_GRID_MAX / long).floor())
+            .max(1.0)
+    }
+
+    /// The picture as a standalone SVG document: caption, pixel indices on
+    /// both axes, the grid, and the legend below.
     pub fn to_svg(&self) -> String {
-        let s = SVG_CELL;
-        let (w, h) = (self.width as f64 * s, self.height as f64 * s);
-        let caption_height = 28.0;
+        self.svg(true)
+    }
+
+    /// The picture as an SVG document without its caption and legend, for
+    /// a page that writes them in HTML (the axes stay).
+    pub fn to_svg_bare(&self) -> String {
+        self.svg(false)
+    }
+
+    fn svg(&self, framed: bool) -> String {
+        let s = self.svg_cell();
+        let (w, h) = (f64::from(self.width) * s, f64::from(self.height) * s);
+        // Room for the row numbers left, the column numbers above.
+        let digits = self.width.max(self.height).to_string().len() as f64;
+        let left = 8.0 + 7.5 * digits;
+        let caption_height = if framed { 26.0 } else { 0.0 };
+        let top = caption_height + 18.0;
+        let legend_width = (w + left).max(420.0) - 8.0;
+        let (legend, legend_height) = if framed {
+            self.legend.to_svg(4.0, top + h + 8.0, legend_width)
+        } else {
+            (String::new(), 0.0)
+        };
+        // DejaVu Sans at 15 px: about 8.4 px a character.
+        let caption_width = if framed {
+            self.caption.chars().count() as f64 * 8.4 + 12.0
+        } else {
+            0.0
+        };
+        let width = (left + w + 8.0).max(legend_width + 8.0).max(caption_width);
+        let height = top + h + 8.0 + legend_height;
         let mut out = String::new();
         let _ = writeln!(
             out,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{}" viewBox="0 {} {w} {}" font-family="sans-serif">"#,
-            h + caption_height,
-            -caption_height,
-            h + caption_height
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="DejaVu Sans, sans-serif">"#,
         );
         let _ = writeln!(out, "<title>{}</title>", escape(&self.caption));
+        if framed {
+            let _ = writeln!(
+                out,
+                r#"<text class="caption" x="4" y="18" font-size="15">{}</text>"#,
+                escape(&self.caption)
+            );
+        }
+        // Pixel indices: every one while they fit, else every 2nd, 5th, 10th ...
+        let step = [1u32, 2, 5, 10, 20, 50, 100, 200, 500, 1000]
+            .into_iter()
+            .find(|&k| f64::from(k) * s >= 7.0 * digits + 4.0)
+            .unwrap_or(1000);
+        let _ = write!(out, r##"<g class="axes" font-size="11" fill="#444">"##);
+        for x in (0..self.width).step_by(step as usize) {
+            let _ = write!(
+                out,
+                r#"<text x="{}" y="{}" text-anchor="middle">{x}</text>"#,
+                left + (f64::from(x) + 0.5) * s,
+                top - 5.0
+            );
+        }
+        for y in (0..self.height).step_by(step as usize) {
+            let _ = write!(
+                out,
+                r#"<text x="{}" y="{}" text-anchor="end">{y}</text>"#,
+                left - 4.0,
+                top + (f64::from(y) + 0.5) * s + 4.0
+            );
+        }
+        out.push_str("</g>\n");
         let _ = writeln!(
             out,
-            r#"<text x="4" y="-9" font-size="15">{}</text>"#,
-            escape(&self.caption)
+            r#"<g transform="translate({left} {top})"><clipPath id="grid-view"><path d="M0 0H{w}V{h}H0Z"/></clipPath>"#
         );
+        let dots = s >= 12.0;
+        let label_size = (s / 2.9).min(13.0);
         for y in 0..self.height {
             for x in 0..self.width {
                 let i = (y * self.width + x) as usize;
-                let [r, g, b] = self.cells[i];
                 let _ = writeln!(
                     out,
-                    r##"<rect x="{}" y="{}" width="{s}" height="{s}" fill="#{r:02x}{g:02x}{b:02x}" stroke="#9a9a9a" stroke-width="1"/>"##,
-                    x as f64 * s,
-                    y as f64 * s
+                    r##"<rect x="{}" y="{}" width="{s}" height="{s}" fill="{}" stroke="#9a9a9a" stroke-width="1"/>"##,
+                    f64::from(x) * s,
+                    f64::from(y) * s,
+                    hex(self.cells[i])
                 );
-                let (cx, cy) = ((x as f64 + 0.5) * s, (y as f64 + 0.5) * s);
+                let (cx, cy) = ((f64::from(x) + 0.5) * s, (f64::from(y) + 0.5) * s);
                 let label = self.labels.get(i).filter(|l| !l.is_empty());
-                if let Some(label) = label {
+                if let Some(label) = label.filter(|_| s >= 20.0) {
+                    // Below the centre, so the sample point stays visible.
                     let _ = writeln!(
                         out,
-                        r#"<text x="{cx}" y="{}" font-size="11" text-anchor="middle">{}</text>"#,
-                        cy + 4.0,
-                        escape(label)
+                        r##"<text x="{cx}" y="{}" font-size="{label_size:.1}" text-anchor="middle">{}</text><circle cx="{cx}" cy="{}" r="1.8" fill="#333"/>"##,
+                        cy + s * 0.34,
+                        escape(label),
+                        cy - s * 0.12
                     );
-                } else {
+                } else if dots {
                     let _ = writeln!(
                         out,
                         r##"<circle cx="{cx}" cy="{cy}" r="2.2" fill="#333"/>"##
@@ -419,49 +555,116 @@ impl GridPicture {
                 }
             }
         }
-        for outline in &self.outlines {
+        for &(x, y, n) in &self.hidden {
+            // A grey corner: a fragment hidden here, with how many.
+            let (x0, y0) = (f64::from(x) * s, f64::from(y) * s);
+            let k = s * 0.42;
+            let _ = writeln!(
+                out,
+                r#"<path class="hidden" d="M{} {y0}h{k}v{k}Z" fill="{}"/><text x="{}" y="{}" font-size="{:.1}" text-anchor="end" fill="white">{n}</text>"#,
+                x0 + s - k,
+                Role::Hidden.hex(),
+                x0 + s - 2.0,
+                y0 + k * 0.55,
+                k * 0.55
+            );
+        }
+        out.push_str("<g clip-path=\"url(#grid-view)\">\n");
+        let several = self.outlines.len() > 1;
+        for (t, outline) in self.outlines.iter().enumerate() {
+            let colour = if several {
+                hex(triangle_colour(t))
+            } else {
+                Role::Geometry.hex()
+            };
             let points: Vec<String> = outline
                 .iter()
                 .map(|(x, y)| format!("{},{}", x * s, y * s))
                 .collect();
             let _ = writeln!(
                 out,
-                r##"<polygon points="{}" fill="none" stroke="#1b1b1b" stroke-width="2"/>"##,
+                r#"<polygon class="outline" points="{}" fill="none" stroke="{colour}" stroke-width="2.5"/>"#,
                 points.join(" ")
             );
         }
         for (r, class) in &self.blocks {
-            let (colour, letter) = block_style(*class);
-            let [cr, cg, cb] = colour;
+            let (role, letter) = block_style(*class);
+            let colour = role.hex();
             let (x, y) = (r.x0 as f64 * s, r.y0 as f64 * s);
             let _ = writeln!(
                 out,
-                r##"<rect class="block" x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#{cr:02x}{cg:02x}{cb:02x}" stroke-width="3" stroke-dasharray="6 3"/><text x="{}" y="{}" font-size="12" font-weight="bold" fill="#{cr:02x}{cg:02x}{cb:02x}">{letter}</text>"##,
-                x + 1.5,
-                y + 1.5,
-                (r.x1 - r.x0 + 1) as f64 * s - 3.0,
-                (r.y1 - r.y0 + 1) as f64 * s - 3.0,
-                x + 4.0,
-                y + 14.0
+                r#"<rect class="block" x="{}" y="{}" width="{}" height="{}" fill="none" stroke="{colour}" stroke-width="3" stroke-dasharray="6 3"/><text x="{}" y="{}" font-size="12" font-weight="bold" fill="{colour}">{letter}</text>"#,
+                x + 2.5,
+                y + 2.5,
+                (r.x1 - r.x0 + 1) as f64 * s - 5.0,
+                (r.y1 - r.y0 + 1) as f64 * s - 5.0,
+                x + 5.0,
+                y + 15.0
             );
         }
         for [(x0, y0), (x1, y1)] in &self.segments {
             let _ = writeln!(
                 out,
-                r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#1d4ed8" stroke-width="2.5"/>"##,
+                r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="2.5"/>"#,
                 x0 * s,
                 y0 * s,
                 x1 * s,
-                y1 * s
+                y1 * s,
+                Role::Geometry.hex()
             );
         }
+        out.push_str("</g>\n");
+        self.geometry_labels(&mut out, s, w, h);
+        out.push_str("</g>\n");
+        out.push_str(&legend);
         out.push_str("</svg>\n");
         out
     }
 
-    /// The picture as an image, `zoom` image pixels per grid cell. At a
-    /// zoom of 6 or more the cell borders and centres are drawn too, and
-    /// the outlines and segments at any zoom; labels are in the SVG only.
+    /// The names the traces use, on a picture of one triangle: its
+    /// vertices `v0`-`v2` and edges `E0`-`E2` (`Ek` opposite `vk`).
+    /// Several triangles are told apart by their colours instead.
+    fn geometry_labels(&self, out: &mut String, s: f64, w: f64, h: f64) {
+        let label = |out: &mut String, (x, y): (f64, f64), text: &str, colour: &str| {
+            // Kept inside the grid, on a white halo.
+            let (x, y) = (x.clamp(8.0, w - 8.0), y.clamp(12.0, h - 4.0));
+            let _ = writeln!(
+                out,
+                r#"<text class="geometry-label" x="{x:.1}" y="{y:.1}" font-size="14" font-weight="bold" text-anchor="middle" fill="{colour}" stroke="white" stroke-width="3" paint-order="stroke">{text}</text>"#
+            );
+        };
+        if let [outline] = self.outlines.as_slice() {
+            let n = outline.len() as f64;
+            let centre = outline
+                .iter()
+                .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+            let away = |(x, y): (f64, f64), by: f64| {
+                let (dx, dy) = (x - centre.0, y - centre.1);
+                let len = (dx * dx + dy * dy).sqrt().max(1e-9);
+                (x * s + dx / len * by, y * s + dy / len * by + 5.0)
+            };
+            let colour = Role::Geometry.hex();
+            for (k, &p) in outline.iter().enumerate() {
+                let (x, y) = p;
+                let _ = writeln!(
+                    out,
+                    r#"<circle class="vertex" cx="{}" cy="{}" r="4" fill="{colour}"/>"#,
+                    x * s,
+                    y * s
+                );
+                label(out, away(p, 14.0), &format!("v{k}"), &colour);
+                let (a, b) = (outline[(k + 1) % 3], outline[(k + 2) % 3]);
+                let mid = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
+                label(out, away(mid, 13.0), &format!("E{k}"), &colour);
+            }
+        }
+    }
+
+    /// The grid alone as an image, `zoom` image pixels per grid cell (for
+    /// a page that shows the legend beside it; [`GridPicture::save`]
+    /// writes the whole picture). At a zoom of 6 or more the cell borders
+    /// and centres are drawn too, and the outlines and segments at any
+    /// zoom; labels, axes and legend are in [`GridPicture::to_svg`].
     pub fn to_png(&self, zoom: u32) -> Result<image::RgbImage> {
         let zoom = zoom.max(1);
         let (w, h) = (self.width * zoom, self.height * zoom);
@@ -496,16 +699,22 @@ impl GridPicture {
                 }
             }
         };
-        for outline in &self.outlines {
+        let several = self.outlines.len() > 1;
+        for (t, outline) in self.outlines.iter().enumerate() {
+            let colour = if several {
+                triangle_colour(t)
+            } else {
+                Role::Geometry.rgb()
+            };
             for k in 0..outline.len() {
-                stroke(outline[k], outline[(k + 1) % outline.len()], [27, 27, 27]);
+                stroke(outline[k], outline[(k + 1) % outline.len()], colour);
             }
         }
         for &[a, b] in &self.segments {
-            stroke(a, b, [29, 78, 216]);
+            stroke(a, b, Role::Geometry.rgb());
         }
         for (r, class) in &self.blocks {
-            let colour = block_style(*class).0;
+            let colour = block_style(*class).0.rgb();
             // Just inside the block, so neighbouring frames do not overlap.
             let inset = 2.0 / z;
             let (x0, y0) = (r.x0 as f64 + inset, r.y0 as f64 + inset);
@@ -525,26 +734,168 @@ impl GridPicture {
     /// The file types [`GridPicture::save`] writes.
     pub const EXTENSIONS: [&'static str; 2] = ["svg", "png"];
 
-    /// Writes the picture as SVG or PNG (24 pixels per cell), by the
-    /// path's extension.
+    /// The picture as an image: the SVG picture rendered with the bundled
+    /// font (the same caption, axes, labels and legend). A grid of more
+    /// than [`MAX_LABELLED_CELLS`] cells is drawn cell by cell instead
+    /// ([`GridPicture::to_png`], about 2048 pixels on its long side).
+    pub fn to_picture_png(&self) -> Result<image::RgbaImage> {
+        if u64::from(self.width) * u64::from(self.height) > MAX_LABELLED_CELLS {
+            let zoom = (2048 / self.width.max(self.height)).max(1);
+            return Ok(image::DynamicImage::ImageRgb8(self.to_png(zoom)?).into_rgba8());
+        }
+        crate::output::svg_to_png(&self.to_svg())
+    }
+
+    /// Writes the picture as SVG or PNG ([`GridPicture::to_picture_png`]),
+    /// by the path's extension.
     pub fn save(&self, path: &Path) -> Result<()> {
         crate::output::check_file(path, &Self::EXTENSIONS)?;
         if crate::output::extension(path).as_deref() == Some("svg") {
             crate::output::write_file(path, self.to_svg().as_bytes())
         } else {
-            crate::output::write_png(path, &self.to_png(24)?)
+            crate::output::write_png(path, &self.to_picture_png()?)
         }
     }
 }
 
-/// The frame colour and letter of a block class: inside (trivial accept)
-/// dark green `I`, outside (trivial reject) grey `O`, partial (tested pixel
-/// by pixel) orange `P`.
-fn block_style(class: BlockClass) -> ([u8; 3], char) {
+/// The scale that enlarges a `width` x `height` image until its short
+/// side is at least [`MIN_SHORT_SIDE`] pixels (1 for an image that large
+/// already; at most 64).
+pub fn scale_for_people(width: u32, height: u32) -> u32 {
+    MIN_SHORT_SIDE
+        .div_ceil(width.min(height).max(1))
+        .clamp(1, 64)
+}
+
+/// A rendered target as a picture meant for a person: small scenes
+/// enlarged by [`scale_for_people`], each pixel a framed cell
+/// ([`RenderTarget::to_image_scaled`]), so that the short side is at least
+/// [`MIN_SHORT_SIDE`] pixels.
+///
+/// ```
+/// use rasterlab::geometry::scene::Scene2D;
+/// use rasterlab::raster::{backend::triangle_backend, edge::FillRule, shader::Flat};
+/// use rasterlab::teaching::grid_picture::{for_people, MIN_SHORT_SIDE};
+///
+/// let scene = Scene2D::split_square();
+/// let (target, _) = scene.render(triangle_backend("bbox")?, FillRule::TopLeft, &Flat)?;
+/// let picture = for_people(&target);
+/// assert!(picture.width().min(picture.height()) >= MIN_SHORT_SIDE);
+/// # Ok::<(), rasterlab::Error>(())
+/// ```
+pub fn for_people(target: &RenderTarget) -> image::RgbaImage {
+    target.to_image_scaled(scale_for_people(target.width(), target.height()))
+}
+
+/// The largest grid [`GridPicture::to_picture_png`] renders with its
+/// labels and legend (256 x 256 cells).
+pub const MAX_LABELLED_CELLS: u64 = 256 * 256;
+
+/// The frame's role and letter of a block class: inside (trivial accept)
+/// `I`, outside (trivial reject) `O`, partial (tested pixel by pixel) `P`.
+fn block_style(class: BlockClass) -> (Role, char) {
     match class {
-        BlockClass::Inside => ([20, 110, 40], 'I'),
-        BlockClass::Outside => ([120, 120, 120], 'O'),
-        BlockClass::Partial => ([220, 120, 0], 'P'),
+        BlockClass::Inside => (Role::BlockInside, 'I'),
+        BlockClass::Outside => (Role::BlockOutside, 'O'),
+        BlockClass::Partial => (Role::BlockPartial, 'P'),
+    }
+}
+
+/// One frame per block however many triangles classified it: partial if
+/// any triangle's edges cross it, else inside if it is inside any
+/// triangle, else outside (so that many triangles' frames do not overlap
+/// into a tangle). Blocks keep the order they were first classified in.
+fn merged_blocks(
+    blocks: impl Iterator<Item = (PixelRect, BlockClass)>,
+) -> Vec<(PixelRect, BlockClass)> {
+    let rank = |c: BlockClass| match c {
+        BlockClass::Outside => 0,
+        BlockClass::Inside => 1,
+        BlockClass::Partial => 2,
+    };
+    let mut merged: Vec<(PixelRect, BlockClass)> = Vec::new();
+    let mut index = std::collections::HashMap::new();
+    for (r, class) in blocks {
+        let key = (r.x0, r.y0, r.x1, r.y1);
+        match index.get(&key) {
+            Some(&i) => {
+                let (_, old): &mut (PixelRect, BlockClass) = &mut merged[i];
+                if rank(class) > rank(*old) {
+                    *old = class;
+                }
+            }
+            None => {
+                index.insert(key, merged.len());
+                merged.push((r, class));
+            }
+        }
+    }
+    merged
+}
+
+/// What the depth test did at each pixel of a scene drawn in order: the
+/// depth stored, the triangle whose fragment is stored, and the triangles
+/// whose fragments were hidden (farther than the depth already stored,
+/// or equal to it: the test is `f.z < depthBuffer`). Triangles are
+/// numbered from 0 in drawing order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DepthCells {
+    /// Grid width.
+    pub width: u32,
+    /// Grid height.
+    pub height: u32,
+    /// The depth stored, row by row (1.0: nothing drawn).
+    pub depth: Vec<f32>,
+    /// The triangles whose fragments the depth test kept, per pixel, in
+    /// drawing order: the last one's depth and colour are stored (the
+    /// others' were kept, then overwritten by a nearer fragment).
+    pub kept: Vec<Vec<u32>>,
+    /// The triangles whose fragments the depth test hid, per pixel.
+    pub hidden: Vec<Vec<u32>>,
+}
+
+impl DepthCells {
+    /// Draws `scene` by `backend` under `rule` through the shared stage
+    /// with the rasterization slides' depth test (`less`, writes on), one
+    /// triangle at a time, and records each pixel's outcome.
+    pub fn of_scene(
+        scene: &Scene2D,
+        backend: &dyn TriangleRasterizer,
+        rule: FillRule,
+    ) -> Result<DepthCells> {
+        check_grid(scene.width, scene.height)?;
+        let n = (scene.width * scene.height) as usize;
+        let mut target = RenderTarget::new(scene.width, scene.height)?;
+        let mut kept = vec![Vec::new(); n];
+        let mut hidden = vec![Vec::new(); n];
+        for (t, (triangle, vertices)) in scene.triangles.iter().zip(&scene.vertices).enumerate() {
+            let one = Scene2D {
+                triangles: vec![*triangle],
+                vertices: vec![*vertices],
+                ..scene.clone()
+            };
+            // The triangle's own fragments, then what the test did to them.
+            let (alone, _) = one.render(backend, rule, &Flat)?;
+            let before = target.depth.clone();
+            one.draw(backend, rule, DepthState::DEFAULT, &Flat, &mut target);
+            for i in 0..n {
+                if alone.coverage[i] == 0 {
+                    continue;
+                }
+                if target.depth[i].to_bits() != before[i].to_bits() {
+                    kept[i].push(t as u32);
+                } else {
+                    hidden[i].push(t as u32);
+                }
+            }
+        }
+        Ok(DepthCells {
+            width: scene.width,
+            height: scene.height,
+            depth: target.depth,
+            kept,
+            hidden,
+        })
     }
 }
 
@@ -556,12 +907,4 @@ pub fn is_fragment_green(c: [u8; 3]) -> bool {
     let t = (255.0 - c[0] as f32) / (255.0 - INSIDE[0] as f32);
     let shade = mix(UNTESTED, INSIDE, t);
     (0.0..=1.0).contains(&t) && (0..3).all(|k| shade[k].abs_diff(c[k]) <= 1)
-}
-
-/// Text made safe for XML and HTML.
-pub(crate) fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }

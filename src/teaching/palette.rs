@@ -11,7 +11,7 @@
 //! | bluish green | a fragment drawn; a correct pixel; a fragment kept by the depth test |
 //! | sky blue | a sample tested and found outside |
 //! | orange | a gap (no triangle draws the pixel); a pixel missing from an answer |
-//! | vermillion | drawn once too often; an extra pixel in an answer |
+//! | vermillion | drawn once too often; an extra pixel in an answer; a pixel that differs from the reference |
 //! | reddish purple | drawn two or more times too often; a partially covered block |
 //! | grey | a fragment hidden by the depth test; a block outside the triangle |
 //! | blue | a block inside the triangle |
@@ -97,11 +97,14 @@ pub enum Role {
     BlockOutside,
     /// A block the triangle's edges cross (tested pixel by pixel).
     BlockPartial,
+    /// A pixel whose colour, depth or coverage differs from a reference
+    /// back-end's.
+    Differs,
 }
 
 impl Role {
     /// Every role, in legend order.
-    pub const ALL: [Role; 16] = [
+    pub const ALL: [Role; 17] = [
         Role::Untested,
         Role::Drawn,
         Role::TestedOutside,
@@ -118,6 +121,7 @@ impl Role {
         Role::BlockInside,
         Role::BlockOutside,
         Role::BlockPartial,
+        Role::Differs,
     ];
 
     /// The role's colour.
@@ -129,7 +133,7 @@ impl Role {
             // Bluish green faded three quarters towards white: "as it must be".
             Role::AsReference => [191, 231, 220],
             Role::Gap | Role::Missing => ORANGE,
-            Role::DoubleDraw | Role::Extra => VERMILLION,
+            Role::DoubleDraw | Role::Extra | Role::Differs => VERMILLION,
             Role::DrawnTwiceMore | Role::BlockPartial => REDDISH_PURPLE,
             Role::Hidden | Role::BlockOutside => GREY,
             Role::BlockInside => BLUE,
@@ -161,6 +165,7 @@ impl Role {
             Role::BlockInside => "block-inside",
             Role::BlockOutside => "block-outside",
             Role::BlockPartial => "block-partial",
+            Role::Differs => "differs",
         }
     }
 
@@ -183,6 +188,7 @@ impl Role {
             Role::BlockInside => "block inside (I)",
             Role::BlockOutside => "block outside (O)",
             Role::BlockPartial => "block partly covered (P)",
+            Role::Differs => "differs from the reference",
         }
     }
 }
@@ -289,7 +295,7 @@ impl Legend {
                 "<span class=\"entry\" data-role=\"{}\"><span class=\"swatch\" style=\"background:{}\"></span>{}</span>",
                 e.key,
                 hex(e.rgb),
-                crate::teaching::grid_picture::escape(&e.label)
+                escape(&e.label)
             );
         }
         h.push_str("</div>");
@@ -315,17 +321,25 @@ impl Legend {
             let top = y + row + 3.0;
             let _ = write!(
                 svg,
-                "<rect x=\"{cx}\" y=\"{top}\" width=\"13\" height=\"13\" fill=\"{}\" stroke=\"#555\" stroke-width=\"1\"/><text x=\"{}\" y=\"{}\" font-size=\"{LEGEND_FONT}\">{}</text>",
+                "<path class=\"swatch\" d=\"M{cx} {top}h13v13h-13Z\" fill=\"{}\" stroke=\"#555\" stroke-width=\"1\"/><text x=\"{}\" y=\"{}\" font-size=\"{LEGEND_FONT}\">{}</text>",
                 hex(e.rgb),
                 cx + 18.0,
                 top + 11.5,
-                crate::teaching::grid_picture::escape(&e.label)
+                escape(&e.label)
             );
             cx += w;
         }
         svg.push_str("</g>\n");
         (svg, row + LEGEND_ROW + 4.0)
     }
+}
+
+/// Text made safe for XML and HTML.
+pub(crate) fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// The palette for pages: CSS custom properties (`--drawn: #009e73;`, one
@@ -372,6 +386,8 @@ mod tests {
             [Role::Correct, Role::Kept],
             [Role::Gap, Role::Missing],
             [Role::DoubleDraw, Role::Extra],
+            [Role::DoubleDraw, Role::Differs],
+            [Role::Extra, Role::Differs],
             [Role::DrawnTwiceMore, Role::BlockPartial],
             [Role::Hidden, Role::BlockOutside],
         ];
