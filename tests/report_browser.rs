@@ -11,6 +11,7 @@ mod common;
 
 use common::{chromium, HEADLESS};
 use rasterlab::geometry::scene::Scene2D;
+use rasterlab::teaching::palette::Role;
 use rasterlab::teaching::report::{CompareInput, Report};
 use std::path::Path;
 use std::process::Command;
@@ -76,6 +77,24 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
     assert_eq!(body_data(&dom, "tables"), 3);
     // One grid picture per back-end.
     assert_eq!(body_data(&dom, "svgs"), backends);
+    // Every section with coloured pictures shows the palette's legend:
+    // differences, the input's fill rules, the pinwheel's, the grids.
+    assert_eq!(body_data(&dom, "legends"), 4);
+    for role in [
+        Role::Differs,
+        Role::Gap,
+        Role::DoubleDraw,
+        Role::Drawn,
+        Role::TestedOutside,
+    ] {
+        let swatch = format!(
+            "data-role=\"{}\"><span class=\"swatch\" style=\"background:{}\">",
+            role.key(),
+            role.hex()
+        );
+        assert!(dom.contains(&swatch), "no legend entry for {role:?}");
+        assert!(dom.contains(role.label()), "{role:?}");
+    }
 
     let shot = dir.join("shot.png");
     run_chromium(

@@ -6,7 +6,8 @@
 //! * each back-end's image, and its **difference image** against the
 //!   reference (`naive` for triangles when it runs in reasonable time,
 //!   else `bbox`; `bresenham` for lines): pixels whose colour, depth or
-//!   coverage differ are red, the others a faded copy of the reference.
+//!   coverage differ are vermillion, the others a faded copy of the
+//!   reference.
 //!   Triangle back-ends must all be identical; line back-ends are
 //!   different algorithms and may differ;
 //! * the **work table**: fragments emitted, samples tested, tests per
@@ -19,7 +20,9 @@
 //! * for small targets, the **zoomed grid pictures** of each back-end
 //!   ([`GridPicture`]): which pixels it tested, which it emitted.
 //!
-//! The HTML file is self-contained: pictures are embedded as PNG or SVG.
+//! Every colour is [the one palette](super::palette)'s, and every section
+//! with coloured pictures shows its legend. The HTML file is
+//! self-contained: pictures are embedded as PNG or SVG.
 //!
 //! ```
 //! use rasterlab::teaching::report::{CompareInput, Report};
@@ -48,6 +51,7 @@ use crate::raster::shader::Flat;
 use crate::raster::target::RenderTarget;
 use crate::raster::triangle::TriangleRasterizer;
 use crate::teaching::grid_picture::{escape, GridPicture, GAP, OVERDRAWN, OVERDRAWN_MORE};
+use crate::teaching::palette::{self, Legend, Role};
 use base64::Engine;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -387,7 +391,8 @@ impl Report {
     }
 
     /// The difference image of `run` against the reference: differing
-    /// pixels red, the others a faded copy of the reference.
+    /// pixels in [`Role::Differs`]' colour, the others a faded copy of the
+    /// reference.
     pub fn difference_image(&self, run: &BackendRun) -> image::RgbaImage {
         let reference = &self.runs[0].target;
         let mut img = reference.to_image();
@@ -397,7 +402,8 @@ impl Report {
                 let fade = |c: u8| (c as u16 / 3 + 150) as u8;
                 [fade(r), fade(g), fade(b), 255]
             } else {
-                [230, 20, 20, 255]
+                let [r, g, b] = Role::Differs.rgb();
+                [r, g, b, 255]
             };
         }
         img
@@ -421,9 +427,11 @@ img.px {{ image-rendering: pixelated; border: 1px solid #999; }}
 table {{ border-collapse: collapse; margin: 0.5em 0 1.5em; }}
 td, th {{ border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: right; }}
 td:first-child, th:first-child {{ text-align: left; }}
-.ok {{ color: #1a7f37; }} .bad {{ color: #c62828; font-weight: bold; }}
-.swatch {{ display: inline-block; width: 1em; height: 1em; vertical-align: middle; border: 1px solid #999; }}
-</style></head><body>
+.ok {{ color: {ok}; }} .bad {{ color: {bad}; font-weight: bold; }}
+figure.grid figcaption {{ font-size: 1.05em; max-width: none; }}
+figure.grid figcaption b {{ font-size: 1.1em; }}
+figure.grid svg {{ max-width: 100%; height: auto; }}
+{palette}</style></head><body>
 <h1>rasterlab compare</h1>
 <p>Input: {input}, drawn on a {w} x {h} target {how} through the shared fragment stage. Reference: <b>{reference}</b>.</p>
 "#,
@@ -437,6 +445,9 @@ td:first-child, th:first-child {{ text-align: left; }}
                 "with the top-left fill rule"
             },
             reference = escape(&self.reference_note),
+            ok = Role::Drawn.hex(),
+            bad = Role::Differs.hex(),
+            palette = palette::css(),
         );
 
         h.push_str("<h2>Work</h2>\n<table id=\"work\"><tr><th>back-end</th><th>fragments</th><th>samples tested</th><th>tests per fragment</th><th>rows / blocks</th><th>time (median)</th><th>pixels differing from the reference</th></tr>\n");
@@ -470,9 +481,11 @@ td:first-child, th:first-child {{ text-align: left; }}
                 &format!("{}: {}", run.name, run.description),
             );
         }
-        h.push_str("</div>\n<h2>Differences from the reference</h2>\n<p>Red: colour, depth or coverage differs from ");
+        h.push_str("</div>\n<h2>Differences from the reference</h2>\n<p>Colour, depth or coverage compared with ");
         h.push_str(self.reference);
-        h.push_str("'s.</p>\n<div class=\"row\">\n");
+        h.push_str("'s, pixel by pixel.</p>\n");
+        h.push_str(&Legend::new(&[Role::Differs]).to_html());
+        h.push_str("\n<div class=\"row\">\n");
         for run in self.runs.iter().skip(1) {
             figure(
                 &mut h,
@@ -483,13 +496,15 @@ td:first-child, th:first-child {{ text-align: left; }}
         }
         h.push_str("</div>\n");
 
-        let legend = format!(
-            "<p>{} as a watertight rule (white: not covered) {} gap: drawn by no triangle {} drawn once too often {} drawn two or more times too often</p>\n",
-            swatch(crate::teaching::grid_picture::AS_REFERENCE),
-            swatch(GAP),
-            swatch(OVERDRAWN),
-            swatch(OVERDRAWN_MORE)
-        );
+        let legend = Legend::new(&[
+            Role::AsReference,
+            Role::Gap,
+            Role::DoubleDraw,
+            Role::DrawnTwiceMore,
+            Role::Untested,
+        ])
+        .to_html()
+            + "\n";
         if !self.rules.is_empty() {
             h.push_str("<h2>Fill rules</h2>\n");
             h.push_str(&legend);
@@ -511,14 +526,16 @@ td:first-child, th:first-child {{ text-align: left; }}
             h.push_str("</div>\n");
         }
 
-        if !self.grids.is_empty() {
-            h.push_str("<h2>Pixels tested and emitted</h2>\n<p>Red: the back-end tested the pixel's centre and found it outside; green: a fragment; white: never looked at. Black: the true edges.</p>\n<div class=\"row\">\n");
+        if let Some((_, first)) = self.grids.first() {
+            h.push_str("<h2>Pixels tested and emitted</h2>\n<p>Which pixel centres each back-end tested, and which became fragments; pixel indices on the axes.</p>\n");
+            h.push_str(&first.legend.to_html());
+            h.push_str("\n<div class=\"row\">\n");
             for (name, grid) in &self.grids {
                 let _ = writeln!(
                     h,
-                    "<figure class=\"grid\">{}<figcaption>{name}</figcaption></figure>",
-                    grid.to_svg()
-                        .replace("<svg ", "<svg style=\"max-width: 520px; height: auto\" ")
+                    "<figure class=\"grid\"><figcaption><b>{name}</b>: {}</figcaption>{}</figure>",
+                    escape(&grid.caption),
+                    grid.to_svg_bare()
                 );
             }
             h.push_str("</div>\n");
@@ -531,6 +548,7 @@ window.addEventListener('load', () => {
   document.body.dataset.imagesLoaded = images.filter(i => i.complete && i.naturalWidth > 0).length;
   document.body.dataset.tables = document.querySelectorAll('table').length;
   document.body.dataset.svgs = document.querySelectorAll('svg').length;
+  document.body.dataset.legends = document.querySelectorAll('.legend[data-palette]').length;
 });
 </script>
 </body></html>
@@ -602,8 +620,4 @@ fn rule_table(h: &mut String, id: &str, rules: &[RulePicture]) {
         );
     }
     h.push_str("</table>\n");
-}
-
-fn swatch([r, g, b]: [u8; 3]) -> String {
-    format!("<span class=\"swatch\" style=\"background:#{r:02x}{g:02x}{b:02x}\"></span>")
 }
