@@ -5,7 +5,9 @@
 //! three indices into it. Loaders:
 //!
 //! * [`ply`]: PLY, ASCII or binary, optionally gzip-compressed (the Stanford
-//!   scans), read with the `ply-rs-bw` crate;
+//!   scans): the header and binary payloads read with the `ply-rs-bw`
+//!   crate, ASCII payloads line by line into columns, a compressed file
+//!   inflated on a second thread while the first parses;
 //! * [`obj`]: Wavefront OBJ (`v`, `vt`, `vn`, `f`).
 //!
 //! Every loader reports a malformed file as [`Error::Parse`] naming the file
@@ -16,8 +18,10 @@
 //! be generated ([`Mesh::planar_uvs`]).
 
 pub mod face;
+mod inflate;
 pub mod obj;
 pub mod ply;
+mod ply_ascii;
 
 use crate::error::{Error, Result};
 use glam::{Vec2, Vec3, Vec4};

@@ -1,9 +1,13 @@
 //! PLY meshes (the Stanford scans): ASCII, binary little- or big-endian,
 //! optionally gzip-compressed.
 //!
-//! Parsing is done by the `ply-rs-bw` crate into two small typed element
-//! structs (no hash map per element, so the 871,414-triangle dragon loads in
-//! about a second). Recognised properties: `x y z` (required), `nx ny nz`,
+//! The header, and the payload of a binary file, are read by the
+//! `ply-rs-bw` crate into two small typed element structs. The payload of
+//! an ASCII file, most of a large scan's load, is read line by line
+//! straight into the mesh's columns (`ply_ascii`), and a gzip-compressed
+//! file is inflated on a second thread while this one parses (`inflate`):
+//! the 871,414-triangle dragon, 34 MB of text, loads in about the time
+//! its decompression takes. Recognised properties: `x y z` (required), `nx ny nz`,
 //! `red green blue` (bytes or floats), `u v` / `s t` / `texture_u texture_v`,
 //! and the face list `vertex_indices` (or `vertex_index`). Other elements and
 //! properties are skipped.
@@ -13,11 +17,15 @@
 //! numbers, non-finite coordinates, faces with fewer than three vertices and
 //! indices out of range all name their line.
 
+use super::inflate::Inflated;
+use super::ply_ascii::{self, Kind};
 use super::{face::triangulate_face, Mesh};
 use crate::error::{Error, Result};
 use glam::{Vec2, Vec3, Vec4};
 use ply_rs_bw::parser::{Parser, Reader};
-use ply_rs_bw::ply::{Encoding, Property, PropertyAccess, PropertyAccessResult};
+use ply_rs_bw::ply::{
+    ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult,
+};
 use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
@@ -54,19 +62,27 @@ fn check_nothing_follows(mut rest: impl BufRead, ascii: bool) -> std::result::Re
 /// Loads a PLY file (gzip-compressed when it starts with the gzip magic
 /// bytes; every member of a multi-member file is read, and the CRC and
 /// length of each are checked, since the whole stream is read to its end).
+/// A compressed file is inflated on a second thread while this one parses
+/// (see the `inflate` module).
 pub fn load(path: &Path) -> Result<Mesh> {
     let mut file = BufReader::new(File::open(path).map_err(|e| Error::io(path, &e))?);
     let gzip = file
         .fill_buf()
         .map_err(|e| Error::io(path, &e))?
         .starts_with(&[0x1f, 0x8b]);
-    if gzip {
-        read(
+    if !gzip {
+        return read(file, path);
+    }
+    // Ownership of the file moves to the inflating thread; without a
+    // thread it is inflated here as it is read.
+    match Inflated::spawn(BufReader::new(
+        File::open(path).map_err(|e| Error::io(path, &e))?,
+    )) {
+        Some(inflated) => read(inflated, path),
+        None => read(
             BufReader::new(flate2::bufread::MultiGzDecoder::new(file)),
             path,
-        )
-    } else {
-        read(file, path)
+        ),
     }
 }
 
@@ -99,11 +115,12 @@ pub fn read<R: BufRead>(source: R, path: &Path) -> Result<Mesh> {
         message,
     };
 
-    let mut vertices: Option<(Vec<PlyVertex>, usize)> = None;
-    let mut faces: Option<(Vec<PlyFace>, usize)> = None;
+    let mut payload = Payload::default();
+    let (mut vertex_line, mut face_line) = (None, None);
+    let mut reader = reader.into_inner();
     for (name, def) in &header.elements {
         let first_line = next_line;
-        match name.as_str() {
+        let kind = match name.as_str() {
             "vertex" => {
                 if !["x", "y", "z"]
                     .iter()
@@ -111,88 +128,261 @@ pub fn read<R: BufRead>(source: R, path: &Path) -> Result<Mesh> {
                 {
                     return Err(located(first_line, "vertex element lacks x, y or z".into()));
                 }
-                let v = Parser::<PlyVertex>::new()
-                    .read_payload_for_element(&mut reader, def, &header)
-                    .map_err(|e| parse_error(e, ascii))?;
-                vertices = Some((v, first_line));
+                // A second `vertex` element replaces the first.
+                payload.clear_vertices(def);
+                vertex_line = Some(first_line);
+                Kind::Vertex
             }
             "face" => {
-                let f = Parser::<PlyFace>::new()
-                    .read_payload_for_element(&mut reader, def, &header)
-                    .map_err(|e| parse_error(e, ascii))?;
-                faces = Some((f, first_line));
+                payload.clear_faces();
+                face_line = Some(first_line);
+                Kind::Face
             }
-            _ => {
-                Parser::<Skipped>::new()
-                    .read_payload_for_element(&mut reader, def, &header)
-                    .map_err(|e| parse_error(e, ascii))?;
-            }
+            _ => Kind::Other,
+        };
+        if ascii {
+            ply_ascii::read_element(&mut reader, def, kind, first_line, &mut payload)
+                .map_err(|(line, message)| located(line, message))?;
+        } else {
+            read_binary_element(&mut reader, def, &header, kind, &mut payload)
+                .map_err(|e| parse_error(e, false))?;
         }
         next_line += def.count;
     }
-    check_nothing_follows(reader.into_inner(), ascii)
-        .map_err(|message| located(next_line, message))?;
+    check_nothing_follows(reader, ascii).map_err(|message| located(next_line, message))?;
 
-    let (vertices, vertex_line) =
-        vertices.ok_or_else(|| located(1, "no `vertex` element in the header".into()))?;
-    let (faces, face_line) =
-        faces.ok_or_else(|| located(1, "no `face` element in the header".into()))?;
+    let vertex_line =
+        vertex_line.ok_or_else(|| located(1, "no `vertex` element in the header".into()))?;
+    let face_line =
+        face_line.ok_or_else(|| located(1, "no `face` element in the header".into()))?;
+    payload.into_mesh(vertex_line, face_line, located)
+}
 
-    let mut positions = Vec::with_capacity(vertices.len());
-    for (i, v) in vertices.iter().enumerate() {
-        let p = Vec3::from_array(v.position);
-        super::check_position(p)
-            .map_err(|m| located(vertex_line + i, format!("vertex {i}: {m}")))?;
-        positions.push(p);
-    }
-    let mut triangles = Vec::with_capacity(faces.len());
-    for (i, f) in faces.iter().enumerate() {
-        let line = face_line + i;
-        if let Some(message) = &f.error {
-            return Err(located(line, format!("face {i}: {message}")));
+/// Reads one element of a binary file with `ply-rs-bw` into `payload`.
+fn read_binary_element<R: BufRead>(
+    reader: &mut R,
+    def: &ElementDef,
+    header: &Header,
+    kind: Kind,
+    payload: &mut Payload,
+) -> std::result::Result<(), ply_rs_bw::parser::ParseError> {
+    // The parser keeps no state between elements of a binary file but
+    // the reader's position.
+    let mut reader = Reader::new(reader);
+    match kind {
+        Kind::Vertex => {
+            let vertices =
+                Parser::<PlyVertex>::new().read_payload_for_element(&mut reader, def, header)?;
+            payload.reserve_vertices(vertices.len());
+            for v in &vertices {
+                let mut columns = [0f64; VertexColumn::COUNT];
+                for (k, c) in v
+                    .position
+                    .iter()
+                    .chain(&v.normal)
+                    .chain(&v.color)
+                    .chain(&v.uv)
+                    .enumerate()
+                {
+                    columns[k] = f64::from(*c);
+                }
+                payload.push_vertex(&columns);
+            }
         }
-        if f.indices.len() < 3 {
-            return Err(located(
-                line,
-                format!(
-                    "face {i} has {} vertices; a face needs at least 3",
-                    f.indices.len()
-                ),
-            ));
+        Kind::Face => {
+            let faces =
+                Parser::<PlyFace>::new().read_payload_for_element(&mut reader, def, header)?;
+            for (i, f) in faces.into_iter().enumerate() {
+                if let (Some(message), None) = (f.error, &payload.face_error) {
+                    payload.face_error = Some((i, message));
+                }
+                payload.indices.extend_from_slice(&f.indices);
+                payload.face_ends.push(payload.indices.len());
+            }
         }
-        if let Some(&bad) = f.indices.iter().find(|&&k| k as usize >= positions.len()) {
-            return Err(located(
-                line,
-                format!(
-                    "face {i}: vertex index {bad} is out of range for {} vertices",
-                    positions.len()
-                ),
-            ));
+        Kind::Other => {
+            Parser::<Skipped>::new().read_payload_for_element(&mut reader, def, header)?;
         }
-        triangulate_face(&positions, &f.indices, &mut triangles)
-            .map_err(|m| located(line, format!("face {i}: {m}")))?;
     }
-    let mut mesh =
-        Mesh::new(positions, triangles).map_err(|e| located(face_line, e.to_string()))?;
-    if vertices.iter().all(|v| v.has_normal) {
-        let normals: Vec<Vec3> = vertices
-            .iter()
-            .map(|v| Vec3::from_array(v.normal).normalize_or(Vec3::Z))
-            .collect();
-        mesh.normals = normals;
+    Ok(())
+}
+
+/// A vertex property the mesh keeps, in the order of a vertex's columns.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(super) enum VertexColumn {
+    X,
+    Y,
+    Z,
+    Nx,
+    Ny,
+    Nz,
+    Red,
+    Green,
+    Blue,
+    U,
+    V,
+}
+
+impl VertexColumn {
+    /// The number of columns.
+    pub(super) const COUNT: usize = 11;
+
+    /// The column of a vertex property, by its name.
+    pub(super) fn of(name: &str) -> Option<VertexColumn> {
+        use VertexColumn::*;
+        Some(match name {
+            "x" => X,
+            "y" => Y,
+            "z" => Z,
+            "nx" => Nx,
+            "ny" => Ny,
+            "nz" => Nz,
+            "red" => Red,
+            "green" => Green,
+            "blue" => Blue,
+            "u" | "s" | "texture_u" | "texture_s" => U,
+            "v" | "t" | "texture_v" | "texture_t" => V,
+            _ => return None,
+        })
     }
-    if vertices.iter().all(|v| v.has_color) {
-        mesh.colors = Some(
-            vertices
-                .iter()
-                .map(|v| Vec4::from((Vec3::from_array(v.color), 1.0)))
-                .collect(),
-        );
+
+    /// Whether the column is a colour channel.
+    pub(super) fn is_color(self) -> bool {
+        matches!(
+            self,
+            VertexColumn::Red | VertexColumn::Green | VertexColumn::Blue
+        )
     }
-    if vertices.iter().all(|v| v.has_uv) {
-        mesh.uvs = Some(vertices.iter().map(|v| Vec2::from_array(v.uv)).collect());
+}
+
+/// What a PLY file's elements hold, whatever its encoding: the vertices'
+/// columns, and the faces' indices one after the other.
+#[derive(Default)]
+pub(super) struct Payload {
+    positions: Vec<Vec3>,
+    /// Normals, colours and texture coordinates, when the vertex element
+    /// declares them.
+    normals: Option<Vec<Vec3>>,
+    colors: Option<Vec<Vec3>>,
+    uvs: Option<Vec<Vec2>>,
+    /// Every face's vertex indices, one face after the other.
+    pub(super) indices: Vec<u32>,
+    /// Where each face's indices end in `indices`.
+    pub(super) face_ends: Vec<usize>,
+    /// The first face whose indices are unusable, and why.
+    pub(super) face_error: Option<(usize, String)>,
+}
+
+impl Payload {
+    /// Empties the vertices, keeping the columns `def` declares.
+    fn clear_vertices(&mut self, def: &ElementDef) {
+        let declared = |columns: &[VertexColumn]| {
+            def.properties
+                .keys()
+                .any(|name| VertexColumn::of(name).is_some_and(|c| columns.contains(&c)))
+        };
+        use VertexColumn::*;
+        self.positions.clear();
+        self.normals = declared(&[Nx, Ny, Nz]).then(Vec::new);
+        self.colors = declared(&[Red, Green, Blue]).then(Vec::new);
+        self.uvs = declared(&[U, V]).then(Vec::new);
     }
-    Ok(mesh)
+
+    /// Empties the faces.
+    fn clear_faces(&mut self) {
+        self.indices.clear();
+        self.face_ends.clear();
+        self.face_error = None;
+    }
+
+    /// Room for `n` more vertices.
+    pub(super) fn reserve_vertices(&mut self, n: usize) {
+        self.positions.reserve(n);
+        for c in [&mut self.normals, &mut self.colors].into_iter().flatten() {
+            c.reserve(n);
+        }
+        if let Some(uvs) = &mut self.uvs {
+            uvs.reserve(n);
+        }
+    }
+
+    /// Appends a vertex from its columns (`VertexColumn` order).
+    #[inline]
+    pub(super) fn push_vertex(&mut self, v: &[f64; VertexColumn::COUNT]) {
+        let v = v.map(|c| c as f32);
+        self.positions.push(Vec3::new(v[0], v[1], v[2]));
+        if let Some(normals) = &mut self.normals {
+            normals.push(Vec3::new(v[3], v[4], v[5]));
+        }
+        if let Some(colors) = &mut self.colors {
+            colors.push(Vec3::new(v[6], v[7], v[8]));
+        }
+        if let Some(uvs) = &mut self.uvs {
+            uvs.push(Vec2::new(v[9], v[10]));
+        }
+    }
+
+    /// The mesh, once its positions and faces are checked; errors name
+    /// the line of the vertex or face at fault (`located`).
+    fn into_mesh(
+        self,
+        vertex_line: usize,
+        face_line: usize,
+        located: impl Fn(usize, String) -> Error,
+    ) -> Result<Mesh> {
+        for (i, &p) in self.positions.iter().enumerate() {
+            super::check_position(p)
+                .map_err(|m| located(vertex_line + i, format!("vertex {i}: {m}")))?;
+        }
+        let positions = self.positions;
+        let mut triangles = Vec::with_capacity(self.face_ends.len());
+        let mut start = 0;
+        for (i, &end) in self.face_ends.iter().enumerate() {
+            let line = face_line + i;
+            let face = &self.indices[start..end];
+            start = end;
+            if let Some((_, message)) = self.face_error.as_ref().filter(|(k, _)| *k == i) {
+                return Err(located(line, format!("face {i}: {message}")));
+            }
+            if face.len() < 3 {
+                return Err(located(
+                    line,
+                    format!(
+                        "face {i} has {} vertices; a face needs at least 3",
+                        face.len()
+                    ),
+                ));
+            }
+            if let Some(&bad) = face.iter().find(|&&k| k as usize >= positions.len()) {
+                return Err(located(
+                    line,
+                    format!(
+                        "face {i}: vertex index {bad} is out of range for {} vertices",
+                        positions.len()
+                    ),
+                ));
+            }
+            if let &[a, b, c] = face {
+                triangles.push([a, b, c]);
+            } else {
+                triangulate_face(&positions, face, &mut triangles)
+                    .map_err(|m| located(line, format!("face {i}: {m}")))?;
+            }
+        }
+        let mut mesh =
+            Mesh::new(positions, triangles).map_err(|e| located(face_line, e.to_string()))?;
+        if let Some(normals) = self.normals {
+            mesh.normals = normals
+                .into_iter()
+                .map(|n| n.normalize_or(Vec3::Z))
+                .collect();
+        }
+        mesh.colors = self
+            .colors
+            .map(|c| c.into_iter().map(|c| Vec4::from((c, 1.0))).collect());
+        mesh.uvs = self.uvs;
+        Ok(mesh)
+    }
 }
 
 /// `ply-rs-bw` writes "Line N: message"; the line goes in [`Error::Parse::line`].
