@@ -144,48 +144,31 @@ where
     write_file(path, &bytes)
 }
 
-/// The font text in rendered pictures is drawn with (DejaVu Sans, bundled
-/// in `assets/fonts` with its licence), so a PNG looks the same on any
-/// machine.
-const PICTURE_FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
+/// The font pictures' text is drawn with when an SVG becomes a PNG
+/// (DejaVu Sans, bundled in `assets/fonts` with its licence), so a
+/// picture looks the same on any machine.
+#[cfg(feature = "png-text")]
+const FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 
-/// The largest picture side [`svg_to_png`] renders, in pixels.
-pub const MAX_PICTURE_SIDE: u32 = 16384;
-
-/// An SVG picture rendered to an image on white, its text in the bundled
-/// DejaVu Sans: the PNG shows the same labels, axes and legend as the SVG.
-pub fn svg_to_png(svg: &str) -> Result<image::RgbaImage> {
+/// An SVG picture (a chart, a labelled grid) drawn as an image by
+/// `resvg`, its text in the bundled font; `None` when the SVG cannot be
+/// read or is empty. Only with the `png-text` feature (on by default).
+#[cfg(feature = "png-text")]
+pub fn svg_to_png(svg: &str) -> Option<image::RgbaImage> {
     let mut options = resvg::usvg::Options::default();
-    options.fontdb_mut().load_font_data(PICTURE_FONT.to_vec());
+    options.fontdb_mut().load_font_data(FONT.to_vec());
     options.font_family = "DejaVu Sans".into();
-    options.fontdb_mut().set_sans_serif_family("DejaVu Sans");
-    let tree = resvg::usvg::Tree::from_str(svg, &options)
-        .map_err(|e| Error::InvalidArgument(format!("the picture's SVG does not parse: {e}")))?;
+    let tree = resvg::usvg::Tree::from_str(svg, &options).ok()?;
     let size = tree.size().to_int_size();
-    if size.width() > MAX_PICTURE_SIDE || size.height() > MAX_PICTURE_SIDE {
-        return Err(Error::InvalidArgument(format!(
-            "a {}x{} picture is larger than {MAX_PICTURE_SIDE} pixels a side",
-            size.width(),
-            size.height()
-        )));
-    }
-    let mut pixmap =
-        resvg::tiny_skia::Pixmap::new(size.width(), size.height()).ok_or_else(|| {
-            Error::InvalidArgument(format!(
-                "a {}x{} picture cannot be rendered",
-                size.width(),
-                size.height()
-            ))
-        })?;
-    pixmap.fill(resvg::tiny_skia::Color::WHITE);
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(size.width(), size.height())?;
     resvg::render(
         &tree,
         resvg::tiny_skia::Transform::default(),
         &mut pixmap.as_mut(),
     );
-    // Opaque white under everything: premultiplied and straight RGBA agree.
+    // Pictures have an opaque background, so premultiplied and straight
+    // RGBA agree.
     image::RgbaImage::from_raw(size.width(), size.height(), pixmap.take())
-        .ok_or_else(|| Error::InvalidArgument("the rendered picture has no pixels".into()))
 }
 
 #[cfg(test)]
@@ -219,31 +202,4 @@ mod tests {
         assert!(is_special(Path::new("/dev/null")));
         std::fs::remove_dir_all(&dir).unwrap();
     }
-}
-
-/// The font pictures' text is drawn with when an SVG becomes a PNG
-/// (DejaVu Sans, bundled in `assets/fonts` with its licence), so a
-/// picture looks the same on any machine.
-#[cfg(feature = "png-text")]
-const FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
-
-/// An SVG picture (a chart, a labelled grid) drawn as an image by
-/// `resvg`, its text in the bundled font; `None` when the SVG cannot be
-/// read or is empty. Only with the `png-text` feature (on by default).
-#[cfg(feature = "png-text")]
-pub fn svg_to_png(svg: &str) -> Option<image::RgbaImage> {
-    let mut options = resvg::usvg::Options::default();
-    options.fontdb_mut().load_font_data(FONT.to_vec());
-    options.font_family = "DejaVu Sans".into();
-    let tree = resvg::usvg::Tree::from_str(svg, &options).ok()?;
-    let size = tree.size().to_int_size();
-    let mut pixmap = resvg::tiny_skia::Pixmap::new(size.width(), size.height())?;
-    resvg::render(
-        &tree,
-        resvg::tiny_skia::Transform::default(),
-        &mut pixmap.as_mut(),
-    );
-    // Pictures have an opaque background, so premultiplied and straight
-    // RGBA agree.
-    image::RgbaImage::from_raw(size.width(), size.height(), pixmap.take())
 }

@@ -490,6 +490,7 @@ impl GridPicture {
             r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="DejaVu Sans, sans-serif">"#,
         );
         let _ = writeln!(out, "<title>{}</title>", escape(&self.caption));
+        let _ = writeln!(out, r#"<path d="M0 0H{width}V{height}H0Z" fill="white"/>"#);
         if framed {
             let _ = writeln!(
                 out,
@@ -734,16 +735,26 @@ impl GridPicture {
     /// The file types [`GridPicture::save`] writes.
     pub const EXTENSIONS: [&'static str; 2] = ["svg", "png"];
 
-    /// The picture as an image: the SVG picture rendered with the bundled
-    /// font (the same caption, axes, labels and legend). A grid of more
-    /// than [`MAX_LABELLED_CELLS`] cells is drawn cell by cell instead
-    /// ([`GridPicture::to_png`], about 2048 pixels on its long side).
+    /// The picture as an image: with the `png-text` feature (on by
+    /// default), the SVG picture rendered with the bundled font (the same
+    /// caption, axes, labels and legend). Without it, or for a grid of
+    /// more than [`MAX_LABELLED_CELLS`] cells, the grid is drawn cell by
+    /// cell ([`GridPicture::to_png`]) at the SVG's cell size, at most about
+    /// 2048 pixels on its long side.
     pub fn to_picture_png(&self) -> Result<image::RgbaImage> {
-        if u64::from(self.width) * u64::from(self.height) > MAX_LABELLED_CELLS {
-            let zoom = (2048 / self.width.max(self.height)).max(1);
-            return Ok(image::DynamicImage::ImageRgb8(self.to_png(zoom)?).into_rgba8());
+        let cells = u64::from(self.width) * u64::from(self.height);
+        #[cfg(feature = "png-text")]
+        if cells <= MAX_LABELLED_CELLS {
+            if let Some(picture) = crate::output::svg_to_png(&self.to_svg()) {
+                return Ok(picture);
+            }
         }
-        crate::output::svg_to_png(&self.to_svg())
+        let zoom = if cells <= MAX_LABELLED_CELLS {
+            self.svg_cell() as u32
+        } else {
+            (2048 / self.width.max(self.height)).max(1)
+        };
+        Ok(image::DynamicImage::ImageRgb8(self.to_png(zoom)?).into_rgba8())
     }
 
     /// Writes the picture as SVG or PNG ([`GridPicture::to_picture_png`]),
