@@ -711,3 +711,55 @@ fn regression_edge_to_a_point_at_infinity_passes_a_hair_above_a_pixel_centre() {
     assert_eq!(target.coverage[target.index(9, 10)], 1);
     assert_eq!(target.coverage[target.index(9, 11)], 0);
 }
+
+/// A frame's parts add up to its time: the mesh renderer's geometry and
+/// raster times, the clear folded into the raster, and the rest; a 2D
+/// scene drawn frame by frame on the same path ends in the buffers of a
+/// clear and a draw, for every back-end and depth state.
+#[test]
+fn a_frames_parts_add_up_and_the_2d_path_draws_the_same() {
+    let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
+    let settings = RenderSettings {
+        width: 96,
+        height: 72,
+        ..RenderSettings::default()
+    };
+    let renderer = MeshRenderer::new(&bunny, settings).unwrap();
+    let mut target = RenderTarget::without_coverage(96, 72).unwrap();
+    for &b in triangle_backends() {
+        let stats = renderer.render_into(b, &mut target).unwrap();
+        let t = stats.times;
+        assert!(t.clear_folded);
+        assert_eq!(
+            (t.geometry, t.raster),
+            (stats.geometry_time, stats.raster_time)
+        );
+        assert_eq!(t.clear + t.geometry + t.raster + t.rest, t.total());
+    }
+    for scene in [
+        Scene2D::depth_example(true),
+        Scene2D::pinwheel(),
+        Scene2D::fan(),
+    ] {
+        for depth in [DepthState::DEFAULT, DepthState::OFF] {
+            for &b in triangle_backends() {
+                let mut expected = RenderTarget::new(scene.width, scene.height).unwrap();
+                scene.draw(b, FillRule::TopLeft, depth, &Flat, &mut expected);
+                let mut used = expected.clone();
+                used.color.fill([1, 2, 3, 4]);
+                used.depth.fill(0.0);
+                let (work, times) = scene.render_frame(
+                    b,
+                    FillRule::TopLeft,
+                    depth,
+                    &Flat,
+                    RenderTarget::BLACK,
+                    &mut used,
+                );
+                assert!(used == expected, "{}", b.name());
+                assert!(work.fragments > 0);
+                assert_eq!(times.geometry + times.raster + times.rest, times.total());
+            }
+        }
+    }
+}

@@ -4,6 +4,7 @@
 //!   shader, assembly, clipping, perspective divide, viewport, culling,
 //!   set-up), and drawing its result, on one thread or band by band;
 //! * [`render`]: a mesh rendered end to end (camera, shading, wireframe);
+//! * [`frame_times`]: a frame's time in parts that add up to it;
 //! * [`mesh`]: PLY and OBJ meshes;
 //! * [`polygon`]: simple polygons with holes and their spade triangulation;
 //! * [`input`]: the text inputs of the command line (triangle soups,
@@ -11,6 +12,7 @@
 //! * [`scene`]: small 2D scenes of screen-space triangles;
 //! * [`listing`]: the fragments a back-end emits for a text file's shapes.
 
+pub mod frame_times;
 pub mod input;
 pub mod listing;
 pub mod mesh;

@@ -16,6 +16,7 @@
 //! ```
 
 use crate::error::{Error, Result};
+use crate::geometry::frame_times::FrameTimes;
 use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::camera::Camera;
 use crate::geometry::pipeline::vertex::{MeshVertex, Transform};
@@ -126,6 +127,10 @@ pub struct FrameStats {
     pub geometry_time: Duration,
     /// Time clearing, rasterizing and shading (including the wireframe).
     pub raster_time: Duration,
+    /// The whole frame, part by part: the geometry and raster times
+    /// above (the clear folded into the raster) and the rest, which add
+    /// up to the frame's time.
+    pub times: FrameTimes,
 }
 
 /// One rendered frame: its buffers and what it cost.
@@ -326,7 +331,8 @@ impl MeshRenderer {
                 target.height()
             )));
         }
-        let start = Instant::now();
+        let frame_start = Instant::now();
+        let start = frame_start;
         // A renderer drawing from several threads at once gives the other
         // threads buffers of their own.
         let mut reused = self.geometry.try_lock().ok();
@@ -364,11 +370,15 @@ impl MeshRenderer {
         if let Some(line_backend) = self.settings.wireframe {
             self.draw_wireframe(line_backend, &lines, target);
         }
+        let raster_time = start.elapsed();
+        let geometry_stats = geometry.stats;
+        drop(reused);
         Ok(FrameStats {
-            geometry: geometry.stats,
+            geometry: geometry_stats,
             work,
             geometry_time,
-            raster_time: start.elapsed(),
+            raster_time,
+            times: FrameTimes::new(frame_start.elapsed(), None, geometry_time, raster_time),
         })
     }
 
