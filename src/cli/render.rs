@@ -4,6 +4,7 @@
 use super::args::Size;
 use super::print::progress_bar;
 use clap::Args;
+use rasterlab::geometry::frame_times::FrameTimes;
 use rasterlab::geometry::input::{read_shapes, Shapes};
 use rasterlab::geometry::mesh::Mesh;
 use rasterlab::geometry::pipeline::PipelineOptions;
@@ -244,7 +245,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             scaled(h)
         )));
     }
-    let mut target = RenderTarget::new(w, h)?;
+    // An application's framebuffer: colour and depth, no coverage count
+    // (nothing here reads it).
+    let mut target = RenderTarget::without_coverage(w, h)?;
     // The back-end is looked up once, and must draw what the input holds.
     let (name, chosen) = match &shapes {
         Drawing::Triangles(_) => {
@@ -262,11 +265,23 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             (name, backend(name)?)
         }
     };
+    // Each frame is timed whole: triangles on the renderer's path (set-up,
+    // then the draw with the clear folded in), lines after a clear of
+    // their own.
     let draw = |target: &mut RenderTarget| match (&shapes, chosen) {
         (Drawing::Triangles(scene), Backend::Triangle(b)) => {
-            Ok(scene.draw(b, rule, depth, &Flat, target))
+            Ok(scene.render_frame(b, rule, depth, &Flat, RenderTarget::BLACK, target))
         }
-        (Drawing::Lines(_, _, lines), Backend::Line(b)) => Ok(lines.run(b, target)),
+        (Drawing::Lines(_, _, lines), Backend::Line(b)) => {
+            let start = Instant::now();
+            target.clear();
+            let clear = start.elapsed();
+            let raster_start = Instant::now();
+            let work = lines.run(b, target);
+            let raster = raster_start.elapsed();
+            let times = FrameTimes::new(start.elapsed(), Some(clear), Duration::ZERO, raster);
+            Ok((work, times))
+        }
         (Drawing::Triangles(_), _) => Err(Error::InvalidArgument(
             "triangles are drawn by a triangle back-end (see `rasterlab backends`)".into(),
         )),
@@ -277,10 +292,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut times = Vec::with_capacity(args.mesh.frames as usize);
     let mut work = WorkCounters::default();
     for _ in 0..args.mesh.frames {
-        target.clear();
-        let start = Instant::now();
-        work = draw(&mut target)?;
-        times.push(start.elapsed());
+        let (w, t) = draw(&mut target)?;
+        work = w;
+        times.push(t);
     }
     rasterlab::output::write_png(&args.out, &target.to_image_scaled(args.scale))?;
     say!(
@@ -290,13 +304,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         work.fragments,
         args.out.display()
     )?;
-    if args.mesh.frames > 1 {
-        times.sort();
-        say!(
-            "time per frame (median of {}): {:.3} ms",
-            args.mesh.frames,
-            times[times.len() / 2].as_secs_f64() * 1e3
-        )?;
+    if let Some(median) = FrameTimes::median(&times).filter(|_| args.mesh.frames > 1) {
+        say!("time per frame (median of {}): {median}", args.mesh.frames)?;
     }
     Ok(())
 }
@@ -336,25 +345,18 @@ fn render_mesh(
     // coverage is not counted (nothing here reads it).
     let (width, height) = (renderer.settings().width, renderer.settings().height);
     let mut target = RenderTarget::without_coverage(width, height)?;
-    let mut times: Vec<(Duration, Duration)> = Vec::with_capacity(args.mesh.frames as usize);
+    let mut times = Vec::with_capacity(args.mesh.frames as usize);
     let bar = progress_bar(u64::from(args.mesh.frames), "frames");
     let mut last = renderer.render_into(backend, &mut target)?;
-    times.push((last.geometry_time, last.raster_time));
+    times.push(last.times);
     bar.inc(1);
     for _ in 1..args.mesh.frames {
         last = renderer.render_into(backend, &mut target)?;
-        times.push((last.geometry_time, last.raster_time));
+        times.push(last.times);
         bar.inc(1);
     }
     bar.finish_and_clear();
-    let median = |f: &dyn Fn(&(Duration, Duration)) -> Duration| {
-        let mut t: Vec<Duration> = times.iter().map(f).collect();
-        t.sort();
-        t[t.len() / 2]
-    };
-    let geometry = median(&|t| t.0);
-    let raster = median(&|t| t.1);
-    let total = median(&|t| t.0 + t.1);
+    let median = FrameTimes::median(&times).unwrap_or(last.times);
     target.save_png(&args.out)?;
     let g = last.geometry;
     let s = renderer.settings();
@@ -377,13 +379,7 @@ fn render_mesh(
         last.work.samples_tested,
         last.work.fragments
     )?;
-    say!(
-        "time per frame (median of {}): {:.2} ms = geometry {:.2} ms + raster {:.2} ms",
-        args.mesh.frames,
-        total.as_secs_f64() * 1e3,
-        geometry.as_secs_f64() * 1e3,
-        raster.as_secs_f64() * 1e3
-    )?;
+    say!("time per frame (median of {}): {median}", args.mesh.frames)?;
     say!("wrote {}", args.out.display())?;
     Ok(())
 }

@@ -6,15 +6,18 @@
 //! around one pixel centre and a fan.
 
 use crate::error::{Error, Result};
+use crate::geometry::frame_times::FrameTimes;
+use crate::geometry::pipeline::{draw_clearing, Geometry};
 use crate::raster::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::raster::fixed::FixedPoint;
 use crate::raster::fragment::{FragmentList, WorkCounters};
 use crate::raster::primitive::{ShadedVertex, TriangleData};
 use crate::raster::shader::FragmentShader;
-use crate::raster::stage::FragmentStage;
-use crate::raster::target::{DepthState, RenderTarget};
+use crate::raster::stage::{FragmentStage, Interpolation};
+use crate::raster::target::{Clear, DepthState, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use glam::Vec4;
+use std::time::Instant;
 
 /// A set of 2D triangles with per-vertex depth and colour.
 #[derive(Clone, Debug, PartialEq)]
@@ -227,6 +230,62 @@ impl Scene2D {
             .with_triangles(&triangles)
             .with_depth(depth);
         backend.rasterize(&setups, viewport, &mut stage)
+    }
+
+    /// Draws one frame of the scene into `target` as a renderer redraws
+    /// its framebuffer, on the path of the mesh renderer and the
+    /// benchmark workloads: the triangles are set up (the frame's
+    /// geometry), then drawn by the pipeline's draw with the clear to
+    /// `background` (colour, depth and coverage) folded into it, band by
+    /// band while the triangles are few. Returns the back-end's work and
+    /// the frame's times, the whole frame included.
+    ///
+    /// The buffers end as after a clear and [`draw`](Self::draw):
+    ///
+    /// ```
+    /// use rasterlab::geometry::scene::Scene2D;
+    /// use rasterlab::raster::shader::Flat;
+    /// use rasterlab::raster::target::{DepthState, RenderTarget};
+    /// use rasterlab::FillRule;
+    ///
+    /// let scene = Scene2D::depth_example(false);
+    /// let scanline = rasterlab::triangle_backend("scanline").unwrap();
+    /// let (rule, depth) = (FillRule::TopLeft, DepthState::DEFAULT);
+    /// let mut eager = RenderTarget::new(scene.width, scene.height).unwrap();
+    /// scene.draw(scanline, rule, depth, &Flat, &mut eager);
+    /// let mut folded = RenderTarget::new(scene.width, scene.height).unwrap();
+    /// folded.color.fill([9, 9, 9, 9]);
+    /// let (_, times) =
+    ///     scene.render_frame(scanline, rule, depth, &Flat, RenderTarget::BLACK, &mut folded);
+    /// assert_eq!(folded, eager);
+    /// assert!(times.clear_folded);
+    /// ```
+    pub fn render_frame(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        rule: FillRule,
+        depth: DepthState,
+        shader: &dyn FragmentShader,
+        background: [u8; 4],
+        target: &mut RenderTarget,
+    ) -> (WorkCounters, FrameTimes) {
+        let start = Instant::now();
+        let geometry = Geometry::of_screen_triangles(self.setups(rule), &self.vertices);
+        let geometry_time = start.elapsed();
+        let raster_start = Instant::now();
+        let work = draw_clearing(
+            &geometry,
+            backend,
+            shader,
+            depth,
+            Interpolation::PerspectiveCorrect,
+            Clear::all(background),
+            target,
+        );
+        let raster_time = raster_start.elapsed();
+        drop(geometry);
+        let times = FrameTimes::new(start.elapsed(), None, geometry_time, raster_time);
+        (work, times)
     }
 
     /// Renders the scene into a new target of its own size.
