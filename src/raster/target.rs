@@ -10,9 +10,7 @@
 use crate::error::{Error, Result};
 use crate::raster::edge::PixelRect;
 use rayon::prelude::*;
-use std::fmt;
 use std::path::Path;
-use std::str::FromStr;
 
 /// The largest allowed width or height of a target, in pixels. Every pixel
 /// centre then lies well inside the guard band.
@@ -53,20 +51,6 @@ impl DepthTest {
         DepthTest::Always,
     ];
 
-    /// The command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            DepthTest::Never => "never",
-            DepthTest::Less => "less",
-            DepthTest::Equal => "equal",
-            DepthTest::LessEqual => "less-equal",
-            DepthTest::Greater => "greater",
-            DepthTest::NotEqual => "not-equal",
-            DepthTest::GreaterEqual => "greater-equal",
-            DepthTest::Always => "always",
-        }
-    }
-
     /// Does a fragment at depth `z` pass against the `stored` depth?
     #[inline]
     pub fn passes(self, z: f32, stored: f32) -> bool {
@@ -83,25 +67,18 @@ impl DepthTest {
     }
 }
 
-impl fmt::Display for DepthTest {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for DepthTest {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        DepthTest::ALL
-            .into_iter()
-            .find(|d| d.name() == s)
-            .ok_or_else(|| Error::UnknownName {
-                what: "depth test",
-                name: s.to_string(),
-                known: DepthTest::ALL.map(DepthTest::name).join(", "),
-            })
-    }
-}
+crate::names::named_enum!(
+    DepthTest,
+    "depth test",
+    Never = "never",
+    Less = "less",
+    Equal = "equal",
+    LessEqual = "less-equal",
+    Greater = "greater",
+    NotEqual = "not-equal",
+    GreaterEqual = "greater-equal",
+    Always = "always"
+);
 
 /// Depth-buffer state: which comparison, and whether passing fragments
 /// write their depth.

@@ -30,13 +30,11 @@ pub mod direct;
 pub mod fast;
 pub mod wu;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::raster::descriptor::Descriptor;
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::fragment::{FragmentSink, LineFragment, WorkCounters};
-use std::fmt;
-use std::str::FromStr;
 
 /// A line segment ready for rasterization: its id and snapped endpoints.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
@@ -106,44 +104,13 @@ impl LineOptions {
     };
 }
 
-impl fmt::Display for Connectivity {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Connectivity::Eight => "8",
-            Connectivity::Four => "4",
-        })
-    }
-}
-
-impl FromStr for Connectivity {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        match s {
-            "8" => Ok(Connectivity::Eight),
-            "4" => Ok(Connectivity::Four),
-            _ => Err(Error::UnknownName {
-                what: "connectivity",
-                name: s.to_string(),
-                known: "8, 4".to_string(),
-            }),
-        }
-    }
-}
-
-impl FromStr for Endpoints {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        match s {
-            "inclusive" => Ok(Endpoints::Inclusive),
-            "half-open" => Ok(Endpoints::HalfOpen),
-            _ => Err(Error::UnknownName {
-                what: "endpoint convention",
-                name: s.to_string(),
-                known: "inclusive, half-open".to_string(),
-            }),
-        }
-    }
-}
+crate::names::named_enum!(Connectivity, "connectivity", Eight = "8", Four = "4");
+crate::names::named_enum!(
+    Endpoints,
+    "endpoint convention",
+    Inclusive = "inclusive",
+    HalfOpen = "half-open"
+);
 
 /// How a line back-end chooses its pixels: what its step-by-step trace
 /// ([`crate::teaching::trace::of_line_backend`]) shows.
