@@ -204,3 +204,43 @@ mod images {
         }
     }
 }
+
+mod bands {
+    use super::common::*;
+    use proptest::prelude::*;
+    use rasterlab::geometry::scene::setup_triangles;
+    use rasterlab::raster::fragment::FragmentList;
+    use rasterlab::{triangle_backends, FillRule, PixelRect, WorkCounters};
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(1000))]
+
+        /// A draw cut into bands of rows (one per thread) tests the same
+        /// samples and emits the same fragments as one draw of the
+        /// target, whatever the cuts: the samples tested are the
+        /// algorithm's, not the threads'.
+        #[test]
+        fn the_samples_tested_do_not_depend_on_the_bands(
+            soup in triangle_soup(4),
+            cuts in proptest::collection::btree_set(1i64..SIZE as i64, 1..4),
+        ) {
+            let setups = setup_triangles(&soup, FillRule::TopLeft);
+            let whole = viewport();
+            let mut starts: Vec<i64> = std::iter::once(0).chain(cuts).collect();
+            starts.push(whole.y1 + 1);
+            for b in triangle_backends() {
+                let one = b.rasterize(&setups, whole, &mut FragmentList::default());
+                let mut banded = WorkCounters::default();
+                for w in starts.windows(2) {
+                    let band = PixelRect { y0: w[0], y1: w[1] - 1, ..whole };
+                    banded.add(&b.rasterize(&setups, band, &mut FragmentList::default()));
+                }
+                prop_assert_eq!(
+                    (banded.samples_tested, banded.fragments),
+                    (one.samples_tested, one.fragments),
+                    "{} with bands starting at {:?}", b.name(), starts
+                );
+            }
+        }
+    }
+}

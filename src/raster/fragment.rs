@@ -96,15 +96,25 @@ pub trait FragmentSink {
 }
 
 /// Work a back-end did, for comparing algorithms.
+///
+/// A draw on several threads cuts the target into bands of rows and gives
+/// each band the triangles that reach it; the counters of the bands are
+/// added. `samples_tested` and `fragments` are the algorithm's and the
+/// same for any number of threads; `primitives` and `spans` also count the
+/// binning's extra work: a triangle reaching two bands is set up twice,
+/// and a row of blocks cut by a band's edge is classified in both bands.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub struct WorkCounters {
-    /// Primitives that reached the back-end's set-up.
+    /// Primitives that reached the back-end's set-up (once per band they
+    /// reach, on several threads).
     pub primitives: u64,
-    /// Samples (pixel centres) whose inside test was evaluated.
+    /// Samples (pixel centres) whose inside test was evaluated; the same
+    /// for any number of threads.
     pub samples_tested: u64,
     /// Fragments emitted.
     pub fragments: u64,
-    /// Rows (scanline) or blocks (tiled) visited.
+    /// Rows (scanline) or blocks (tiled) visited (on several threads, a
+    /// block row cut by a band's edge once per band).
     pub spans: u64,
 }
 

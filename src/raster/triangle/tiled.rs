@@ -157,11 +157,15 @@ impl TriangleAlgorithm for Tiled {
         if r.is_empty() {
             return;
         }
-        if r.x1 - r.x0 <= 1 && r.y1 - r.y0 <= 1 {
+        // The path is chosen by the box's whole height, not by the part
+        // of it in this viewport: a draw cut into bands of rows (one per
+        // thread) tests the same samples as one draw of the target.
+        let (w, h) = (r.x1 - r.x0, t.bounds.y1 - t.bounds.y0);
+        if w <= 1 && h <= 1 {
             tiny_box(t, r, sink, work);
             return;
         }
-        if r.x1 - r.x0 < BLOCK && r.y1 - r.y0 < BLOCK {
+        if w < BLOCK && h < BLOCK {
             step_over(t, r, true, sink, work);
             return;
         }
@@ -177,8 +181,14 @@ thread_local! {
 }
 
 /// The block walk of a triangle whose box `r` (non-empty, within the
-/// viewport) is at least a block wide or high: block rows classified,
-/// then their pixel rows walked across them; `blocks` is scratch space.
+/// viewport) is at least a block wide or its whole box a block high:
+/// block rows classified, then their pixel rows walked across them;
+/// `blocks` is scratch space.
+///
+/// A block is classified over its rows within the triangle's whole box,
+/// not only those within the viewport, so that a band of rows (a thread's
+/// part of the target) classifies a block as the whole target does, and
+/// the samples tested do not depend on how the target is cut.
 fn walk_blocks(
     t: &TriangleSetup,
     r: PixelRect,
@@ -197,17 +207,22 @@ fn walk_blocks(
     };
     let mut row = t.edge_values_at_pixel(r.x0, r.y0);
     for by in by0..=by1 {
-        // One row of blocks: classify each block once ...
+        // One row of blocks: classify each block once, over its rows in
+        // the triangle's box ...
         let y0 = (by * BLOCK).max(r.y0);
         let y1 = (by * BLOCK + BLOCK - 1).min(r.y1);
+        let class_y0 = (by * BLOCK).max(t.bounds.y0);
+        let class_y1 = (by * BLOCK + BLOCK - 1).min(t.bounds.y1);
         blocks.clear();
         // Blocks `b0..=b1` of the row: their pixels, as a rectangle,
         // and its class.
         let classify = |b0: i64, b1: i64| {
             let x0 = (b0 * BLOCK).max(r.x0);
             let x1 = (b1 * BLOCK + BLOCK - 1).min(r.x1);
-            let top_left = [0, 1, 2].map(|k| row[k] + step_x[k] * (x0 - r.x0));
-            let class = classify_from_corner(t, top_left, step_x, step_y, x1 - x0, y1 - y0);
+            let top_left =
+                [0, 1, 2].map(|k| row[k] + step_x[k] * (x0 - r.x0) + step_y[k] * (class_y0 - y0));
+            let h = class_y1 - class_y0;
+            let class = classify_from_corner(t, top_left, step_x, step_y, x1 - x0, h);
             (PixelRect { x0, y0, x1, y1 }, class)
         };
         let mut bx = bx0;
