@@ -563,12 +563,17 @@ fn main() {
     }
     println!();
     println!(
-        "cargo bench --bench side_by_side -- --rounds {} {}",
+        "cargo bench --bench side_by_side -- --rounds {}{}",
         options.rounds,
-        options.filters.join(" ")
+        options
+            .filters
+            .iter()
+            .map(|f| format!(" {f}"))
+            .collect::<String>()
     );
     print!("{context}");
     println!("rasterlab on 1 thread unless the name says otherwise; llvmpipe-1-thread is one rasterizer thread beside the drawing thread");
     println!("peer / best: the peer's time over rasterlab's best on as many threads, median of the per-round ratios [min-max]; above 1, rasterlab is faster");
+    println!("cpu peer / best: the same with the CPU time of all their threads per run, steadier when the cores were busy");
     print!("{ratios}");
 }

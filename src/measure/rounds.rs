@@ -182,6 +182,10 @@ pub struct Ratio {
     pub best: String,
     /// The peer's time over the best's, round by round.
     pub ratio: Spread,
+    /// The peer's CPU time per run (all its threads) over the best's:
+    /// steadier than the wall times when the cores were busy (`None`
+    /// where the system does not tell).
+    pub cpu_ratio: Option<f64>,
 }
 
 impl WorkloadResult {
@@ -207,10 +211,12 @@ impl WorkloadResult {
                     .zip(&best.rounds_ms)
                     .map(|(p, b)| p / b.max(1e-9))
                     .collect();
+                let cpu = |f: &Figure| f.cpu.as_ref().map(CpuUse::total_ms);
                 Some(Ratio {
                     peer: peer.name.clone(),
                     best: best.name.clone(),
                     ratio: Spread::of_ms(&per_round),
+                    cpu_ratio: cpu(peer).zip(cpu(best)).map(|(p, b)| p / b.max(1e-9)),
                 })
             })
             .collect()
@@ -269,6 +275,8 @@ impl WorkloadResult {
                     significant(r.ratio.min_ms),
                     significant(r.ratio.max_ms)
                 ),
+                r.cpu_ratio
+                    .map_or_else(|| "unknown".to_string(), |c| format!("{}x", significant(c))),
             ]);
         }
         for (name, why) in &self.skipped {
@@ -283,8 +291,8 @@ impl WorkloadResult {
 }
 
 /// The header of a ratio table: workload, peer and its time, rasterlab's
-/// best and its time, and the ratio of the two (median of the per-round
-/// ratios, [min-max]).
+/// best and its time, the ratio of the two (median of the per-round
+/// ratios, [min-max]) and the ratio of their CPU times.
 pub fn ratio_header() -> Table {
     Table::with_text_columns(
         2,
@@ -295,6 +303,7 @@ pub fn ratio_header() -> Table {
             "rasterlab best",
             "best ms",
             "peer / best",
+            "cpu peer / best",
         ],
     )
 }
@@ -337,6 +346,12 @@ mod tests {
         // The best on one thread is `a`, not the faster two-thread `a2`.
         assert_eq!(ratios[0].best, "a");
         assert!(ratios[0].ratio.median_ms > 1.0);
+        // Sleeping takes no CPU time: the CPU ratio is whatever it is, but
+        // it is there wherever the system tells.
+        assert_eq!(
+            ratios[0].cpu_ratio.is_some(),
+            result.figures[0].cpu.is_some()
+        );
         let text = result.ratio_table().to_string();
         assert!(text.contains("w         peer"), "{text}");
         assert!(
