@@ -40,7 +40,10 @@ use rasterlab::raster::target::RenderTarget;
 /// `RASTERLAB_REQUIRE_MESA=1`).
 fn llvmpipe(width: u32, height: u32) -> Option<gl::Llvmpipe> {
     match gl::Llvmpipe::new(width, height, 1) {
-        Ok(llvmpipe) => Some(llvmpipe),
+        Ok(llvmpipe) => {
+            assert_eq!(llvmpipe.threads(), 1);
+            Some(llvmpipe)
+        }
         Err(reason) => {
             assert!(
                 std::env::var("RASTERLAB_REQUIRE_MESA").as_deref() != Ok("1"),

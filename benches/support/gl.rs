@@ -28,7 +28,6 @@
 //!
 //! Included by `benches/side_by_side.rs` and `tests/llvmpipe.rs` with
 //! `#[path]`; it depends on `khronos-egl` and `glow` only.
-#![allow(dead_code)] // each includer uses a part
 
 use glow::HasContext;
 use khronos_egl as egl;
@@ -266,6 +265,7 @@ impl Llvmpipe {
 
     /// The pixels the last draw covered (alpha not zero), row by row, row
     /// 0 first (rasterlab's top row, see the module docs).
+    #[allow(dead_code)] // the tests read pixels back; the bench only times
     pub fn coverage(&self) -> Vec<bool> {
         self.make_current();
         let mut rgba = vec![0u8; self.width as usize * self.height as usize * 4];
