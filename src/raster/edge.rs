@@ -159,6 +159,13 @@ pub enum FillRule {
     TopLeft,
     /// The mirror image: bottom and right edges own their ties. Watertight.
     BottomRight,
+    /// Top and right edges own their ties (GDAL's `rasterize` draws so).
+    /// Watertight.
+    TopRight,
+    /// Bottom and left edges own their ties: the top-left rule of a
+    /// window whose origin is at the lower left (OpenGL's), seen in y-down
+    /// screen coordinates. Watertight.
+    BottomLeft,
     /// The line-drawing slides' robust strategy: an edge belongs to the triangle lying on
     /// the same side of it as a chosen off-screen point
     /// ([`OFFSCREEN_POINT`]); when the edge's line runs through that point,
@@ -186,18 +193,22 @@ pub const SECONDARY_OFFSCREEN_POINT: (i64, i64) =
 
 impl FillRule {
     /// Every rule, default first.
-    pub const ALL: [FillRule; 5] = [
+    pub const ALL: [FillRule; 7] = [
         FillRule::TopLeft,
         FillRule::BottomRight,
+        FillRule::TopRight,
+        FillRule::BottomLeft,
         FillRule::OffscreenPoint,
         FillRule::Inclusive,
         FillRule::Exclusive,
     ];
 
     /// The rules that give every sample of a mesh to exactly one triangle.
-    pub const WATERTIGHT: [FillRule; 3] = [
+    pub const WATERTIGHT: [FillRule; 5] = [
         FillRule::TopLeft,
         FillRule::BottomRight,
+        FillRule::TopRight,
+        FillRule::BottomLeft,
         FillRule::OffscreenPoint,
     ];
 
@@ -206,6 +217,8 @@ impl FillRule {
         match self {
             FillRule::TopLeft => "top-left",
             FillRule::BottomRight => "bottom-right",
+            FillRule::TopRight => "top-right",
+            FillRule::BottomLeft => "bottom-left",
             FillRule::OffscreenPoint => "offscreen-point",
             FillRule::Inclusive => "inclusive",
             FillRule::Exclusive => "exclusive",
@@ -217,6 +230,10 @@ impl FillRule {
         match self {
             FillRule::TopLeft => e.is_top_left(),
             FillRule::BottomRight => !e.is_top_left(),
+            // Right edges have the triangle to their left (`a < 0`),
+            // bottom edges are horizontal with the triangle above (`b < 0`).
+            FillRule::TopRight => e.a < 0 || (e.a == 0 && e.b > 0),
+            FillRule::BottomLeft => e.a > 0 || (e.a == 0 && e.b < 0),
             FillRule::OffscreenPoint => {
                 let primary = e.eval_raw(OFFSCREEN_POINT.0, OFFSCREEN_POINT.1);
                 if primary != 0 {
@@ -235,7 +252,10 @@ impl FillRule {
         let owns = self.owns_ties(e);
         let verdict = if owns { "owns" } else { "does not own" };
         match self {
-            FillRule::TopLeft | FillRule::BottomRight => {
+            FillRule::TopLeft
+            | FillRule::BottomRight
+            | FillRule::TopRight
+            | FillRule::BottomLeft => {
                 format!("{} edge {verdict} its ties under {}", e.kind(), self.name())
             }
             FillRule::OffscreenPoint => format!(
@@ -539,6 +559,33 @@ mod tests {
                 FillRule::TopLeft.owns_ties(&e),
                 FillRule::BottomRight.owns_ties(&e)
             );
+        }
+    }
+
+    #[test]
+    fn the_corner_rules_own_the_edges_they_name() {
+        // Every edge kind occurs among these triangles' edges.
+        for v in [
+            [p(0.3, 0.), p(4., 1.), p(2., 3.)],
+            [p(0., 0.), p(4., 0.), p(2., 3.)],
+            [p(0., 3.), p(4., 3.), p(2., 0.)],
+        ] {
+            let t = TriangleSetup::new(0, v, FillRule::TopLeft).unwrap();
+            for e in t.edges {
+                let kind = e.kind();
+                assert_eq!(
+                    FillRule::TopRight.owns_ties(&e),
+                    matches!(kind, EdgeKind::Top | EdgeKind::Right)
+                );
+                assert_eq!(
+                    FillRule::BottomLeft.owns_ties(&e),
+                    matches!(kind, EdgeKind::Bottom | EdgeKind::Left)
+                );
+                assert_ne!(
+                    FillRule::TopRight.owns_ties(&e),
+                    FillRule::BottomLeft.owns_ties(&e)
+                );
+            }
         }
     }
 
