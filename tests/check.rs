@@ -8,11 +8,12 @@ use common::rasterlab;
 
 use rasterlab::check::judge::LineConvention;
 use rasterlab::check::{
-    check, line_fragments, triangle_fragments, Builtin, Case, CheckOptions, Fragment, Property,
-    SubjectError, Verdict,
+    check, line_fragments, run, triangle_fragments, Builtin, Case, CheckOptions, CheckRequest,
+    Fragment, Kind, Property, RuleChoice, SubjectError, SubjectSpec, Verdict,
 };
 use rasterlab::raster::backend::{line_backend, triangle_backend, triangle_backends};
 use rasterlab::raster::edge::FillRule;
+use std::process::Command;
 
 fn options(property: Property, cases: u32, seed: u64) -> CheckOptions {
     CheckOptions {
@@ -321,7 +322,7 @@ fn an_outside_program_passes_and_fails_through_exec() {
     ]);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["verdict"], "fail");
-    assert!(!v["extra"].as_array().unwrap().is_empty());
+    assert!(!v["counterexample"]["extra"].as_array().unwrap().is_empty());
 }
 
 #[test]
@@ -375,4 +376,727 @@ fn a_broken_program_exits_2_with_the_input_that_breaks_it() {
     ]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stdout).contains("outside the"));
+}
+
+// ---------------------------------------------------------------------
+// Regression tests: each failed before its fix.
+
+fn frag(x: i64, y: i64, id: u32) -> Fragment {
+    Fragment { x, y, id }
+}
+
+fn case_of(width: u32, height: u32, triangles: Vec<[(f64, f64); 3]>) -> Case {
+    Case {
+        width,
+        height,
+        triangles,
+        lines: Vec::new(),
+    }
+}
+
+#[test]
+fn an_extra_pixel_is_diagnosed_by_the_edges_it_lies_beyond_and_its_true_distance() {
+    let exact = Property::Exact(FillRule::TopLeft);
+    // Far from the triangle: once said "91.8 px inside edge ...".
+    let far = case_of(8, 8, vec![[(150.0, 5.0), (160.0, 5.0), (155.0, 15.0)]]);
+    let finding = rasterlab::check::judge::judge(exact, &far, &[frag(0, 0, 0)]).unwrap();
+    let d = finding.diagnosis.unwrap();
+    let distance = (149.5f64).hypot(4.5);
+    assert!(
+        d.contains(&format!("{distance:.5} px outside triangle 0")),
+        "{d}"
+    );
+    assert!(d.contains("beyond edge"), "{d}");
+    assert!(!d.contains("inside"), "{d}");
+    // On the line of an edge, beyond its end: once said "0.00000 px outside".
+    let beside = case_of(8, 8, vec![[(2.0, 0.5), (5.0, 0.5), (3.0, 3.0)]]);
+    let finding = rasterlab::check::judge::judge(exact, &beside, &[frag(0, 0, 0)]).unwrap();
+    let d = finding.diagnosis.unwrap();
+    assert!(d.contains("1.50000 px outside triangle 0"), "{d}");
+    assert!(d.contains("beyond edge (3, 3)-(2, 0.5)"), "{d}");
+    // A pixel missing from deep inside is inside, by its nearest edge.
+    let big = case_of(8, 8, vec![[(0.0, 0.0), (8.0, 0.0), (0.0, 8.0)]]);
+    let mut drawn = triangle_fragments(triangle_backend("naive").unwrap(), &big, FillRule::TopLeft);
+    drawn.retain(|f| (f.x, f.y) != (1, 1));
+    let finding = rasterlab::check::judge::judge(exact, &big, &drawn).unwrap();
+    let d = finding.diagnosis.unwrap();
+    assert!(d.contains("1.50000 px inside triangle 0"), "{d}");
+}
+
+#[test]
+fn negative_zero_is_never_printed() {
+    let case = case_of(8, 8, vec![[(2.0, -0.0), (5.0, -0.0), (-0.0, 3.0)]]);
+    let finding =
+        rasterlab::check::judge::judge(Property::Exact(FillRule::TopLeft), &case, &[frag(7, 7, 0)])
+            .unwrap();
+    let d = finding.diagnosis.clone().unwrap();
+    assert!(!d.contains("-0"), "{d}");
+    assert!(!finding.counterexample_text().contains("-0"));
+}
+
+#[test]
+fn a_double_draw_names_as_extra_the_fragment_the_rule_does_not_give() {
+    // The README's example: top-left gives pixel (0, 0) to triangle 1.
+    let case = case_of(
+        1,
+        1,
+        vec![
+            [(0.5, 0.5), (9.0, -2.5), (9.0, -2.0)],
+            [(0.5, 0.5), (9.0, -2.0), (8.0, 9.0)],
+        ],
+    );
+    for property in [Property::Watertight, Property::CrackFree] {
+        let finding =
+            rasterlab::check::judge::judge(property, &case, &[frag(0, 0, 0), frag(0, 0, 1)])
+                .unwrap();
+        assert_eq!(finding.extra, vec![frag(0, 0, 0)]);
+        let d = finding.diagnosis.as_deref().unwrap();
+        assert!(d.contains("only triangle 1"), "{d}");
+        assert!(finding.counterexample_text().contains("# extra: (0,0) t0"));
+    }
+}
+
+/// A subject as a boxed closure.
+type DrawFn = dyn FnMut(&Case) -> Result<Vec<Fragment>, SubjectError>;
+
+/// The first words of a problem, which name its kind.
+fn kind_words(problem: &str) -> String {
+    problem
+        .split(':')
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .take(2)
+        .collect::<Vec<_>>()
+        .join(" ")
+        .replace(|c: char| c.is_ascii_digit(), "#")
+}
+
+#[test]
+fn shrinking_keeps_the_kind_of_failure() {
+    let scanline = triangle_backend("scanline").unwrap();
+    // Odd triangles drawn one pixel to the right: extra pixels, gaps and
+    // double draws in one case; the shrunk case fails as the original
+    // did first.
+    let shifted = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        Ok(triangle_fragments(scanline, c, FillRule::TopLeft)
+            .into_iter()
+            .map(|f| {
+                if f.id % 2 == 1 {
+                    frag(f.x + 1, f.y, f.id)
+                } else {
+                    f
+                }
+            })
+            .filter(|f| f.x < i64::from(c.width))
+            .collect())
+    };
+    let bresenham = line_backend("bresenham").unwrap();
+    let four: &'static rasterlab::raster::line::LineOptions =
+        &rasterlab::raster::line::LineOptions {
+            connectivity: rasterlab::raster::line::Connectivity::Four,
+            ..rasterlab::raster::line::LineOptions::DEFAULT
+        };
+    let staircase = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        let mut list = rasterlab::raster::fragment::FragmentList::default();
+        bresenham.rasterize(
+            &rasterlab::raster::line::LineSetup::numbered(&c.snapped_lines()),
+            four,
+            rasterlab::raster::edge::PixelRect::of_target(c.width, c.height),
+            &mut list,
+        );
+        Ok(list
+            .lines
+            .iter()
+            .map(|f| frag(i64::from(f.x), i64::from(f.y), f.line))
+            .collect())
+    };
+    let mut subjects: Vec<(Property, Box<DrawFn>)> = vec![
+        (Property::Watertight, Box::new(shifted)),
+        (Property::CrackFree, Box::new(shifted)),
+        (
+            Property::Line(LineConvention::Midpoint),
+            Box::new(staircase),
+        ),
+    ];
+    for (property, subject) in &mut subjects {
+        for seed in 0..4 {
+            let verdict = check(&options(*property, 100, seed), subject).unwrap();
+            let Verdict::Fail {
+                original, finding, ..
+            } = verdict
+            else {
+                panic!("{property} passed");
+            };
+            let first =
+                rasterlab::check::judge::judge(*property, &original, &subject(&original).unwrap())
+                    .unwrap();
+            assert_eq!(
+                kind_words(&first.problems[0]),
+                kind_words(&finding.problems[0]),
+                "{property}: {:?} shrunk to {:?}",
+                first.problems[0],
+                finding.problems
+            );
+            assert_eq!(first.kind(), finding.kind());
+            assert_eq!(finding.original_problem.as_ref(), Some(&first.problems[0]));
+            assert!(finding
+                .counterexample_text()
+                .contains(&format!("# the case as generated: {}", first.problems[0])));
+        }
+    }
+}
+
+/// The folders a check leaves in `tmp`.
+fn leftovers(tmp: &std::path::Path) -> Vec<String> {
+    std::fs::read_dir(tmp)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect()
+}
+
+#[test]
+fn temporary_files_are_removed_on_every_exit() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bin = env!("CARGO_BIN_EXE_rasterlab");
+    let good = format!(
+        "{bin} fragments --backend scanline --rule {{rule}} --size {{width}}x{{height}} {{input}}"
+    );
+    let bad = format!(
+        "{bin} fragments --backend scanline --rule inclusive --size {{width}}x{{height}} {{input}}"
+    );
+    for (command, status) in [(good.as_str(), 0), (bad.as_str(), 1), ("exit 3", 2)] {
+        let out = Command::new(bin)
+            .args(["check", "--exec", command, "--cases", "12", "--out"])
+            .arg(tmp.path().join("out"))
+            .env("TMPDIR", tmp.path())
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(status), "{command}");
+        assert_eq!(leftovers(tmp.path()), ["out"], "{command}");
+    }
+}
+
+#[test]
+fn a_program_that_fails_on_every_input_is_broken_at_once() {
+    let mut runs = 0;
+    let verdict = check(
+        &options(Property::Exact(FillRule::TopLeft), 20, 0),
+        &mut |_: &Case| -> Result<Vec<Fragment>, SubjectError> {
+            runs += 1;
+            Err(SubjectError::Failed {
+                status: "exit status: 127".into(),
+                stderr: "sh: 1: nosuchprogram: not found".into(),
+            })
+        },
+    );
+    let broken = verdict.unwrap_err();
+    assert!(broken.on_every_input);
+    assert!(runs <= 2, "{runs} runs: it was shrunk");
+    assert!(broken.to_string().contains("on every input"), "{broken}");
+    // As a `Box<dyn Error>`.
+    let boxed: Box<dyn std::error::Error> = broken;
+    assert!(boxed.source().is_some());
+    let mut request = CheckRequest::new(SubjectSpec::Exec("nosuchprogram {input}".into()));
+    request.cases = 5;
+    let report = run(&request).unwrap();
+    assert_eq!(report.exit_code(), 2);
+    let error = report.error.as_ref().unwrap();
+    assert!(error.on_every_input);
+    assert!(!report.to_string().contains("the input that triggers it"));
+}
+
+#[test]
+fn the_rule_placeholder_says_what_is_asked() {
+    for (rule, convention, word) in [
+        (Some(RuleChoice::Watertight), None, "watertight"),
+        (Some(RuleChoice::CrackFree), None, "crack-free"),
+        (
+            Some(RuleChoice::Exact(FillRule::BottomLeft)),
+            None,
+            "bottom-left",
+        ),
+        (None, Some(LineConvention::PixelIndex), "pixel-index"),
+    ] {
+        let mut request =
+            CheckRequest::new(SubjectSpec::Exec("echo rule={rule} >&2; exit 3".into()));
+        request.rule = rule;
+        request.convention = convention;
+        request.kind = convention.map(|_| Kind::Lines);
+        request.cases = 1;
+        let report = run(&request).unwrap();
+        let message = &report.error.as_ref().unwrap().message;
+        assert!(
+            message.contains(&format!("rule={word}\n"))
+                || message.ends_with(&format!("rule={word}")),
+            "{message}"
+        );
+    }
+    let err = "nosuch".parse::<RuleChoice>().unwrap_err().to_string();
+    for name in [
+        "top-left",
+        "top-right",
+        "bottom-left",
+        "watertight",
+        "crack-free",
+        "any",
+    ] {
+        assert!(err.contains(name), "{err}");
+    }
+}
+
+#[test]
+fn a_line_failure_is_diagnosed() {
+    let bresenham = line_backend("bresenham").unwrap();
+    let case = Case {
+        width: 8,
+        height: 8,
+        triangles: Vec::new(),
+        lines: vec![[(0.5, 0.5), (6.5, 3.5)]],
+    };
+    let mut drawn = line_fragments(bresenham, &case);
+    drawn.retain(|f| f.x != 3);
+    drawn.push(frag(3, 5, 0));
+    let finding =
+        rasterlab::check::judge::judge(Property::Line(LineConvention::Midpoint), &case, &drawn)
+            .unwrap();
+    let d = finding.diagnosis.unwrap();
+    assert!(d.contains("in column 3"), "{d}");
+    assert!(d.contains("the subject drew (3, 5)"), "{d}");
+}
+
+#[test]
+fn the_midpoint_convention_is_the_documented_one() {
+    // Endpoints on pixel corners: the columns of the pixels containing the
+    // ends' x; each column's row nearest the line, a tie to the smaller
+    // row for a horizontal line (the README's statement).
+    let bresenham = line_backend("bresenham").unwrap();
+    let pixels = |line: [(f64, f64); 2]| {
+        let mut f = line_fragments(
+            bresenham,
+            &Case {
+                width: 8,
+                height: 8,
+                triangles: Vec::new(),
+                lines: vec![line],
+            },
+        );
+        f.sort();
+        f.iter().map(|f| (f.x, f.y)).collect::<Vec<_>>()
+    };
+    assert_eq!(
+        pixels([(0.0, 2.0), (3.0, 2.0)]),
+        [(0, 1), (1, 1), (2, 1), (3, 1)]
+    );
+    assert_eq!(
+        pixels([(1.0, 0.0), (1.0, 3.0)]),
+        [(0, 0), (0, 1), (0, 2), (0, 3)]
+    );
+}
+
+#[test]
+fn the_readme_states_the_protocol() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let section = readme
+        .split("## Check your own rasterizer")
+        .nth(1)
+        .unwrap()
+        .split("\n## ")
+        .next()
+        .unwrap();
+    assert!(!section.contains("`x y t`"));
+    assert!(section.contains("`x y id`"));
+    assert!(section.contains("`x0 y0 x1 y1 x2 y2`"));
+    assert!(section.contains("y down"));
+    assert!(section.contains("pixel centres at +0.5"));
+    assert!(!section.contains("the text format of `rasterlab fragments`"));
+}
+
+// ---------------------------------------------------------------------
+// Which rule, crack-free, graders' options, pixel-index lines, overflow.
+
+#[test]
+fn the_rule_table_names_each_of_the_seven_rules_and_none() {
+    for rule in FillRule::ALL {
+        let mut request = CheckRequest::new(SubjectSpec::Exec(format!(
+            "{} fragments --backend scanline --rule {} --size {{width}}x{{height}} {{input}}",
+            env!("CARGO_BIN_EXE_rasterlab"),
+            rule.name()
+        )));
+        request.rule = Some(RuleChoice::Any);
+        request.cases = 60;
+        request.jobs = 2;
+        let report = run(&request).unwrap();
+        let table = report.rules.as_ref().unwrap();
+        assert_eq!(table.followed, [rule.name()], "{report}");
+        let watertight = FillRule::WATERTIGHT.contains(&rule);
+        assert_eq!(
+            table.watertight.agreeing == table.watertight.total,
+            watertight
+        );
+        assert_eq!(
+            table.crack_free.agreeing == table.crack_free.total,
+            watertight
+        );
+        assert_eq!(report.exit_code(), 0);
+    }
+    // Top-left for even triangles, bottom-right for odd ones: no rule.
+    let scanline = triangle_backend("scanline").unwrap();
+    let mixed = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        let tl = triangle_fragments(scanline, c, FillRule::TopLeft);
+        let br = triangle_fragments(scanline, c, FillRule::BottomRight);
+        Ok(tl
+            .into_iter()
+            .filter(|f| f.id % 2 == 0)
+            .chain(br.into_iter().filter(|f| f.id % 2 == 1))
+            .collect())
+    };
+    let mut request = CheckRequest::new(SubjectSpec::Backend("mixed".into()));
+    request.rule = Some(RuleChoice::Any);
+    request.cases = 60;
+    request.shrink_runs = 40;
+    let report = rasterlab::check::run_with(&request, "mixed", &move || {
+        Box::new(mixed) as Box<dyn rasterlab::check::Subject + Send>
+    })
+    .unwrap();
+    let table = report.rules.as_ref().unwrap();
+    assert!(table.followed.is_empty(), "{report}");
+    assert!(report.to_string().contains("follows: none"), "{report}");
+    let shrunk = report.counterexample.as_ref().unwrap();
+    assert!(shrunk.primitives <= 3, "{report}");
+    assert_eq!(report.exit_code(), 1);
+}
+
+#[test]
+fn crack_free_asks_only_about_shared_edges() {
+    let scanline = triangle_backend("scanline").unwrap();
+    // Only the pixels whose centre lies on an edge of their triangle: no
+    // crack, but the insides are empty.
+    let edges_only = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        let snapped = c.snapped_triangles();
+        Ok(triangle_fragments(scanline, c, FillRule::TopLeft)
+            .into_iter()
+            .filter(|f| {
+                let t = rasterlab::raster::edge::TriangleSetup::new(
+                    f.id,
+                    snapped[f.id as usize],
+                    FillRule::TopLeft,
+                )
+                .unwrap();
+                t.edge_values_at_pixel(f.x, f.y).contains(&0)
+            })
+            .collect())
+    };
+    assert!(passes(
+        check(&options(Property::CrackFree, 150, 0), &mut { edges_only }).unwrap()
+    ));
+    let Verdict::Fail { finding, .. } =
+        check(&options(Property::Watertight, 150, 0), &mut { edges_only }).unwrap()
+    else {
+        panic!("an empty inside passed as watertight");
+    };
+    assert!(
+        finding.problems[0].starts_with("gap"),
+        "{:?}",
+        finding.problems
+    );
+    for (rule, word) in [
+        (FillRule::Inclusive, "double draw"),
+        (FillRule::Exclusive, "gap"),
+    ] {
+        let Verdict::Fail { finding, .. } = check(
+            &options(Property::CrackFree, 150, 0),
+            &mut Builtin::triangles(scanline, rule),
+        )
+        .unwrap() else {
+            panic!("{rule} passed as crack-free");
+        };
+        assert!(
+            finding.problems[0].starts_with(word),
+            "{:?}",
+            finding.problems
+        );
+    }
+    for rule in FillRule::WATERTIGHT {
+        assert!(passes(
+            check(
+                &options(Property::CrackFree, 150, 1),
+                &mut Builtin::triangles(scanline, rule)
+            )
+            .unwrap()
+        ));
+    }
+}
+
+/// A rasterizer that truncates its edge values to 32 bits, as a production
+/// rasterizer with 32-bit edge functions does; exact otherwise (top-left).
+fn thirty_two_bits(c: &Case) -> Result<Vec<Fragment>, SubjectError> {
+    let mut out = Vec::new();
+    for (id, t) in c.snapped_triangles().iter().enumerate() {
+        let Some(setup) =
+            rasterlab::raster::edge::TriangleSetup::new(id as u32, *t, FillRule::TopLeft)
+        else {
+            continue;
+        };
+        for y in 0..i64::from(c.height) {
+            for x in 0..i64::from(c.width) {
+                let e = setup.edge_values_at_pixel(x, y);
+                if (0..3).all(|k| i64::from(e[k] as i32) + setup.bias[k] >= 0) {
+                    out.push(frag(x, y, id as u32));
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+#[test]
+fn the_overflow_family_finds_32_bit_edge_functions() {
+    let Verdict::Fail { .. } =
+        check(&options(Property::CrackFree, 70, 0), &mut thirty_two_bits).unwrap()
+    else {
+        panic!("32-bit edge functions passed");
+    };
+    // Every failure of 32-bit edge functions is in the families with far
+    // vertices, and the overflow family fails most.
+    let mut failing = std::collections::BTreeMap::new();
+    let options = options(Property::Watertight, 140, 0);
+    let mut rng = fastrand::Rng::with_seed(options.seed);
+    for index in 0..options.cases {
+        let case = rasterlab::check::generate::case(Property::Watertight, index, &mut rng);
+        let drawn = thirty_two_bits(&case).unwrap();
+        if rasterlab::check::judge::judge(Property::Watertight, &case, &drawn).is_some() {
+            *failing
+                .entry(rasterlab::check::generate::family(
+                    Property::Watertight,
+                    index,
+                ))
+                .or_insert(0) += 1;
+        }
+    }
+    eprintln!("32-bit failures by family: {failing:?}");
+    assert!(
+        failing.keys().all(|f| ["huge", "overflow"].contains(f)),
+        "{failing:?}"
+    );
+    assert!(
+        failing.get("overflow").copied().unwrap_or(0) >= 10,
+        "{failing:?}"
+    );
+}
+
+#[test]
+fn integer_bresenham_passes_the_pixel_index_convention() {
+    for name in ["bresenham", "direct"] {
+        let mut request = CheckRequest::new(SubjectSpec::Backend(name.into()));
+        request.convention = Some(LineConvention::PixelIndex);
+        request.cases = 300;
+        let report = run(&request).unwrap();
+        assert_eq!(report.exit_code(), 0, "{report}");
+    }
+    // The midpoint rule on the same numbers (corners, not centres) fails.
+    let mut request = CheckRequest::new(SubjectSpec::Exec(format!(
+        "{} fragments --backend bresenham --size {{width}}x{{height}} {{input}}",
+        env!("CARGO_BIN_EXE_rasterlab")
+    )));
+    request.kind = Some(Kind::Lines);
+    request.convention = Some(LineConvention::PixelIndex);
+    request.cases = 60;
+    request.shrink_runs = 30;
+    let report = run(&request).unwrap();
+    assert_eq!(report.exit_code(), 1, "{report}");
+    assert!(report.counterexample.as_ref().unwrap().diagnosis.is_some());
+}
+
+fn schema() -> jsonschema::Validator {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/docs/check-report.schema.json"
+    ))
+    .unwrap();
+    jsonschema::validator_for(&serde_json::from_str(&text).unwrap()).unwrap()
+}
+
+fn valid(schema: &jsonschema::Validator, json: &serde_json::Value) {
+    let errors: Vec<String> = schema
+        .iter_errors(json)
+        .map(|e| format!("{e} at {}", e.instance_path()))
+        .collect();
+    assert!(errors.is_empty(), "{errors:#?}\n{json:#}");
+}
+
+#[test]
+fn every_report_validates_against_the_schema_and_jobs_change_nothing() {
+    let schema = schema();
+    let bin = env!("CARGO_BIN_EXE_rasterlab");
+    let dir = tempfile::tempdir().unwrap();
+    let inclusive = format!(
+        "{bin} fragments --backend scanline --rule inclusive --size {{width}}x{{height}} {{input}}"
+    );
+    let mut requests = Vec::new();
+    let mut base = CheckRequest::new(SubjectSpec::Exec(inclusive.clone()));
+    base.cases = 40;
+    base.out = Some(dir.path().to_path_buf());
+    base.command = "rasterlab check --exec ...".into();
+    requests.push(base.clone());
+    let mut keep = base.clone();
+    keep.keep_going = true;
+    keep.rule = Some(RuleChoice::Watertight);
+    requests.push(keep.clone());
+    let mut keep2 = keep.clone();
+    keep2.jobs = 2;
+    requests.push(keep2);
+    let mut any = base.clone();
+    any.rule = Some(RuleChoice::Any);
+    any.keep_going = true;
+    requests.push(any);
+    let mut pass = CheckRequest::new(SubjectSpec::Backend("tiled".into()));
+    pass.cases = 30;
+    requests.push(pass.clone());
+    let mut lines = CheckRequest::new(SubjectSpec::Backend("bresenham".into()));
+    lines.convention = Some(LineConvention::Vulkan);
+    lines.cases = 30;
+    requests.push(lines);
+    let mut broken = CheckRequest::new(SubjectSpec::Exec("echo hello".into()));
+    broken.cases = 3;
+    broken.out = Some(dir.path().join("broken"));
+    requests.push(broken);
+    let mut reports = Vec::new();
+    for r in &requests {
+        let report = run(r).unwrap();
+        let json = serde_json::to_value(&report).unwrap();
+        valid(&schema, &json);
+        reports.push(json);
+    }
+    // Keep-going: per family, a score; the same with two jobs.
+    let (one, two) = (&reports[1], &reports[2]);
+    assert_eq!(one["cases_run"], 40);
+    assert!(one["families"].as_array().unwrap().len() >= 5);
+    assert!(one["score"].as_f64().unwrap() < 1.0);
+    for key in [
+        "verdict",
+        "cases_run",
+        "passed",
+        "score",
+        "families",
+        "failing_cases",
+        "counterexample",
+    ] {
+        assert_eq!(one[key], two[key], "{key}");
+    }
+    // Provenance in the files.
+    let text = std::fs::read_to_string(dir.path().join("counterexample.txt")).unwrap();
+    assert!(
+        text.contains("# command: rasterlab check --exec ..."),
+        "{text}"
+    );
+    assert!(text.contains("# seed 0, case "), "{text}");
+    let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
+    assert!(html.contains("rasterlab check --exec ..."));
+    assert!(html.contains("family"));
+}
+
+#[test]
+fn a_case_file_is_judged_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("case.txt");
+    std::fs::write(&path, "# size 1x1\n0.5 0.5 9 -2.5 9 -2\n0.5 0.5 9 -2 8 9\n").unwrap();
+    let mut request = CheckRequest::new(SubjectSpec::Exec(
+        "python3 examples/student/rasterizer.py {input} {width} {height}".into(),
+    ));
+    request.rule = Some(RuleChoice::Watertight);
+    request.case_file = Some(path.clone());
+    let report = run(&request).unwrap();
+    assert_eq!(report.cases_run, 1);
+    assert_eq!(report.exit_code(), 1);
+    assert_eq!(report.counterexample.as_ref().unwrap().family, "file");
+    request.rule = Some(RuleChoice::Exact(FillRule::TopLeft));
+    request.subject = SubjectSpec::Backend("scanline".into());
+    assert_eq!(run(&request).unwrap().exit_code(), 0);
+    request.kind = Some(Kind::Lines);
+    request.rule = None;
+    assert!(run(&request).is_err());
+}
+
+#[test]
+fn ctrl_c_removes_the_temporary_files_and_a_missing_program_is_not_shrunk() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bin = env!("CARGO_BIN_EXE_rasterlab");
+    let mut child = Command::new(bin)
+        .args([
+            "check",
+            "--exec",
+            "sleep 20",
+            "--timeout",
+            "60",
+            "--cases",
+            "3",
+            "--out",
+        ])
+        .arg(tmp.path().join("out"))
+        .env("TMPDIR", tmp.path())
+        .spawn()
+        .unwrap();
+    // Wait until the input folder exists, then interrupt.
+    let start = std::time::Instant::now();
+    while leftovers(tmp.path()).len() < 2 && start.elapsed().as_secs() < 30 {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    assert_eq!(
+        leftovers(tmp.path()).len(),
+        2,
+        "{:?}",
+        leftovers(tmp.path())
+    );
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130));
+    assert_eq!(leftovers(tmp.path()), ["out"]);
+    let out = rasterlab(&[
+        "check",
+        "--exec",
+        "nosuchprogram {input}",
+        "--out",
+        &out_dir("missing"),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("on every input"), "{err}");
+    assert!(!err.contains("the input that triggers it"), "{err}");
+    let out = rasterlab(&["check", "--backend", "scanline", "--rule", "nosuch"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("watertight"));
+}
+
+#[test]
+fn keep_going_json_validates_against_the_schema() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args([
+            "check",
+            "--exec",
+            "python3 examples/student/rasterizer.py {input} {width} {height}",
+            "--rule",
+            "watertight",
+            "--keep-going",
+            "--jobs",
+            "2",
+            "--cases",
+            "21",
+            "--json",
+            "--out",
+        ])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    valid(&schema(), &json);
+    assert_eq!(json["cases_run"], 21);
+    assert_eq!(json["keep_going"], true);
+    assert!(json["command"].as_str().unwrap().contains("--keep-going"));
 }

@@ -2,8 +2,8 @@
 //! where rasterizers go wrong.
 //!
 //! Triangles, for [`Property::Exact`] (any input) and
-//! [`Property::Watertight`] (inputs whose triangles share edges and never
-//! overlap):
+//! [`Property::Watertight`] and [`Property::CrackFree`] (meshes: inputs
+//! whose triangles share edges and never overlap):
 //!
 //! | family | what it probes |
 //! |---|---|
@@ -16,16 +16,20 @@
 //! | huge | vertices far outside the target, up to the guard band, and negative |
 //! | ties | coordinates on half a subpixel (1/512 px), where snapping rounds to even (exact only) |
 //! | zero area | triangles that become segments or points once snapped, beside a normal one (exact only) |
+//! | overflow | vertices 2,000 to 30,000 px off the target, on every side, both windings, of which only a corner or a thin band is seen: edge values beyond 32 bits where the few visible pixels are |
 //!
 //! Lines: random segments, segments between pixel centres (the midpoint
 //! test's ties), axis-parallel and diagonal segments, long segments from
-//! far outside the target, half-subpixel ends, zero-length segments.
+//! far outside the target, half-subpixel ends, zero-length segments. Under
+//! the pixel-index convention: whole-number endpoints, random, axis-parallel
+//! and diagonal, from far off the target, slopes with halfway ties, and
+//! zero-length.
 //!
 //! A [`Case`] is written and read as the text `rasterlab fragments` reads,
 //! with a first line `# size WxH` (see [`super::case`]).
 
 use super::case::{snap, Case, Point};
-use super::judge::Property;
+use super::judge::{LineConvention, Property};
 use crate::raster::fixed::{FixedPoint, GUARD_BAND};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 use std::f64::consts::TAU;
@@ -34,6 +38,44 @@ use std::f64::consts::TAU;
 /// family wants ties.
 fn on_grid(v: f64) -> f64 {
     (v * 256.0).round() / 256.0
+}
+
+/// The families of the exact check, in the order cases cycle through them.
+pub const EXACT_FAMILIES: [&str; 10] = [
+    "soup",
+    "polygon",
+    "fan",
+    "grid",
+    "mesh",
+    "needles",
+    "huge",
+    "ties",
+    "zero-area",
+    "overflow",
+];
+/// The families of the mesh checks (watertight, crack-free).
+pub const MESH_FAMILIES: [&str; 7] = [
+    "polygon", "fan", "grid", "mesh", "needles", "huge", "overflow",
+];
+/// The families of the line checks on sub-pixel endpoints.
+pub const LINE_FAMILIES: [&str; 6] = ["random", "centres", "axis", "far", "ties", "zero-length"];
+/// The families of the pixel-index line check.
+pub const PIXEL_INDEX_FAMILIES: [&str; 5] = ["random", "axis", "far", "ties", "zero-length"];
+
+/// The families a check of `property` draws from, in order.
+pub fn families(property: Property) -> &'static [&'static str] {
+    match property {
+        Property::Exact(_) => &EXACT_FAMILIES,
+        Property::Watertight | Property::CrackFree => &MESH_FAMILIES,
+        Property::Line(LineConvention::PixelIndex) => &PIXEL_INDEX_FAMILIES,
+        Property::Line(_) => &LINE_FAMILIES,
+    }
+}
+
+/// The family of the `index`-th case of a check of `property`.
+pub fn family(property: Property, index: u32) -> &'static str {
+    let f = families(property);
+    f[index as usize % f.len()]
 }
 
 /// The `index`-th case of a check of `property`, from `rng`.
@@ -47,8 +89,11 @@ pub fn case(property: Property, index: u32, rng: &mut fastrand::Rng) -> Case {
     };
     let (w, h) = (f64::from(width), f64::from(height));
     match property {
+        Property::Line(LineConvention::PixelIndex) => {
+            case.lines = pixel_index_lines(index, rng, w, h)
+        }
         Property::Line(_) => case.lines = lines(index, rng, w, h),
-        Property::Watertight => {
+        Property::Watertight | Property::CrackFree => {
             // Jitter or clamping can fold a grid or fan over itself; such
             // an input is not watertight, whoever draws it. Keep only
             // inputs the reference draws watertight.
@@ -76,7 +121,7 @@ fn point(rng: &mut fastrand::Rng, w: f64, h: f64) -> Point {
 
 /// Inputs for the exact property: every family.
 fn exact(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]> {
-    match index % 9 {
+    match index % 10 {
         0 => (0..rng.usize(1..=4))
             .map(|_| [(); 3].map(|_| point(rng, w, h)))
             .collect(),
@@ -95,6 +140,7 @@ fn exact(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]>
                 .map(|_| [(); 3].map(|_| (tie(rng, w), tie(rng, h))))
                 .collect()
         }
+        9 => overflow(rng, w, h),
         _ => {
             // A triangle of zero area once snapped (its third vertex within
             // half a subpixel of the line through the first two), beside a
@@ -115,18 +161,63 @@ fn exact(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]>
 /// Inputs for the watertight property: triangles sharing edges, never
 /// overlapping.
 fn watertight(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]> {
-    match index % 5 {
+    match index % 7 {
         0 => polygon(rng, w, h),
         1 => fan(rng, w, h),
         2 => grid(rng, w, h),
         3 => mesh(rng, w, h),
-        _ => {
-            if rng.bool() {
-                huge(rng, w, h)
-            } else {
-                needles(rng, w, h)
-            }
-        }
+        4 => needles(rng, w, h),
+        5 => huge(rng, w, h),
+        _ => overflow(rng, w, h),
+    }
+}
+
+/// Two triangles sharing an edge, with vertices 2,000 to 30,000 px off the
+/// target (on any side), of which only a corner (a thin wedge from a
+/// vertex inside the target) or a thin band across it is seen; either
+/// winding.
+fn overflow(rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]> {
+    let limit = (GUARD_BAND - 2) as f64;
+    let clamp = |p: Point| {
+        (
+            on_grid(p.0.clamp(-limit, limit)),
+            on_grid(p.1.clamp(-limit, limit)),
+        )
+    };
+    let far = |rng: &mut fastrand::Rng| 2000.0 + rng.f64() * 28000.0;
+    let at = |c: Point, r: f64, a: f64| (c.0 + r * a.cos(), c.1 + r * a.sin());
+    let [a, b, c, d] = if rng.bool() {
+        // A corner: a vertex inside the target, the far ends a few
+        // thousandths of a radian apart.
+        let v = (coord(rng, 0.0, w), coord(rng, 0.0, h));
+        let angle = rng.f64() * TAU;
+        let spread = 0.0003 + rng.f64() * 0.003;
+        let far_end = far(rng);
+        [
+            v,
+            at(v, far_end, angle),
+            at(v, far(rng), angle + spread),
+            at(v, far(rng), angle - spread),
+        ]
+    } else {
+        // A thin band: a long shared edge across the target, the third
+        // vertices a pixel or two to either side near the target, or far.
+        let centre = (coord(rng, 0.0, w), coord(rng, 0.0, h));
+        let angle = rng.f64() * TAU;
+        let (p, q) = (at(centre, far(rng), angle), at(centre, -far(rng), angle));
+        let side = |rng: &mut fastrand::Rng, s: f64| {
+            let off = s * (0.3 + rng.f64() * 2.0);
+            let along = (rng.f64() - 0.5) * if rng.bool() { w.max(h) } else { 40000.0 };
+            let base = at(centre, along, angle);
+            at(base, off, angle + TAU / 4.0)
+        };
+        [p, q, side(rng, 1.0), side(rng, -1.0)]
+    };
+    let (a, b, c, d) = (clamp(a), clamp(b), clamp(c), clamp(d));
+    if rng.bool() {
+        vec![[a, b, c], [b, a, d]]
+    } else {
+        vec![[a, c, b], [b, d, a]]
     }
 }
 
@@ -337,6 +428,59 @@ fn lines(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 2]>
                         (a.0 + coord(rng, -1.0, 1.0), a.1 + coord(rng, -1.0, 1.0)),
                     ]
                 }
+            }
+        })
+        .collect()
+}
+
+/// Line segments between whole-number pixel indices.
+fn pixel_index_lines(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 2]> {
+    let (w, h) = (w as i32, h as i32);
+    let pixel =
+        |rng: &mut fastrand::Rng| (f64::from(rng.i32(-2..w + 2)), f64::from(rng.i32(-2..h + 2)));
+    (0..rng.usize(1..=4))
+        .map(|_| match index % 5 {
+            0 => [pixel(rng), pixel(rng)],
+            1 => {
+                let a = pixel(rng);
+                let k = f64::from(rng.i32(-20..20));
+                [
+                    a,
+                    [
+                        (a.0 + k, a.1),
+                        (a.0, a.1 + k),
+                        (a.0 + k, a.1 + k),
+                        (a.0 + k, a.1 - k),
+                    ][rng.usize(0..4)],
+                ]
+            }
+            2 => {
+                let far = f64::from(rng.i32(1000..30000));
+                let a = pixel(rng);
+                let angle = rng.f64() * TAU;
+                [
+                    a,
+                    (
+                        (a.0 + far * angle.cos()).round(),
+                        (a.1 + far * angle.sin()).round(),
+                    ),
+                ]
+            }
+            3 => {
+                // Halfway ties: an even run and an odd rise (or the reverse).
+                let a = pixel(rng);
+                let run = 2 * rng.i32(1..8);
+                let rise = 2 * rng.i32(0..run / 2) + 1;
+                let (sx, sy) = (
+                    if rng.bool() { 1 } else { -1 },
+                    if rng.bool() { 1 } else { -1 },
+                );
+                let (dx, dy) = if rng.bool() { (run, rise) } else { (rise, run) };
+                [a, (a.0 + f64::from(sx * dx), a.1 + f64::from(sy * dy))]
+            }
+            _ => {
+                let a = pixel(rng);
+                [a, a]
             }
         })
         .collect()

@@ -20,13 +20,25 @@
 //!   pixel centre inside the union of the triangles is drawn exactly once,
 //!   nothing outside is drawn, a triangle draws only centres it touches,
 //!   and centres on the union's boundary at most once;
+//! * [`Property::CrackFree`]: every centre on a shared edge or shared
+//!   vertex inside a mesh drawn exactly once, no pixel drawn twice,
+//!   whatever is drawn at the mesh's outline (the two side by side in
+//!   [`judge`]);
 //! * [`Property::Line`]: lines drawn by the midpoint rule or the diamond
-//!   exit rule exactly, or within Vulkan's tolerance of the diamond rule.
+//!   exit rule exactly, within Vulkan's tolerance of the diamond rule, or
+//!   by integer Bresenham between pixel-index endpoints ([`pixel_index`]).
+//!
+//! [`run`] is the whole check as the `rasterlab check` command runs it:
+//! a [`CheckRequest`] in, a [`CheckReport`] out (text through `Display`,
+//! the one JSON shape through `Serialize`, described by
+//! `docs/check-report.schema.json`), which may also ask which fill rule a
+//! rasterizer follows (the rule table of [`RuleChoice::Any`]).
 //!
 //! Always: a fragment outside the target, or one pixel listed twice for
 //! one primitive, is a failure. A failing case is [`shrink`]ed (primitives
 //! dropped, vertices moved toward the pixel grid and toward each other,
-//! the target cut down) to a small counterexample, which
+//! the target cut down) to a small counterexample failing the same way
+//! (the same [`FailureKind`]), which
 //! [`Finding::ascii_grid`] and [`Finding::counterexample_text`] show.
 //!
 //! ```
@@ -43,13 +55,19 @@
 pub mod case;
 pub mod generate;
 pub mod judge;
+pub mod pixel_index;
 pub mod program;
 mod report;
+mod run;
 pub mod shrink;
 
 pub use case::Case;
-pub use judge::{Finding, Property};
+pub use judge::{FailureKind, Finding, LineConvention, Property, Provenance};
 pub use program::Program;
+pub use run::{
+    run, run_with, BrokenReport, CaseFailure, CheckReport, CheckRequest, Counterexample,
+    FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
+};
 
 use crate::geometry::scene::setup_triangles;
 use crate::raster::backend::{line_backends, reference_triangle_backend};
@@ -104,6 +122,8 @@ pub enum SubjectError {
     },
 }
 
+impl std::error::Error for SubjectError {}
+
 impl fmt::Display for SubjectError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -147,6 +167,7 @@ where
 
 /// A built-in back-end as a subject (triangles under a fill rule, or
 /// lines with the default options).
+#[derive(Copy, Clone)]
 pub enum Builtin {
     /// A triangle back-end and the rule it draws with.
     Triangles(&'static dyn TriangleRasterizer, FillRule),
@@ -257,6 +278,36 @@ pub enum Verdict {
     },
 }
 
+impl fmt::Display for Verdict {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Verdict::Pass { cases } => write!(f, "PASS: {cases} cases"),
+            Verdict::Fail {
+                case_index,
+                original,
+                finding,
+            } => {
+                write!(
+                    f,
+                    "FAIL: {}, case {case_index}; shrunk from {} to {} primitive(s) on a {}x{} target",
+                    finding.property,
+                    original.len(),
+                    finding.case.len(),
+                    finding.case.width,
+                    finding.case.height
+                )?;
+                for p in finding.problems.iter().take(5) {
+                    write!(f, "\n  {p}")?;
+                }
+                if let Some(d) = &finding.diagnosis {
+                    write!(f, "\ndiagnosis: {d}")?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
 /// A subject that broke, with the (shrunk) case that broke it.
 #[derive(Clone, Debug)]
 pub struct Broken {
@@ -264,6 +315,89 @@ pub struct Broken {
     pub error: SubjectError,
     /// The smallest case found that triggers it.
     pub case: Case,
+    /// The 0-based index of the case on which it first broke.
+    pub case_index: u32,
+    /// True when it breaks the same way on the simplest input too (a
+    /// program that cannot start, or fails whatever it is given): the
+    /// case is then the first one, not shrunk.
+    pub on_every_input: bool,
+}
+
+impl fmt::Display for Broken {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.error)?;
+        if self.on_every_input {
+            write!(
+                f,
+                "\nit breaks so on every input, the simplest included: broken, not wrong"
+            )
+        } else {
+            write!(
+                f,
+                "\nthe input that triggers it: {} primitive(s), {}x{}",
+                self.case.len(),
+                self.case.width,
+                self.case.height
+            )
+        }
+    }
+}
+
+impl std::error::Error for Broken {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
+/// The simplest input: a 1x1 target and one small triangle (or line)
+/// over its pixel. A subject that breaks on it breaks on every input.
+pub fn simplest_case(lines: bool) -> Case {
+    Case {
+        width: 1,
+        height: 1,
+        triangles: if lines {
+            Vec::new()
+        } else {
+            vec![[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)]]
+        },
+        lines: if lines {
+            vec![[(0.0, 0.0), (1.0, 0.0)]]
+        } else {
+            Vec::new()
+        },
+    }
+}
+
+/// What a subject that failed on `case` amounts to: broken on every input
+/// (it fails the same way on [`simplest_case`]; not shrunk), broken on
+/// some (shrunk), or, for a timeout or a flood of output, reported as it
+/// is (each run costs seconds).
+pub(crate) fn broken(
+    error: SubjectError,
+    case: &Case,
+    case_index: u32,
+    subject: &mut dyn Subject,
+    runs: u32,
+) -> Broken {
+    let same = |e: &SubjectError| std::mem::discriminant(e) == std::mem::discriminant(&error);
+    let (case, on_every_input) = match error {
+        SubjectError::Timeout { .. } | SubjectError::TooMuchOutput { .. } => (case.clone(), false),
+        _ if subject
+            .draw(&simplest_case(!case.lines.is_empty()))
+            .as_ref()
+            .err()
+            .is_some_and(same) =>
+        {
+            (case.clone(), true)
+        }
+        _ => (shrink::shrink_broken(case, subject, runs), false),
+    };
+    Broken {
+        error,
+        case,
+        case_index,
+        on_every_input,
+    }
 }
 
 /// Runs the check: `options.cases` generated cases, stopping at the first
@@ -276,18 +410,21 @@ pub fn check_with_progress(
     let mut rng = fastrand::Rng::with_seed(options.seed);
     for index in 0..options.cases {
         let case = generate::case(options.property, index, &mut rng);
-        let drawn = subject.draw(&case).map_err(|error| {
-            // A run that timed out or flooded its output costs seconds:
-            // such a case is reported as it is, not shrunk.
-            let case = match error {
-                SubjectError::Timeout { .. } | SubjectError::TooMuchOutput { .. } => case.clone(),
-                _ => shrink::shrink_broken(&case, subject, options.shrink_runs),
-            };
-            Box::new(Broken { error, case })
-        })?;
+        let drawn = match subject.draw(&case) {
+            Ok(drawn) => drawn,
+            Err(error) => {
+                return Err(Box::new(broken(
+                    error,
+                    &case,
+                    index,
+                    subject,
+                    options.shrink_runs,
+                )))
+            }
+        };
         progress(index + 1);
         if let Some(first) = judge::judge(options.property, &case, &drawn) {
-            let finding = shrink::shrink(first, subject, options.shrink_runs);
+            let finding = shrink::shrink(first, subject, options.shrink_runs, &mut |_| {});
             return Ok(Verdict::Fail {
                 case_index: index,
                 original: case,
@@ -306,17 +443,19 @@ pub fn check(options: &CheckOptions, subject: &mut dyn Subject) -> Result<Verdic
 }
 
 /// The reference fragments of a case under a property: what an exact
-/// rasterizer draws (for [`Property::Watertight`], the top-left rule's
-/// answer, one of the many that pass).
+/// rasterizer draws (for [`Property::Watertight`] and
+/// [`Property::CrackFree`], the top-left rule's answer, one of the many
+/// that pass).
 pub fn reference(property: Property, case: &Case) -> Vec<Fragment> {
     match property {
         Property::Exact(rule) => triangle_fragments(reference_triangle_backend(), case, rule),
-        Property::Watertight => {
+        Property::Watertight | Property::CrackFree => {
             triangle_fragments(reference_triangle_backend(), case, FillRule::TopLeft)
         }
         Property::Line(judge::LineConvention::Midpoint) => {
             line_fragments(line_backend_walking(LineWalk::Midpoint), case)
         }
+        Property::Line(judge::LineConvention::PixelIndex) => pixel_index::fragments(case),
         Property::Line(_) => line_fragments(line_backend_walking(LineWalk::DiamondExit), case),
     }
 }

@@ -1,24 +1,40 @@
 //! A rasterizer in another program: the `rasterlab check --exec` protocol.
 //!
 //! For each case the program is started once, through `sh -c`, with the
-//! placeholders of its command line replaced: `{input}` (a file in the
-//! text format `rasterlab fragments` reads: `# size WxH`, then triangles
-//! `x0 y0 x1 y1 x2 y2` or lines `x0 y0 x1 y1`, one per line), `{width}`,
-//! `{height}` and `{rule}`. It prints one fragment per line, `x y id`
-//! (`id` the 0-based index of the primitive), in any order; a fourth
-//! number (a coverage weight) is allowed and ignored, and so are blank
-//! lines.
+//! placeholders of its command line replaced:
+//!
+//! * `{input}`: the path of a file holding the case's primitives: a first
+//!   line `# size WxH` (the target), then one primitive per line, a
+//!   triangle as six numbers `x0 y0 x1 y1 x2 y2`, a line segment as four
+//!   `x0 y0 x1 y1`, in screen coordinates: pixels, x right, y down, pixel
+//!   `(i, j)` covering `[i, i + 1) x [j, j + 1)` with its centre at
+//!   `(i + 0.5, j + 0.5)` (under the pixel-index line convention the
+//!   numbers are whole and name pixels). Other lines starting with `#`
+//!   are comments;
+//! * `{width}` and `{height}`: the target's size;
+//! * `{rule}`: what the check asks for: the fill rule under an exact
+//!   check (`top-left`, ...), otherwise the property's name (`watertight`,
+//!   `crack-free`, `any`) or the line convention (`midpoint`, `diamond`,
+//!   `vulkan`, `pixel-index`).
+//!
+//! It prints one fragment per line, `x y id` (`id` the 0-based index of
+//! the primitive), in any order; a fourth number (a coverage weight) is
+//! allowed and ignored, and so are blank lines.
 //!
 //! The program is not trusted: it is stopped after a time limit, its
 //! output is read up to a cap, and a number too large for 64 bits is read
 //! as a pixel far off the target (a defect the check reports), not as a
-//! crash of the check.
+//! crash of the check. Its input files live in a temporary folder removed
+//! when the last clone of the [`Program`] is dropped, and on Ctrl-C once
+//! `remove_temporary_files_on_interrupt` (with the `cli` feature) has
+//! been called.
 
 use super::case::Case;
 use super::{Fragment, Subject, SubjectError};
 use std::io::Read;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Duration;
 use wait_timeout::ChildExt;
 
@@ -33,8 +49,61 @@ pub struct Program {
     pub timeout: Duration,
     /// The most bytes of output read.
     pub output_cap: usize,
-    /// Where the input files are written.
-    pub dir: PathBuf,
+    /// The folder of the input files, made at the first run and shared by
+    /// clones (each run writes a file of its own).
+    dir: Arc<OnceLock<Result<Folder, String>>>,
+}
+
+/// A temporary folder, removed when dropped and listed for removal on
+/// Ctrl-C meanwhile.
+#[derive(Debug)]
+struct Folder(tempfile::TempDir);
+
+/// The folders of live programs, for the Ctrl-C handler.
+fn live_folders() -> &'static Mutex<Vec<PathBuf>> {
+    static LIVE: OnceLock<Mutex<Vec<PathBuf>>> = OnceLock::new();
+    LIVE.get_or_init(|| Mutex::new(Vec::new()))
+}
+
+impl Folder {
+    fn new() -> std::io::Result<Folder> {
+        let dir = tempfile::Builder::new()
+            .prefix("rasterlab-check-")
+            .tempdir()?;
+        if let Ok(mut live) = live_folders().lock() {
+            live.push(dir.path().to_path_buf());
+        }
+        Ok(Folder(dir))
+    }
+
+    fn path(&self) -> &Path {
+        self.0.path()
+    }
+}
+
+impl Drop for Folder {
+    fn drop(&mut self) {
+        if let Ok(mut live) = live_folders().lock() {
+            live.retain(|p| p != self.0.path());
+        }
+    }
+}
+
+/// Makes Ctrl-C remove the input folders of every live [`Program`] before
+/// the process exits (status 130). Call it once, in a program that has no
+/// Ctrl-C handler of its own; it fails when one is installed already.
+/// (With the `cli` feature, which brings the Ctrl-C crate.)
+#[cfg(feature = "cli")]
+pub fn remove_temporary_files_on_interrupt() -> Result<(), String> {
+    ctrlc::set_handler(|| {
+        if let Ok(live) = live_folders().lock() {
+            for dir in live.iter() {
+                let _ = std::fs::remove_dir_all(dir);
+            }
+        }
+        std::process::exit(130);
+    })
+    .map_err(|e| e.to_string())
 }
 
 impl Program {
@@ -46,8 +115,17 @@ impl Program {
             rule: rule.to_string(),
             timeout: Duration::from_secs(5),
             output_cap: 64 << 20,
-            dir: std::env::temp_dir().join(format!("rasterlab-check-{}", std::process::id())),
+            dir: Arc::new(OnceLock::new()),
         }
+    }
+
+    /// The folder of the input files, made at the first call.
+    fn folder(&self) -> Result<&Path, SubjectError> {
+        self.dir
+            .get_or_init(|| Folder::new().map_err(|e| e.to_string()))
+            .as_ref()
+            .map(Folder::path)
+            .map_err(|e| SubjectError::Start(format!("cannot make a temporary folder: {e}")))
     }
 
     /// The command line for one case, its input written to `input`.
@@ -67,10 +145,14 @@ fn shell_quote(word: &str) -> String {
 
 impl Subject for Program {
     fn draw(&mut self, case: &Case) -> Result<Vec<Fragment>, SubjectError> {
-        std::fs::create_dir_all(&self.dir).map_err(|e| SubjectError::Start(e.to_string()))?;
-        let input = self.dir.join("input.txt");
-        std::fs::write(&input, case.to_text()).map_err(|e| SubjectError::Start(e.to_string()))?;
-        let line = self.command_line(case, &input.to_string_lossy());
+        let start = |e: std::io::Error| SubjectError::Start(format!("cannot write the input: {e}"));
+        let mut input = tempfile::Builder::new()
+            .prefix("input-")
+            .suffix(".txt")
+            .tempfile_in(self.folder()?)
+            .map_err(start)?;
+        std::io::Write::write_all(&mut input, case.to_text().as_bytes()).map_err(start)?;
+        let line = self.command_line(case, &input.path().to_string_lossy());
         let mut child = Command::new("sh")
             .arg("-c")
             .arg(&line)

@@ -131,6 +131,30 @@ impl Finding {
         svg
     }
 
+    /// Where the case came from and how it failed before shrinking, as
+    /// HTML paragraphs.
+    fn provenance_html(&self) -> String {
+        let mut out = String::new();
+        if let Some(p) = &self.provenance {
+            let _ = write!(
+                out,
+                "<p id=\"provenance\">Command: <code>{}</code><br>Seed {}, case {} (family {}).</p>",
+                escape(&p.command),
+                p.seed,
+                p.case_index,
+                escape(&p.family)
+            );
+        }
+        if let Some(o) = &self.original_problem {
+            let _ = write!(
+                out,
+                "<p id=\"original\">The case as generated: {}</p>",
+                escape(o)
+            );
+        }
+        out
+    }
+
     /// The page: a legend, the problems, the diagnosis, the grid picture
     /// ([`Finding::to_svg`]) and the counterexample file.
     pub fn to_html(&self) -> String {
@@ -152,7 +176,8 @@ impl Finding {
 <style>body{{font-family:sans-serif;margin:2em;max-width:80em}} .key span{{display:inline-block;width:1em;height:1em;margin:0 .3em 0 1em;vertical-align:middle}} pre{{background:#f4f4f4;padding:1em;white-space:pre-wrap}}</style>
 </head><body>
 <h1>Counterexample: {property}</h1>
-<p>Target {w0}x{h0}, {n} primitive(s). {drawn} fragment(s) drawn, {expected} expected.</p>
+{provenance}
+<p>Target {w0}x{h0}, {n} primitive(s). {drawn} fragment(s) drawn, {expected} expected. Failure kind: <b>{kind}</b>.</p>
 <p class="key"><span style="background:{CORRECT}"></span>drawn and expected <span style="background:{EXTRA}"></span>drawn, not expected (or twice) <span style="background:{MISSING}"></span>expected, missing</p>
 <ul id="problems">{problems}</ul>
 {diagnosis}
@@ -162,6 +187,8 @@ impl Finding {
 </body></html>
 "#,
             property = escape(&self.property.to_string()),
+            kind = self.kind(),
+            provenance = self.provenance_html(),
             w0 = self.case.width,
             h0 = self.case.height,
             n = self.case.len(),

@@ -1,7 +1,9 @@
 //! Shrinking a failing case to a small counterexample.
 //!
 //! Greedy, as property-testing shrinkers are: try a smaller or simpler
-//! variant of the case, keep it if it still fails, start again from it;
+//! variant of the case, keep it if it still fails **the same way** (the
+//! same property and [`FailureKind`]: a double draw stays a double draw,
+//! never turns into a gap), start again from it;
 //! stop when no variant fails or the budget of subject runs is spent. The
 //! variants, in order:
 //!
@@ -14,29 +16,46 @@
 //! 4. move a point halfway toward the next point of its primitive.
 //!
 //! Points are moved wherever they occur, so triangles that share a vertex
-//! keep sharing it. Under the watertight property a variant is used only
-//! if the reference answer is still watertight on it (no fold-over made
-//! two triangles overlap), so the counterexample is never the input's
-//! fault.
+//! keep sharing it. Under the watertight and crack-free properties a
+//! variant is used only if the reference answer is still watertight on it
+//! (no fold-over made two triangles overlap), so the counterexample is
+//! never the input's fault. The shrunk finding records the first problem
+//! of the case as generated ([`Finding::original_problem`]).
 
 use super::case::{Case, Point};
-use super::judge::{judge, Finding, Property};
+use super::judge::{judge, FailureKind, Finding, LineConvention, Property};
 use super::{reference, Subject, SubjectError};
 use crate::raster::fixed::GUARD_BAND;
 
 /// Shrinks the case of `first`, a failure of `subject` already judged,
 /// within `runs` more runs of the subject; returns what is wrong with the
-/// smallest failing case found.
-pub fn shrink(first: Finding, subject: &mut dyn Subject, runs: u32) -> Finding {
+/// smallest case found that fails the same way. `progress` is told how
+/// many runs have been spent.
+pub fn shrink(
+    first: Finding,
+    subject: &mut dyn Subject,
+    runs: u32,
+    progress: &mut dyn FnMut(u32),
+) -> Finding {
     let property = first.property;
+    let kind: FailureKind = first.kind();
+    let original = first.problems.first().cloned();
     let mut budget = runs;
     let mut fails = |c: &Case, budget: &mut u32| -> Option<Finding> {
         if *budget == 0 || !valid(property, c) {
             return None;
         }
+        if property == Property::Line(LineConvention::PixelIndex)
+            && points(c).any(|p| p.0.fract() != 0.0 || p.1.fract() != 0.0)
+        {
+            // Pixel indices are whole numbers.
+            return None;
+        }
         *budget -= 1;
+        progress(runs - *budget);
         let drawn = subject.draw(c).ok()?;
-        judge(property, c, &drawn)
+        let mut f = judge(property, c, &drawn)?;
+        f.lead_with(kind).then_some(f)
     };
     let mut best = first;
     'improve: while budget > 0 {
@@ -57,6 +76,7 @@ pub fn shrink(first: Finding, subject: &mut dyn Subject, runs: u32) -> Finding {
         }
         break;
     }
+    best.original_problem = original;
     best
 }
 
@@ -88,7 +108,7 @@ pub fn shrink_broken(case: &Case, subject: &mut dyn Subject, runs: u32) -> Case 
 
 /// Whether a variant is a fair input for the property.
 fn valid(property: Property, case: &Case) -> bool {
-    property != Property::Watertight
+    !property.needs_mesh()
         || judge(
             Property::Watertight,
             case,

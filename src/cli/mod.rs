@@ -45,6 +45,8 @@ pub struct Cli {
     command: Command,
 }
 
+// Parsed once per run: the size of the largest arguments does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Subcommand, Debug)]
 enum Command {
     /// List every back-end as `NAME KIND DESCRIPTION`, one per line.
