@@ -3,7 +3,7 @@
 use super::args::{LineArgs, Size};
 use clap::Args;
 use rasterlab::geometry::listing::{list_fragments_in_file, FragmentsRequest};
-use rasterlab::raster::backend::{backend, Backend};
+use rasterlab::{backend, Backend};
 use rasterlab::{FillRule, Result};
 use std::path::PathBuf;
 
