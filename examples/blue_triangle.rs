@@ -9,7 +9,8 @@
 //! 5. the fragment shader: every fragment is blue.
 //!
 //! The picture is printed as text (`#` = a blue pixel) and written to
-//! `blue_triangle.png`.
+//! `blue_triangle.png`, enlarged so that each of its 16 x 16 pixels is a
+//! framed 16 x 16 cell.
 //!
 //! `cargo run --release --example blue_triangle`
 
@@ -67,5 +68,9 @@ fn main() -> rasterlab::Result<()> {
         "{} pixels tested, {} fragments; written to blue_triangle.png",
         work.samples_tested, work.fragments
     );
-    target.save_png(std::path::Path::new("blue_triangle.png"))
+    // Enlarged to 256 x 256, each pixel a framed cell, so it can be seen.
+    rasterlab::output::write_png(
+        std::path::Path::new("blue_triangle.png"),
+        &rasterlab::teaching::grid_picture::for_people(&target),
+    )
 }

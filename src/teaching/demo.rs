@@ -92,7 +92,12 @@ pub fn run(out: &Path, assets: &Path) -> Result<DemoReport> {
                 identical: reference.as_ref().is_none_or(|r| *r == target),
             });
             if reference.is_none() {
-                target.save_png(&out.join(format!("{name}.png")))?;
+                // Enlarged, each pixel a framed cell: the scenes are 5 to 14
+                // pixels a side.
+                crate::output::write_png(
+                    &out.join(format!("{name}.png")),
+                    &crate::teaching::grid_picture::for_people(&target),
+                )?;
                 reference = Some(target);
             }
         }
