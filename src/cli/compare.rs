@@ -2,7 +2,7 @@
 
 use super::args::Size;
 use clap::Args;
-use rasterlab::teaching::compare::{compare, CompareRequest};
+use rasterlab::teaching::compare::{compare, default_size, CompareRequest};
 use rasterlab::Result;
 use std::path::PathBuf;
 
@@ -11,9 +11,10 @@ pub struct CompareArgs {
     /// A triangle soup or polygon file, a line set file, or a mesh (.ply,
     /// .ply.gz, .obj).
     input: PathBuf,
-    /// Target size, WIDTHxHEIGHT.
-    #[arg(long, default_value = "64x64")]
-    size: Size,
+    /// Target size, WIDTHxHEIGHT (default: 320x240 for a mesh, 64x64
+    /// for triangles and lines).
+    #[arg(long)]
+    size: Option<Size>,
     /// Directory the report (index.html) is written to.
     #[arg(long, default_value = "compare-output")]
     out: PathBuf,
@@ -23,10 +24,14 @@ pub struct CompareArgs {
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
+    let (width, height) = args
+        .size
+        .as_ref()
+        .map_or_else(|| default_size(&args.input), |s| (s.width, s.height));
     let summary = compare(&CompareRequest {
         input: &args.input,
-        width: args.size.width,
-        height: args.size.height,
+        width,
+        height,
         samples: args.samples,
         out: &args.out,
     })?;

@@ -48,6 +48,24 @@ pub struct CompareSummary {
     pub path: PathBuf,
 }
 
+/// The target size a comparison defaults to: for a mesh, 320 x 240,
+/// enough to show its shape (at 64 x 64 the res2 dragon is 1,195
+/// fragments); for 2D triangles and lines, given in pixels, 64 x 64.
+///
+/// ```
+/// use rasterlab::teaching::compare::default_size;
+/// use std::path::Path;
+/// assert_eq!(default_size(Path::new("dragon.ply.gz")), (320, 240));
+/// assert_eq!(default_size(Path::new("assets/polygon.txt")), (64, 64));
+/// ```
+pub fn default_size(input: &Path) -> (u32, u32) {
+    if Mesh::is_mesh_path(input) {
+        (320, 240)
+    } else {
+        (64, 64)
+    }
+}
+
 /// Reads the input, runs every back-end on it, and writes the report.
 pub fn compare(request: &CompareRequest<'_>) -> Result<CompareSummary> {
     let (width, height) = (request.width, request.height);
