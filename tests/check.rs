@@ -1100,3 +1100,46 @@ fn keep_going_json_validates_against_the_schema() {
     assert_eq!(json["keep_going"], true);
     assert!(json["command"].as_str().unwrap().contains("--keep-going"));
 }
+
+/// The Python adapters of `examples/adapters/`, the module each needs.
+const ADAPTERS: [(&str, &str); 8] = [
+    ("pillow", "PIL"),
+    ("scikit_image", "skimage"),
+    ("opencv", "cv2"),
+    ("matplotlib_path", "matplotlib"),
+    ("skia_path", "skia"),
+    ("cairo_fill", "cairo"),
+    ("rasterio_gdal", "rasterio"),
+    ("protocol", "sys"),
+];
+
+#[test]
+fn the_python_adapters_are_judged_not_broken() {
+    let require = std::env::var("RASTERLAB_REQUIRE_PYTHON").is_ok_and(|v| v == "1");
+    let schema = schema();
+    for (adapter, module) in ADAPTERS.iter().filter(|a| a.0 != "protocol") {
+        let present = Command::new("python3")
+            .args(["-c", &format!("import numpy, {module}")])
+            .output()
+            .is_ok_and(|o| o.status.success());
+        if !present {
+            // pycairo needs cairo's headers to build: not required.
+            assert!(
+                !require || *module == "cairo",
+                "RASTERLAB_REQUIRE_PYTHON=1 but python3 cannot import {module}"
+            );
+            eprintln!("SKIPPED: the {adapter} adapter (python3 cannot import {module})");
+            continue;
+        }
+        let mut request = CheckRequest::new(SubjectSpec::Exec(format!(
+            "python3 examples/adapters/{adapter}.py {{input}} {{width}} {{height}}"
+        )));
+        request.rule = Some(RuleChoice::Any);
+        request.cases = 10;
+        request.shrink_runs = 3;
+        let json = serde_json::to_value(run(&request).unwrap()).unwrap();
+        valid(&schema, &json);
+        assert_ne!(json["verdict"], "broken", "{adapter}: {json:#}");
+        eprintln!("{adapter}: follows {}", json["rules"]["followed"]);
+    }
+}
