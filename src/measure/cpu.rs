@@ -115,7 +115,7 @@ impl CpuUse {
         let threads: Vec<String> = self
             .per_thread_ms
             .iter()
-            .map(|ms| crate::measure::timing::significant(*ms))
+            .map(|ms| crate::measure::table::significant(*ms))
             .collect();
         format!(
             "cpu {} wait {}",
@@ -124,7 +124,7 @@ impl CpuUse {
             } else {
                 threads.join("+")
             },
-            crate::measure::timing::significant(self.waiting_ms)
+            crate::measure::table::significant(self.waiting_ms)
         )
     }
 }

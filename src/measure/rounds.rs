@@ -21,8 +21,9 @@
 
 use crate::measure::cpu::{CpuUse, ThreadTimes};
 use crate::measure::data::Skipped;
+use crate::measure::table::significant;
 use crate::measure::table::Table;
-use crate::measure::timing::{significant, Spread};
+use crate::measure::timing::Spread;
 use serde::Serialize;
 use std::time::Instant;
 

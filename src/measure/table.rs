@@ -87,6 +87,26 @@ impl fmt::Display for Table {
     }
 }
 
+/// `x` with three significant digits (at least the units), so small and
+/// large figures alike keep their information: `0.00123`, `1.23`, `123`,
+/// `1235`.
+pub fn significant(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let mut digits = x.abs().log10().floor() as i32;
+    // 99.96 rounds to 100.0 at one decimal: one digit more before the point.
+    let rounded = format!("{:.*}", (2 - digits).max(0) as usize, x.abs());
+    if rounded
+        .parse::<f64>()
+        .is_ok_and(|r| r >= 10f64.powi(digits + 1))
+    {
+        digits += 1;
+    }
+    let decimals = (2 - digits).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

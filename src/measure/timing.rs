@@ -4,7 +4,8 @@
 //! meanwhile ([`crate::measure::cpu`]).
 //!
 //! ```
-//! use rasterlab::measure::timing::{time_runs, significant};
+//! use rasterlab::measure::table::significant;
+//! use rasterlab::measure::timing::time_runs;
 //! let (timing, answer) = time_runs(5, || (1..=100u64).sum::<u64>());
 //! assert_eq!(answer, 5050);
 //! assert_eq!(timing.spread.runs, 5);
@@ -15,6 +16,7 @@
 //! ```
 
 use crate::measure::cpu::{CpuUse, ThreadTimes};
+use crate::measure::table::significant;
 use serde::Serialize;
 use std::time::{Duration, Instant};
 
@@ -99,26 +101,6 @@ pub fn time_runs<T>(samples: usize, mut run: impl FnMut() -> T) -> (Timing, T) {
         cpu,
     };
     (timing, first)
-}
-
-/// `x` with three significant digits (at least the units), so small and
-/// large figures alike keep their information: `0.00123`, `1.23`, `123`,
-/// `1235`.
-pub fn significant(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    let mut digits = x.abs().log10().floor() as i32;
-    // 99.96 rounds to 100.0 at one decimal: one digit more before the point.
-    let rounded = format!("{:.*}", (2 - digits).max(0) as usize, x.abs());
-    if rounded
-        .parse::<f64>()
-        .is_ok_and(|r| r >= 10f64.powi(digits + 1))
-    {
-        digits += 1;
-    }
-    let decimals = (2 - digits).max(0) as usize;
-    format!("{x:.decimals$}")
 }
 
 #[cfg(test)]
