@@ -22,6 +22,7 @@ mod inflate;
 pub mod obj;
 pub mod ply;
 mod ply_ascii;
+mod ply_payload;
 
 use crate::error::{Error, Result};
 use glam::{Vec2, Vec3, Vec4};

@@ -19,9 +19,9 @@
 
 use super::inflate::Inflated;
 use super::ply_ascii::{self, Kind};
-use super::{face::triangulate_face, Mesh};
+use super::ply_payload::{Payload, VertexColumn};
+use super::Mesh;
 use crate::error::{Error, Result};
-use glam::{Vec2, Vec3, Vec4};
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{
     ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult,
@@ -207,184 +207,6 @@ fn read_binary_element<R: BufRead>(
     Ok(())
 }
 
-/// A vertex property the mesh keeps, in the order of a vertex's columns.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub(super) enum VertexColumn {
-    X,
-    Y,
-    Z,
-    Nx,
-    Ny,
-    Nz,
-    Red,
-    Green,
-    Blue,
-    U,
-    V,
-}
-
-impl VertexColumn {
-    /// The number of columns.
-    pub(super) const COUNT: usize = 11;
-
-    /// The column of a vertex property, by its name.
-    pub(super) fn of(name: &str) -> Option<VertexColumn> {
-        use VertexColumn::*;
-        Some(match name {
-            "x" => X,
-            "y" => Y,
-            "z" => Z,
-            "nx" => Nx,
-            "ny" => Ny,
-            "nz" => Nz,
-            "red" => Red,
-            "green" => Green,
-            "blue" => Blue,
-            "u" | "s" | "texture_u" | "texture_s" => U,
-            "v" | "t" | "texture_v" | "texture_t" => V,
-            _ => return None,
-        })
-    }
-
-    /// Whether the column is a colour channel.
-    pub(super) fn is_color(self) -> bool {
-        matches!(
-            self,
-            VertexColumn::Red | VertexColumn::Green | VertexColumn::Blue
-        )
-    }
-}
-
-/// What a PLY file's elements hold, whatever its encoding: the vertices'
-/// columns, and the faces' indices one after the other.
-#[derive(Default)]
-pub(super) struct Payload {
-    positions: Vec<Vec3>,
-    /// Normals, colours and texture coordinates, when the vertex element
-    /// declares them.
-    normals: Option<Vec<Vec3>>,
-    colors: Option<Vec<Vec3>>,
-    uvs: Option<Vec<Vec2>>,
-    /// Every face's vertex indices, one face after the other.
-    pub(super) indices: Vec<u32>,
-    /// Where each face's indices end in `indices`.
-    pub(super) face_ends: Vec<usize>,
-    /// The first face whose indices are unusable, and why.
-    pub(super) face_error: Option<(usize, String)>,
-}
-
-impl Payload {
-    /// Empties the vertices, keeping the columns `def` declares.
-    fn clear_vertices(&mut self, def: &ElementDef) {
-        let declared = |columns: &[VertexColumn]| {
-            def.properties
-                .keys()
-                .any(|name| VertexColumn::of(name).is_some_and(|c| columns.contains(&c)))
-        };
-        use VertexColumn::*;
-        self.positions.clear();
-        self.normals = declared(&[Nx, Ny, Nz]).then(Vec::new);
-        self.colors = declared(&[Red, Green, Blue]).then(Vec::new);
-        self.uvs = declared(&[U, V]).then(Vec::new);
-    }
-
-    /// Empties the faces.
-    fn clear_faces(&mut self) {
-        self.indices.clear();
-        self.face_ends.clear();
-        self.face_error = None;
-    }
-
-    /// Room for `n` more vertices.
-    pub(super) fn reserve_vertices(&mut self, n: usize) {
-        self.positions.reserve(n);
-        for c in [&mut self.normals, &mut self.colors].into_iter().flatten() {
-            c.reserve(n);
-        }
-        if let Some(uvs) = &mut self.uvs {
-            uvs.reserve(n);
-        }
-    }
-
-    /// Appends a vertex from its columns (`VertexColumn` order).
-    #[inline]
-    pub(super) fn push_vertex(&mut self, v: &[f64; VertexColumn::COUNT]) {
-        let v = v.map(|c| c as f32);
-        self.positions.push(Vec3::new(v[0], v[1], v[2]));
-        if let Some(normals) = &mut self.normals {
-            normals.push(Vec3::new(v[3], v[4], v[5]));
-        }
-        if let Some(colors) = &mut self.colors {
-            colors.push(Vec3::new(v[6], v[7], v[8]));
-        }
-        if let Some(uvs) = &mut self.uvs {
-            uvs.push(Vec2::new(v[9], v[10]));
-        }
-    }
-
-    /// The mesh, once its positions and faces are checked; errors name
-    /// the line of the vertex or face at fault (`located`).
-    fn into_mesh(
-        self,
-        vertex_line: usize,
-        face_line: usize,
-        located: impl Fn(usize, String) -> Error,
-    ) -> Result<Mesh> {
-        for (i, &p) in self.positions.iter().enumerate() {
-            super::check_position(p)
-                .map_err(|m| located(vertex_line + i, format!("vertex {i}: {m}")))?;
-        }
-        let positions = self.positions;
-        let mut triangles = Vec::with_capacity(self.face_ends.len());
-        let mut start = 0;
-        for (i, &end) in self.face_ends.iter().enumerate() {
-            let line = face_line + i;
-            let face = &self.indices[start..end];
-            start = end;
-            if let Some((_, message)) = self.face_error.as_ref().filter(|(k, _)| *k == i) {
-                return Err(located(line, format!("face {i}: {message}")));
-            }
-            if face.len() < 3 {
-                return Err(located(
-                    line,
-                    format!(
-                        "face {i} has {} vertices; a face needs at least 3",
-                        face.len()
-                    ),
-                ));
-            }
-            if let Some(&bad) = face.iter().find(|&&k| k as usize >= positions.len()) {
-                return Err(located(
-                    line,
-                    format!(
-                        "face {i}: vertex index {bad} is out of range for {} vertices",
-                        positions.len()
-                    ),
-                ));
-            }
-            if let &[a, b, c] = face {
-                triangles.push([a, b, c]);
-            } else {
-                triangulate_face(&positions, face, &mut triangles)
-                    .map_err(|m| located(line, format!("face {i}: {m}")))?;
-            }
-        }
-        let mut mesh =
-            Mesh::new(positions, triangles).map_err(|e| located(face_line, e.to_string()))?;
-        if let Some(normals) = self.normals {
-            mesh.normals = normals
-                .into_iter()
-                .map(|n| n.normalize_or(Vec3::Z))
-                .collect();
-        }
-        mesh.colors = self
-            .colors
-            .map(|c| c.into_iter().map(|c| Vec4::from((c, 1.0))).collect());
-        mesh.uvs = self.uvs;
-        Ok(mesh)
-    }
-}
-
 /// `ply-rs-bw` writes "Line N: message"; the line goes in [`Error::Parse::line`].
 fn strip_line_prefix(message: &str) -> String {
     let rest = message
@@ -518,6 +340,7 @@ impl PropertyAccess for Skipped {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     fn parse(text: &str) -> Result<Mesh> {
         read(text.as_bytes(), Path::new("t.ply"))
@@ -570,5 +393,69 @@ mod tests {
             Some(3)
         );
         assert!(matches!(line_of("not a ply file\n").0, Some(1)));
+    }
+
+    /// Each element type read from lines cut at every byte: the same
+    /// values as from whole lines, and errors on the line they are on.
+    #[test]
+    fn lines_cut_anywhere_read_the_same() {
+        let text = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0 0\r\n1.5 0 -2e-3 0 255 0\n\t0 1 0 0 0 255 \n3 0 1 2\n";
+        let whole = read(&text[..], std::path::Path::new("t.ply")).unwrap();
+        for chunk in 1..24 {
+            let cut = std::io::BufReader::with_capacity(chunk, &text[..]);
+            let mesh = read(cut, std::path::Path::new("t.ply")).unwrap();
+            assert_eq!(mesh, whole, "chunks of {chunk}");
+        }
+        assert_eq!(whole.positions[1], glam::Vec3::new(1.5, 0.0, -2e-3));
+        assert_eq!(
+            whole.colors.as_ref().unwrap()[2],
+            glam::Vec4::new(0.0, 0.0, 1.0, 1.0)
+        );
+        assert_eq!(whole.triangles, vec![[0, 1, 2]]);
+        for (bad, line, says) in [
+            (
+                "0 0 0 255 0 0\n1.5 0 x 0 255 0\n",
+                14,
+                "`x` is not a valid float (`z`)",
+            ),
+            ("0 0 0 256 0 0\n", 13, "`256` is not a valid uchar"),
+            ("0 0 0 255 0 0\n1 0 0 0 0 0 7\n", 14, "`7` is more than"),
+            (
+                "0 0 0 255 0 0\n1 0 0 0 0\n",
+                14,
+                "the line ends before `blue`",
+            ),
+            (
+                "0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n3 0 1\n",
+                16,
+                "ends before `vertex_indices`",
+            ),
+            (
+                "0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n3 0 1 2.5\n",
+                16,
+                "`2.5` is not a valid int",
+            ),
+        ] {
+            let start = std::str::from_utf8(text)
+                .unwrap()
+                .find("end_header\n")
+                .unwrap()
+                + 11;
+            let file = [&text[..start], bad.as_bytes()].concat();
+            for chunk in [1, 5, 64] {
+                let cut = std::io::BufReader::with_capacity(chunk, &file[..]);
+                match read(cut, std::path::Path::new("t.ply")) {
+                    Err(crate::error::Error::Parse {
+                        line: Some(l),
+                        message,
+                        ..
+                    }) => {
+                        assert_eq!(l, line, "{bad:?}: {message}");
+                        assert!(message.contains(says), "{bad:?}: {message}");
+                    }
+                    other => panic!("{bad:?}: {other:?}"),
+                }
+            }
+        }
     }
 }

@@ -16,7 +16,7 @@
 //! line; what the values mean (finite coordinates, indices in range) is
 //! checked afterwards, by the caller.
 
-use super::ply::{Payload, VertexColumn};
+use super::ply_payload::{Payload, VertexColumn};
 use ply_rs_bw::ply::{ElementDef, PropertyType, ScalarType};
 use std::io::BufRead;
 
@@ -474,69 +474,5 @@ mod tests {
         );
         assert_eq!(parse_scalar(b"0.1", &ScalarType::Double), Some((0.1, 3)));
         assert_eq!(parse_scalar(b"x", &ScalarType::Float), None);
-    }
-
-    /// Each element type read from lines cut at every byte: the same
-    /// values as from whole lines, and errors on the line they are on.
-    #[test]
-    fn lines_cut_anywhere_read_the_same() {
-        let text = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0 0\r\n1.5 0 -2e-3 0 255 0\n\t0 1 0 0 0 255 \n3 0 1 2\n";
-        let whole = super::super::ply::read(&text[..], std::path::Path::new("t.ply")).unwrap();
-        for chunk in 1..24 {
-            let cut = std::io::BufReader::with_capacity(chunk, &text[..]);
-            let mesh = super::super::ply::read(cut, std::path::Path::new("t.ply")).unwrap();
-            assert_eq!(mesh, whole, "chunks of {chunk}");
-        }
-        assert_eq!(whole.positions[1], glam::Vec3::new(1.5, 0.0, -2e-3));
-        assert_eq!(
-            whole.colors.as_ref().unwrap()[2],
-            glam::Vec4::new(0.0, 0.0, 1.0, 1.0)
-        );
-        assert_eq!(whole.triangles, vec![[0, 1, 2]]);
-        for (bad, line, says) in [
-            (
-                "0 0 0 255 0 0\n1.5 0 x 0 255 0\n",
-                14,
-                "`x` is not a valid float (`z`)",
-            ),
-            ("0 0 0 256 0 0\n", 13, "`256` is not a valid uchar"),
-            ("0 0 0 255 0 0\n1 0 0 0 0 0 7\n", 14, "`7` is more than"),
-            (
-                "0 0 0 255 0 0\n1 0 0 0 0\n",
-                14,
-                "the line ends before `blue`",
-            ),
-            (
-                "0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n3 0 1\n",
-                16,
-                "ends before `vertex_indices`",
-            ),
-            (
-                "0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n3 0 1 2.5\n",
-                16,
-                "`2.5` is not a valid int",
-            ),
-        ] {
-            let start = std::str::from_utf8(text)
-                .unwrap()
-                .find("end_header\n")
-                .unwrap()
-                + 11;
-            let file = [&text[..start], bad.as_bytes()].concat();
-            for chunk in [1, 5, 64] {
-                let cut = std::io::BufReader::with_capacity(chunk, &file[..]);
-                match super::super::ply::read(cut, std::path::Path::new("t.ply")) {
-                    Err(crate::error::Error::Parse {
-                        line: Some(l),
-                        message,
-                        ..
-                    }) => {
-                        assert_eq!(l, line, "{bad:?}: {message}");
-                        assert!(message.contains(says), "{bad:?}: {message}");
-                    }
-                    other => panic!("{bad:?}: {other:?}"),
-                }
-            }
-        }
     }
 }
