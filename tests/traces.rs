@@ -294,7 +294,9 @@ mod newer_traces {
 fn an_outside_back_end_is_traced_by_its_walk() {
     use rasterlab::raster::descriptor::{CostClass, Role};
     use rasterlab::raster::triangle::bbox::BoundingBox;
-    use rasterlab::raster::triangle::{TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+    use rasterlab::raster::triangle::{
+        TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver,
+    };
     use rasterlab::{FragmentSink, PixelRect, TriangleSetup, WorkCounters};
 
     struct MyBox;
@@ -306,14 +308,15 @@ fn an_outside_back_end_is_traced_by_its_walk() {
             role: Role::Alternative,
             cost: CostClass::FollowsSize,
         };
-        fn draw_triangle(
+        fn draw_triangle<O: WalkObserver>(
             &self,
             t: &TriangleSetup,
             viewport: PixelRect,
             sink: &mut dyn FragmentSink,
             work: &mut WorkCounters,
+            observer: &mut O,
         ) {
-            BoundingBox.draw_triangle(t, viewport, sink, work)
+            BoundingBox.draw_triangle(t, viewport, sink, work, observer)
         }
     }
     let triangle = [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)];
@@ -323,4 +326,144 @@ fn an_outside_back_end_is_traced_by_its_walk() {
     let bbox = triangle_trace("bbox", triangle, FillRule::TopLeft, 6, 4).unwrap();
     assert!(mine.starts_with("my-box, top-left rule"), "{mine}");
     assert_eq!(mine.replacen("my-box", "bbox", 1), bbox);
+}
+
+/// Traces are recordings of the walk that draws: a back-end added from
+/// outside the crate, with a walk of its own, is drawn, traced, checked
+/// and benchmarked with no code but its algorithm, and a mutation of a
+/// walk shows in its trace.
+mod recordings {
+    use rasterlab::check::{check, Builtin, CheckOptions, Property, Verdict};
+    use rasterlab::measure::workload;
+    use rasterlab::raster::descriptor::{CostClass, Role};
+    use rasterlab::raster::triangle::bbox::BoundingBox;
+    use rasterlab::raster::triangle::{
+        emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver,
+    };
+    use rasterlab::teaching::trace::{of_triangle_backend, triangle_trace};
+    use rasterlab::{
+        FillRule, FragmentSink, PixelRect, RenderTarget, Scene2D, TriangleSetup, WorkCounters,
+    };
+
+    /// The bounding box walked column by column, right to left: a walk no
+    /// back-end of the crate makes.
+    struct Columns;
+
+    impl TriangleAlgorithm for Columns {
+        const DESCRIPTOR: TriangleDescriptor = TriangleDescriptor {
+            name: "columns",
+            description: "the bounding box, column by column from the right",
+            walk: TriangleWalk::Own("the bounding box, column by column from the right"),
+            role: Role::Alternative,
+            cost: CostClass::FollowsSize,
+        };
+        fn draw_triangle<O: WalkObserver>(
+            &self,
+            t: &TriangleSetup,
+            viewport: PixelRect,
+            sink: &mut dyn FragmentSink,
+            work: &mut WorkCounters,
+            observer: &mut O,
+        ) {
+            let r = t.bounds_within(viewport);
+            for x in (r.x0..=r.x1).rev() {
+                for y in r.y0..=r.y1 {
+                    work.samples_tested += 1;
+                    let e = t.edge_values_at_pixel(x, y);
+                    let inside = t.inside(e);
+                    observer.sample(x, y, e, inside);
+                    if inside {
+                        work.fragments += 1;
+                        emit(sink, t, x, y, e);
+                    }
+                }
+            }
+        }
+    }
+
+    /// `bbox`, mutated: the last column of its box is never tested.
+    struct ShortRows;
+
+    impl TriangleAlgorithm for ShortRows {
+        const DESCRIPTOR: TriangleDescriptor = TriangleDescriptor {
+            name: "bbox",
+            ..BoundingBox::DESCRIPTOR
+        };
+        fn draw_triangle<O: WalkObserver>(
+            &self,
+            t: &TriangleSetup,
+            viewport: PixelRect,
+            sink: &mut dyn FragmentSink,
+            work: &mut WorkCounters,
+            observer: &mut O,
+        ) {
+            let r = t.bounds_within(viewport);
+            let shorter = PixelRect {
+                x1: r.x1 - 1,
+                ..viewport
+            };
+            BoundingBox.draw_triangle(t, shorter, sink, work, observer)
+        }
+    }
+
+    const TRIANGLE: [(f64, f64); 3] = [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)];
+
+    #[test]
+    fn a_back_end_with_a_walk_of_its_own_is_drawn_traced_checked_and_benchmarked() {
+        // Drawn: the depth-buffer example, as every back-end draws it.
+        let scene = Scene2D::depth_example(true);
+        let rule = FillRule::TopLeft;
+        let flat = &rasterlab::raster::shader::Flat;
+        let mine = scene.render(&Columns, rule, flat).unwrap().0;
+        let bbox = scene.render(&BoundingBox, rule, flat).unwrap().0;
+        assert!(mine == bbox, "the images differ");
+        // Traced: its own steps, in its own order (the rightmost column
+        // first), the verdicts of the bounding-box loop.
+        let text = of_triangle_backend(&Columns, TRIANGLE, rule, 6, 4).unwrap();
+        let rows: Vec<&str> = text.lines().collect();
+        assert!(rows[0].starts_with("columns, top-left rule"), "{text}");
+        assert!(rows[1].starts_with("walk: the bounding box, column by column"));
+        assert!(rows[6].starts_with("   4    0 "), "{text}");
+        assert!(text.ends_with("20 pixels tested, 9 fragments\n"), "{text}");
+        let mut by_pixel: Vec<&str> = rows[6..26].to_vec();
+        by_pixel.sort_by_key(|l| {
+            let w: Vec<i64> = l
+                .split_whitespace()
+                .take(2)
+                .map(|n| n.parse().unwrap())
+                .collect();
+            (w[1], w[0])
+        });
+        let bbox_text = triangle_trace("bbox", TRIANGLE, rule, 6, 4).unwrap();
+        let bbox_rows: Vec<&str> = bbox_text.lines().skip(6).take(20).collect();
+        assert_eq!(by_pixel, bbox_rows);
+        // Checked: exact under the top-left rule.
+        let options = CheckOptions {
+            cases: 100,
+            ..CheckOptions::new(Property::Exact(rule))
+        };
+        let verdict = check(&options, &mut Builtin::triangles(&Columns, rule)).unwrap();
+        assert!(matches!(verdict, Verdict::Pass { cases: 100 }));
+        // Benchmarked: a workload runs it as it runs the built-in ones.
+        let work = workload::sized(128, 128, 16.0);
+        assert!(work.suits(&Columns));
+        let mut target = RenderTarget::new(128, 128).unwrap();
+        let fragments = work.run(&Columns, &mut target);
+        assert_eq!(fragments, work.run(&BoundingBox, &mut target));
+    }
+
+    #[test]
+    fn a_mutation_in_a_walk_changes_its_trace() {
+        let rule = FillRule::TopLeft;
+        let bbox = triangle_trace("bbox", TRIANGLE, rule, 6, 4).unwrap();
+        let mutant = of_triangle_backend(&ShortRows, TRIANGLE, rule, 6, 4).unwrap();
+        assert_ne!(mutant, bbox);
+        // Column 4 is no longer tested: 16 pixels, the same 9 fragments.
+        assert!(
+            mutant.ends_with("16 pixels tested, 9 fragments\n"),
+            "{mutant}"
+        );
+        assert!(!mutant.lines().any(|l| l.starts_with("   4 ")), "{mutant}");
+        assert!(bbox.lines().any(|l| l.starts_with("   4    0 ")));
+    }
 }

@@ -51,13 +51,12 @@ use crate::error::{Error, Result};
 use crate::geometry::scene::{setup_triangles, Scene2D};
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fixed::FixedPoint;
-use crate::raster::fragment::{FragmentSink, LineFragment, TriangleFragment};
+use crate::raster::fragment::{FragmentList, FragmentSink, LineFragment, TriangleFragment};
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::shader::Flat;
 use crate::raster::target::{DepthState, RenderTarget};
-use crate::raster::triangle::tiled::{blocks, BlockClass};
 use crate::raster::triangle::TriangleRasterizer;
-use crate::raster::triangle::TriangleWalk;
+use crate::raster::triangle::{BlockClass, WalkStep};
 pub(crate) use crate::teaching::palette::escape;
 use crate::teaching::palette::{faded, hex, triangle_colour, Legend, Role};
 use std::fmt::Write;
@@ -271,13 +270,15 @@ impl GridPicture {
         );
         let mut picture = Self::recorded(&recorder, width, height, caption);
         picture.outlines = outlines(triangles);
-        if backend.descriptor().walk == TriangleWalk::Blocks {
-            picture.blocks = merged_blocks(
-                setups
-                    .iter()
-                    .flat_map(|t| blocks(t, PixelRect::of_target(width, height))),
-            );
-        }
+        // The blocks the walk classified, as it recorded them.
+        let grid = PixelRect::of_target(width, height);
+        picture.blocks = merged_blocks(setups.iter().flat_map(|t| {
+            let (steps, _) = backend.record(t, grid, &mut FragmentList::default());
+            steps.into_iter().filter_map(|s| match s {
+                WalkStep::Block { rect, class } => Some((rect, class)),
+                _ => None,
+            })
+        }));
         picture.legend = Legend::new(&[
             Role::Drawn,
             Role::TestedOutside,

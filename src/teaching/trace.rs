@@ -41,13 +41,16 @@ use crate::geometry::scene::Scene2D;
 use crate::raster::backend::{line_backend, triangle_backend};
 use crate::raster::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
+use crate::raster::fragment::FragmentList;
 use crate::raster::line::bresenham::Bresenham;
 use crate::raster::line::dda::Dda;
 use crate::raster::line::{LineRasterizer, LineWalk, OctantFrame};
 use crate::raster::shader::Flat;
 use crate::raster::target::{DepthState, DepthTest, RenderTarget};
-use crate::raster::triangle::scanline::{active_edges, row_range, row_span, sorted_by_y, Span};
-use crate::raster::triangle::{TriangleRasterizer, TriangleWalk};
+use crate::raster::triangle::incremental::Incremental;
+use crate::raster::triangle::scanline::{row_range, sorted_by_y, Scanline};
+use crate::raster::triangle::tiled::{Tiled, BLOCK};
+use crate::raster::triangle::{BlockClass, Bound, TriangleRasterizer, TriangleWalk, WalkStep};
 use std::fmt::Write;
 
 /// The most pixel lines a triangle trace prints, and the most depth-buffer
@@ -190,8 +193,11 @@ pub fn bresenham_trace(ends: &LineEnds) -> String {
 }
 
 /// The step-by-step trace of a triangle back-end on one triangle given in
-/// screen pixels, on a `width` x `height` grid: the trace of the way it
-/// [walks](crate::raster::descriptor::Descriptor::walk) the pixels.
+/// screen pixels, on a `width` x `height` grid: the recording of its
+/// real walk ([`TriangleRasterizer::record`]), every step it reported
+/// (samples tested, rows' crossings and spans, blocks' classes), printed
+/// in the form its [walk](crate::raster::descriptor::Descriptor::walk)
+/// is taught in.
 pub fn of_triangle_backend(
     backend: &dyn TriangleRasterizer,
     vertices: [(f64, f64); 3],
@@ -199,17 +205,376 @@ pub fn of_triangle_backend(
     width: u32,
     height: u32,
 ) -> Result<String> {
-    match backend.descriptor().walk {
-        TriangleWalk::EveryPixel | TriangleWalk::BoundingBox => {
-            per_pixel_trace(backend, vertices, rule, width, height)
+    let walk = backend.descriptor().walk;
+    let nothing = match walk {
+        TriangleWalk::Scanline => "no row is filled, nothing is drawn",
+        TriangleWalk::IncrementalEdges => "nothing is tested",
+        TriangleWalk::Blocks => "no block is visited",
+        _ => "no pixel is tested, nothing is drawn",
+    };
+    let grid = PixelRect::of_target(width, height);
+    let mut out = String::new();
+    let Some(t) = snapped_or_say(vertices, rule, &mut out, nothing)? else {
+        return Ok(out);
+    };
+    let region = match walk {
+        TriangleWalk::EveryPixel => grid,
+        _ => t.bounds_within(grid),
+    };
+    match walk {
+        TriangleWalk::Scanline => {}
+        TriangleWalk::Blocks => check_trace_length(region.area() / 8, "block lines")?,
+        _ => check_trace_length(region.area(), "pixel lines")?,
+    }
+    let (steps, _) = backend.record(&t, grid, &mut FragmentList::default());
+    let recorded = Recorded {
+        name: backend.name(),
+        t: &t,
+        rule,
+        vertices,
+        grid,
+        region,
+        steps: &steps,
+    };
+    match walk {
+        TriangleWalk::Scanline => Ok(recorded.scanline(out)),
+        TriangleWalk::IncrementalEdges => Ok(recorded.incremental(out)),
+        TriangleWalk::Blocks => Ok(recorded.blocks(out)),
+        TriangleWalk::EveryPixel | TriangleWalk::BoundingBox | TriangleWalk::Own(_) => {
+            Ok(recorded.per_pixel(out, walk))
         }
-        TriangleWalk::Scanline => scanline_trace(vertices, rule, width, height),
-        TriangleWalk::IncrementalEdges => incremental_trace(vertices, rule, width, height),
-        TriangleWalk::Blocks => tiled_trace(vertices, rule, width, height),
-        TriangleWalk::Own(walk) => Err(Error::InvalidArgument(format!(
-            "no trace for `{}`, which walks its own way ({walk})",
-            backend.name()
-        ))),
+    }
+}
+
+/// A walk's recording on one triangle, and what its trace's header says.
+struct Recorded<'a> {
+    name: &'static str,
+    t: &'a TriangleSetup,
+    rule: FillRule,
+    vertices: [(f64, f64); 3],
+    grid: PixelRect,
+    region: PixelRect,
+    steps: &'a [WalkStep],
+}
+
+impl Recorded<'_> {
+    /// The samples tested, in order: `(x, y, edges, inside, stops)`, where
+    /// `stops` says the walk stopped the row after this sample.
+    fn samples(&self) -> Vec<(i64, i64, [i64; 3], bool, bool)> {
+        let mut out: Vec<(i64, i64, [i64; 3], bool, bool)> = Vec::new();
+        for step in self.steps {
+            match *step {
+                WalkStep::Sample {
+                    x,
+                    y,
+                    edges,
+                    inside,
+                } => out.push((x, y, edges, inside, false)),
+                WalkStep::RowStops { y, x } => {
+                    if let Some(last) = out.last_mut().filter(|s| (s.0, s.1) == (x, y)) {
+                        last.4 = true;
+                    }
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+
+    /// `name, rule: triangle ..., twice its area, winding`, the box (for
+    /// the bounding-box loop), the walk's own words, the edges' kinds, then
+    /// every sample tested with its edge values, barycentrics and verdict.
+    fn per_pixel(&self, mut out: String, walk: TriangleWalk) -> String {
+        let (t, rule, region) = (self.t, self.rule, self.region);
+        let _ = writeln!(
+            out,
+            "{}, {} rule: triangle {:?}, twice its area = {:.4} px^2, {}",
+            self.name,
+            rule.name(),
+            self.vertices,
+            t.area as f64 / AREA_UNIT,
+            if t.winding > 0 {
+                "counter-clockwise on screen"
+            } else {
+                "clockwise on screen (edges flipped so inside is positive)"
+            }
+        );
+        match walk {
+            TriangleWalk::BoundingBox => {
+                let _ = writeln!(
+                    out,
+                    "bounding box: pixels x {}..={}, y {}..={}",
+                    region.x0, region.x1, region.y0, region.y1
+                );
+            }
+            TriangleWalk::Own(words) => {
+                let _ = writeln!(out, "walk: {words}; the samples it tested, in its order");
+            }
+            _ => {}
+        }
+        for k in 0..3 {
+            let e = t.edges[k];
+            let _ = writeln!(
+                out,
+                "E{k} (opposite v{k}): {} edge; {}",
+                e.kind(),
+                rule.explain_tie(&e)
+            );
+        }
+        let _ = writeln!(
+            out,
+            "{:>4} {:>4} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7}  verdict",
+            "x", "y", "E0", "E1", "E2", "alpha", "beta", "gamma"
+        );
+        let samples = self.samples();
+        let mut inside_count = 0;
+        for &(x, y, e, inside, _) in &samples {
+            let [alpha, beta, gamma] = t.barycentric(e);
+            inside_count += usize::from(inside);
+            let verdict = match t.rejecting_edge(e) {
+                Some(k) if e[k] < 0 => format!("outside: E{k} < 0"),
+                Some(k) => format!(
+                    "outside: on E{k}, a {} edge that does not own its ties",
+                    t.edges[k].kind()
+                ),
+                None => match (0..3).find(|&k| e[k] == 0) {
+                    Some(k) => format!(
+                        "inside: on E{k}, a {} edge that owns its ties",
+                        t.edges[k].kind()
+                    ),
+                    None => "inside".to_string(),
+                },
+            };
+            let _ = writeln!(
+                out,
+                "{:>4} {:>4} {:>9.4} {:>9.4} {:>9.4} {:>7.3} {:>7.3} {:>7.3}  {verdict}",
+                x,
+                y,
+                e[0] as f64 / AREA_UNIT,
+                e[1] as f64 / AREA_UNIT,
+                e[2] as f64 / AREA_UNIT,
+                alpha,
+                beta,
+                gamma
+            );
+        }
+        let _ = writeln!(
+            out,
+            "{} pixels tested, {inside_count} fragments",
+            samples.len()
+        );
+        out
+    }
+
+    /// The vertices sorted by y, the rows, then each row's crossings (the
+    /// bound each active edge gives) and its span, as the walk solved them.
+    fn scanline(&self, mut out: String) -> String {
+        let (t, grid) = (self.t, self.grid);
+        let order = sorted_by_y(t);
+        let [top, mid, bottom] = order;
+        let pixel = |k: usize| {
+            let (x, y) = t.vertices[k].to_f64();
+            format!("v{k} ({x}, {y})")
+        };
+        let _ = writeln!(
+            out,
+            "scanline, {} rule: sorted by y, top {}, mid {}, bottom {}",
+            self.rule.name(),
+            pixel(top),
+            pixel(mid),
+            pixel(bottom)
+        );
+        let _ = writeln!(
+            out,
+            "long edge v{top}-v{bottom} (E{mid}) bounds every row; short edges v{top}-v{mid} (E{bottom}) above mid, v{mid}-v{bottom} (E{top}) below"
+        );
+        let (first_row, last_row) = row_range(t, order, grid);
+        let _ = writeln!(
+            out,
+            "rows {first_row}..={last_row}: their sample lines y = row + 0.5 lie between top and bottom"
+        );
+        let _ = writeln!(
+            out,
+            "{:>4} {:>8}  {:<72} span",
+            "row", "sample y", "edge crossings: exact x -> pixel bound"
+        );
+        let (mut filled, mut rows) = (0, 0);
+        let mut crossings: Vec<String> = Vec::new();
+        for step in self.steps {
+            match *step {
+                WalkStep::Crossing {
+                    y: j,
+                    edge: k,
+                    bound,
+                } => {
+                    let e = &t.edges[k];
+                    let y = j * SUBPIXEL_SCALE + HALF_PIXEL;
+                    let bound = match bound {
+                        Bound::First(first) => format!("first {}", first.max(grid.x0)),
+                        Bound::Last(last) => format!("last {}", last.min(grid.x1)),
+                        Bound::All => "all".to_string(),
+                        Bound::None => "none".to_string(),
+                    };
+                    crossings.push(if e.a == 0 {
+                        format!("E{k} horizontal -> {bound}")
+                    } else {
+                        // E = a X + b Y + c = 0 at X = -(b Y + c) / a (fixed units).
+                        let x = -((e.b * y + e.c) as f64) / e.a as f64 / SUBPIXEL_SCALE as f64;
+                        format!("E{k} x = {x:.4} -> {bound}")
+                    });
+                }
+                WalkStep::Span { y: j, first, last } => {
+                    rows += 1;
+                    let filled_text = if last < first {
+                        "empty".to_string()
+                    } else {
+                        filled += last - first + 1;
+                        format!("{first}..={last} ({} px)", last - first + 1)
+                    };
+                    let y = j * SUBPIXEL_SCALE + HALF_PIXEL;
+                    let _ = writeln!(
+                        out,
+                        "{:>4} {:>8.3}  {:<72} {filled_text}",
+                        j,
+                        y as f64 / SUBPIXEL_SCALE as f64,
+                        crossings.join("; ")
+                    );
+                    crossings.clear();
+                }
+                _ => {}
+            }
+        }
+        let _ = writeln!(
+            out,
+            "{rows} rows, {filled} fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last"
+        );
+        out
+    }
+
+    /// The box, the edge values at its first sample and the steps, then
+    /// every sample the walk tested with its stepped edge values.
+    fn incremental(&self, mut out: String) -> String {
+        let (t, r) = (self.t, self.region);
+        let (step_x, step_y) = t.pixel_steps();
+        let px = |v: [i64; 3]| v.map(|e| format!("{:+.4}", e as f64 / AREA_UNIT)).join(" ");
+        let _ = writeln!(
+            out,
+            "{}, {} rule: bounding box x {}..={}, y {}..={}; E evaluated once, at pixel ({}, {}), then only added to",
+            self.name,
+            self.rule.name(),
+            r.x0,
+            r.x1,
+            r.y0,
+            r.y1,
+            r.x0,
+            r.y0
+        );
+        if r.is_empty() {
+            let _ = writeln!(
+                out,
+                "no pixel centre of the grid is in the box: nothing is tested"
+            );
+            return out;
+        }
+        let _ = writeln!(
+            out,
+            "per pixel right E += ({})   per row down E += ({})",
+            px(step_x),
+            px(step_y)
+        );
+        let _ = writeln!(
+            out,
+            "{:>4} {:>4} {:>10} {:>10} {:>10}  verdict",
+            "x", "y", "E0", "E1", "E2"
+        );
+        let samples = self.samples();
+        let mut fragments = 0;
+        for &(x, y, e, inside, stops) in &samples {
+            let verdict = if inside {
+                fragments += 1;
+                "inside"
+            } else if stops {
+                "outside: past the span, the row stops (the triangle is convex)"
+            } else {
+                "outside"
+            };
+            let [a, b, c] = e.map(|v| v as f64 / AREA_UNIT);
+            let _ = writeln!(
+                out,
+                "{x:>4} {y:>4} {a:>10.4} {b:>10.4} {c:>10.4}  {verdict}"
+            );
+        }
+        let _ = writeln!(
+            out,
+            "{} pixels tested, {fragments} fragments; no multiplication after the first pixel",
+            samples.len()
+        );
+        out
+    }
+
+    /// The box, then every block (or stretch of blocks) the walk
+    /// classified, with its class, and the count of pixels it tested.
+    fn blocks(&self, mut out: String) -> String {
+        let r = self.region;
+        let _ = writeln!(
+            out,
+            "{}, {} rule: the bounding box x {}..={}, y {}..={} in {BLOCK} x {BLOCK} blocks on the grid's block lines; each block classified from its corners",
+            self.name,
+            self.rule.name(),
+            r.x0,
+            r.x1,
+            r.y0,
+            r.y1
+        );
+        if r.is_empty() {
+            return out;
+        }
+        let tested = self.samples().len();
+        let blocks: Vec<(PixelRect, BlockClass)> = self
+            .steps
+            .iter()
+            .filter_map(|s| match *s {
+                WalkStep::Block { rect, class } => Some((rect, class)),
+                _ => None,
+            })
+            .collect();
+        if blocks.is_empty() {
+            let _ = writeln!(
+                out,
+                "the box is smaller than a block: the back-end skips the corner test and tests its pixels one by one, {tested} of them"
+            );
+            return out;
+        }
+        let _ = writeln!(out, "{:>15} {:>15}  class", "columns", "rows");
+        let mut counts = [0u64; 3];
+        for (block, class) in blocks {
+            let what = match class {
+                BlockClass::Outside => {
+                    counts[0] += 1;
+                    "outside: trivial reject, no pixel tested"
+                }
+                BlockClass::Inside => {
+                    counts[1] += 1;
+                    "inside: trivial accept, every pixel drawn untested"
+                }
+                BlockClass::Partial => {
+                    counts[2] += 1;
+                    "partial: an edge crosses it, each pixel tested"
+                }
+            };
+            let _ = writeln!(
+                out,
+                "{:>15} {:>15}  {what}",
+                format!("{}..={}", block.x0, block.x1),
+                format!("{}..={}", block.y0, block.y1)
+            );
+        }
+        let _ = writeln!(
+            out,
+            "{} outside, {} inside, {} partial blocks or stretches; {tested} pixels tested (a row of a partial block stops past its span)",
+            counts[0], counts[1], counts[2]
+        );
+        out
     }
 }
 
@@ -305,116 +670,16 @@ pub fn triangle_trace(
     width: u32,
     height: u32,
 ) -> Result<String> {
-    per_pixel_trace(triangle_backend(backend)?, vertices, rule, width, height)
-}
-
-/// [`triangle_trace`] of a back-end that tests pixels one by one.
-fn per_pixel_trace(
-    backend: &dyn TriangleRasterizer,
-    vertices: [(f64, f64); 3],
-    rule: FillRule,
-    width: u32,
-    height: u32,
-) -> Result<String> {
-    let name = backend.name();
-    let grid = PixelRect::of_target(width, height);
-    let mut out = String::new();
-    let Some(t) = snapped_or_say(
-        vertices,
-        rule,
-        &mut out,
-        "no pixel is tested, nothing is drawn",
-    )?
-    else {
-        return Ok(out);
-    };
-    let walk = backend.descriptor().walk;
-    let region = match walk {
-        TriangleWalk::BoundingBox => t.bounds_within(grid),
-        TriangleWalk::EveryPixel => grid,
-        _ => {
-            return Err(Error::InvalidArgument(format!(
-                "no per-pixel trace for `{name}` (it is for the loops that test pixels one by one)"
-            )))
+    let backend = triangle_backend(backend)?;
+    match backend.descriptor().walk {
+        TriangleWalk::EveryPixel | TriangleWalk::BoundingBox => {
+            of_triangle_backend(backend, vertices, rule, width, height)
         }
-    };
-    check_trace_length(region.area(), "pixel lines")?;
-    let _ = writeln!(
-        out,
-        "{name}, {} rule: triangle {:?}, twice its area = {:.4} px^2, {}",
-        rule.name(),
-        vertices,
-        t.area as f64 / AREA_UNIT,
-        if t.winding > 0 {
-            "counter-clockwise on screen"
-        } else {
-            "clockwise on screen (edges flipped so inside is positive)"
-        }
-    );
-    if walk == TriangleWalk::BoundingBox {
-        let _ = writeln!(
-            out,
-            "bounding box: pixels x {}..={}, y {}..={}",
-            region.x0, region.x1, region.y0, region.y1
-        );
+        _ => Err(Error::InvalidArgument(format!(
+            "no per-pixel trace for `{}` (it is for the loops that test pixels one by one)",
+            backend.name()
+        ))),
     }
-    for k in 0..3 {
-        let e = t.edges[k];
-        let _ = writeln!(
-            out,
-            "E{k} (opposite v{k}): {} edge; {}",
-            e.kind(),
-            rule.explain_tie(&e)
-        );
-    }
-    let _ = writeln!(
-        out,
-        "{:>4} {:>4} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7}  verdict",
-        "x", "y", "E0", "E1", "E2", "alpha", "beta", "gamma"
-    );
-    let mut inside_count = 0;
-    if !region.is_empty() {
-        for y in region.y0..=region.y1 {
-            for x in region.x0..=region.x1 {
-                let e = t.edge_values_at_pixel(x, y);
-                let [alpha, beta, gamma] = t.barycentric(e);
-                let inside = t.inside(e);
-                inside_count += usize::from(inside);
-                let verdict = match t.rejecting_edge(e) {
-                    Some(k) if e[k] < 0 => format!("outside: E{k} < 0"),
-                    Some(k) => format!(
-                        "outside: on E{k}, a {} edge that does not own its ties",
-                        t.edges[k].kind()
-                    ),
-                    None => match (0..3).find(|&k| e[k] == 0) {
-                        Some(k) => format!(
-                            "inside: on E{k}, a {} edge that owns its ties",
-                            t.edges[k].kind()
-                        ),
-                        None => "inside".to_string(),
-                    },
-                };
-                let _ = writeln!(
-                    out,
-                    "{:>4} {:>4} {:>9.4} {:>9.4} {:>9.4} {:>7.3} {:>7.3} {:>7.3}  {verdict}",
-                    x,
-                    y,
-                    e[0] as f64 / AREA_UNIT,
-                    e[1] as f64 / AREA_UNIT,
-                    e[2] as f64 / AREA_UNIT,
-                    alpha,
-                    beta,
-                    gamma
-                );
-            }
-        }
-    }
-    let _ = writeln!(
-        out,
-        "{} pixels tested, {inside_count} fragments",
-        region.area()
-    );
-    Ok(out)
 }
 
 /// The classic scanline loop on one triangle given in screen pixels: the
@@ -427,100 +692,7 @@ pub fn scanline_trace(
     width: u32,
     height: u32,
 ) -> Result<String> {
-    let viewport = PixelRect::of_target(width, height);
-    let mut out = String::new();
-    let Some(t) = snapped_or_say(
-        vertices,
-        rule,
-        &mut out,
-        "no row is filled, nothing is drawn",
-    )?
-    else {
-        return Ok(out);
-    };
-    let order = sorted_by_y(&t);
-    let [top, mid, bottom] = order;
-    let pixel = |k: usize| {
-        let (x, y) = t.vertices[k].to_f64();
-        format!("v{k} ({x}, {y})")
-    };
-    let _ = writeln!(
-        out,
-        "scanline, {} rule: sorted by y, top {}, mid {}, bottom {}",
-        rule.name(),
-        pixel(top),
-        pixel(mid),
-        pixel(bottom)
-    );
-    let _ = writeln!(
-        out,
-        "long edge v{top}-v{bottom} (E{mid}) bounds every row; short edges v{top}-v{mid} (E{bottom}) above mid, v{mid}-v{bottom} (E{top}) below"
-    );
-    let (first_row, last_row) = row_range(&t, order, viewport);
-    let _ = writeln!(
-        out,
-        "rows {first_row}..={last_row}: their sample lines y = row + 0.5 lie between top and bottom"
-    );
-    let _ = writeln!(
-        out,
-        "{:>4} {:>8}  {:<72} span",
-        "row", "sample y", "edge crossings: exact x -> pixel bound"
-    );
-    let mut filled = 0;
-    for j in first_row..=last_row {
-        let y = j * SUBPIXEL_SCALE + HALF_PIXEL;
-        let crossings: Vec<String> = active_edges(&t, order, y)
-            .map(|k| {
-                let e = &t.edges[k];
-                let mut alone = Span {
-                    first: viewport.x0,
-                    last: viewport.x1,
-                };
-                alone.clip_to_edge(e, t.bias[k], y);
-                let bound = if e.a > 0 {
-                    format!("first {}", alone.first)
-                } else if e.a < 0 {
-                    format!("last {}", alone.last)
-                } else if alone.is_empty() {
-                    "none".to_string()
-                } else {
-                    "all".to_string()
-                };
-                if e.a == 0 {
-                    format!("E{k} horizontal -> {bound}")
-                } else {
-                    // E = a X + b Y + c = 0 at X = -(b Y + c) / a (fixed units).
-                    let x = -((e.b * y + e.c) as f64) / e.a as f64 / SUBPIXEL_SCALE as f64;
-                    format!("E{k} x = {x:.4} -> {bound}")
-                }
-            })
-            .collect();
-        let span = row_span(&t, order, j, viewport);
-        let filled_text = if span.is_empty() {
-            "empty".to_string()
-        } else {
-            filled += span.last - span.first + 1;
-            format!(
-                "{}..={} ({} px)",
-                span.first,
-                span.last,
-                span.last - span.first + 1
-            )
-        };
-        let _ = writeln!(
-            out,
-            "{:>4} {:>8.3}  {:<72} {filled_text}",
-            j,
-            y as f64 / SUBPIXEL_SCALE as f64,
-            crossings.join("; ")
-        );
-    }
-    let _ = writeln!(
-        out,
-        "{} rows, {filled} fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last",
-        (last_row - first_row + 1).max(0)
-    );
-    Ok(out)
+    of_triangle_backend(&Scanline, vertices, rule, width, height)
 }
 
 /// The rasterization slides' depth-buffer loop on a scene: each triangle in turn drawn by
@@ -610,153 +782,20 @@ pub fn incremental_trace(
     width: u32,
     height: u32,
 ) -> Result<String> {
-    let grid = PixelRect::of_target(width, height);
-    let mut out = String::new();
-    let Some(t) = snapped_or_say(vertices, rule, &mut out, "nothing is tested")? else {
-        return Ok(out);
-    };
-    let r = t.bounds_within(grid);
-    check_trace_length(r.area(), "pixel lines")?;
-    let (step_x, step_y) = t.pixel_steps();
-    let px = |v: [i64; 3]| v.map(|e| format!("{:+.4}", e as f64 / AREA_UNIT)).join(" ");
-    let _ = writeln!(
-        out,
-        "incremental, {} rule: bounding box x {}..={}, y {}..={}; E evaluated once, at pixel ({}, {}), then only added to",
-        rule.name(),
-        r.x0,
-        r.x1,
-        r.y0,
-        r.y1,
-        r.x0,
-        r.y0
-    );
-    if r.is_empty() {
-        let _ = writeln!(
-            out,
-            "no pixel centre of the grid is in the box: nothing is tested"
-        );
-        return Ok(out);
-    }
-    let _ = writeln!(
-        out,
-        "per pixel right E += ({})   per row down E += ({})",
-        px(step_x),
-        px(step_y)
-    );
-    let _ = writeln!(
-        out,
-        "{:>4} {:>4} {:>10} {:>10} {:>10}  verdict",
-        "x", "y", "E0", "E1", "E2"
-    );
-    let (mut tested, mut fragments) = (0u64, 0u64);
-    let mut row = t.edge_values_at_pixel(r.x0, r.y0);
-    for y in r.y0..=r.y1 {
-        let mut e = row;
-        let mut in_span = false;
-        for x in r.x0..=r.x1 {
-            tested += 1;
-            let inside = t.inside(e);
-            let verdict = if inside {
-                fragments += 1;
-                "inside"
-            } else if in_span {
-                "outside: past the span, the row stops (the triangle is convex)"
-            } else {
-                "outside"
-            };
-            let [a, b, c] = e.map(|v| v as f64 / AREA_UNIT);
-            let _ = writeln!(
-                out,
-                "{x:>4} {y:>4} {a:>10.4} {b:>10.4} {c:>10.4}  {verdict}"
-            );
-            if !inside && in_span {
-                break;
-            }
-            in_span |= inside;
-            for k in 0..3 {
-                e[k] += step_x[k];
-            }
-        }
-        for k in 0..3 {
-            row[k] += step_y[k];
-        }
-    }
-    let _ = writeln!(
-        out,
-        "{tested} pixels tested, {fragments} fragments; no multiplication after the first pixel"
-    );
-    Ok(out)
+    of_triangle_backend(&Incremental, vertices, rule, width, height)
 }
 
-/// The tiled back-end's blocks on one triangle: every 8 x 8 block of the
-/// bounding box with its class from the corner test (outside: skipped;
-/// inside: filled untested; partial: each pixel tested).
+/// The tiled back-end's walk on one triangle: every block or stretch of
+/// blocks of the bounding box with its class from the corner test
+/// (outside: skipped; inside: filled untested; partial: each pixel
+/// tested), and the pixels it tested.
 pub fn tiled_trace(
     vertices: [(f64, f64); 3],
     rule: FillRule,
     width: u32,
     height: u32,
 ) -> Result<String> {
-    use crate::raster::triangle::tiled::{BlockClass, BLOCK};
-    let grid = PixelRect::of_target(width, height);
-    let mut out = String::new();
-    let Some(t) = snapped_or_say(vertices, rule, &mut out, "no block is visited")? else {
-        return Ok(out);
-    };
-    let r = t.bounds_within(grid);
-    let _ = writeln!(
-        out,
-        "tiled, {} rule: the bounding box x {}..={}, y {}..={} in {BLOCK} x {BLOCK} blocks on the grid's block lines; each block classified from its corners",
-        rule.name(),
-        r.x0,
-        r.x1,
-        r.y0,
-        r.y1
-    );
-    if r.is_empty() {
-        return Ok(out);
-    }
-    let blocks = crate::raster::triangle::tiled::blocks(&t, grid);
-    if blocks.is_empty() {
-        let _ = writeln!(
-            out,
-            "the box fits in one block: the back-end skips the corner test and tests each of its {} pixels",
-            r.area()
-        );
-        return Ok(out);
-    }
-    check_trace_length(blocks.len() as u64, "block lines")?;
-    let _ = writeln!(out, "{:>15} {:>15}  class", "columns", "rows");
-    let (mut counts, mut tested) = ([0u64; 3], 0u64);
-    for (block, class) in blocks {
-        let what = match class {
-            BlockClass::Outside => {
-                counts[0] += 1;
-                "outside: trivial reject, no pixel tested"
-            }
-            BlockClass::Inside => {
-                counts[1] += 1;
-                "inside: trivial accept, every pixel drawn untested"
-            }
-            BlockClass::Partial => {
-                counts[2] += 1;
-                tested += block.area();
-                "partial: an edge crosses it, each pixel tested"
-            }
-        };
-        let _ = writeln!(
-            out,
-            "{:>15} {:>15}  {what}",
-            format!("{}..={}", block.x0, block.x1),
-            format!("{}..={}", block.y0, block.y1)
-        );
-    }
-    let _ = writeln!(
-        out,
-        "{} outside, {} inside, {} partial blocks; at most {tested} pixels tested (wide triangles are first cut into stretches of blocks, so the back-end may test fewer)",
-        counts[0], counts[1], counts[2]
-    );
-    Ok(out)
+    of_triangle_backend(&Tiled, vertices, rule, width, height)
 }
 
 /// Xiaolin Wu's anti-aliased line: each column's exact height and the two

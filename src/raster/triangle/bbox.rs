@@ -14,7 +14,7 @@
 //!     if p is inside t: emit a fragment
 //! ```
 
-use super::{emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+use super::{emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
@@ -33,12 +33,13 @@ impl TriangleAlgorithm for BoundingBox {
     };
 
     #[inline]
-    fn draw_triangle(
+    fn draw_triangle<O: WalkObserver>(
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
         work: &mut WorkCounters,
+        observer: &mut O,
     ) {
         let r = t.bounds_within(viewport);
         if r.is_empty() {
@@ -49,7 +50,9 @@ impl TriangleAlgorithm for BoundingBox {
             for x in r.x0..=r.x1 {
                 work.samples_tested += 1;
                 let e = t.edge_values_at_pixel(x, y);
-                if t.inside(e) {
+                let inside = t.inside(e);
+                observer.sample(x, y, e, inside);
+                if inside {
                     work.fragments += 1;
                     emit(sink, t, x, y, e);
                 }

@@ -20,7 +20,7 @@
 //!   row += step_y
 //! ```
 
-use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
@@ -39,45 +39,40 @@ impl TriangleAlgorithm for Incremental {
     };
 
     #[inline]
-    fn draw_triangle(
+    fn draw_triangle<O: WalkObserver>(
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
         work: &mut WorkCounters,
+        observer: &mut O,
     ) {
         let r = t.bounds_within(viewport);
         if !r.is_empty() {
-            step_over(t, r, true, sink, work);
+            step_over(t, r, sink, work, observer);
         }
     }
 }
 
 /// Walks the pixels of `r` (non-empty) row by row, stepping the edge
 /// values by additions, and emits those inside `t`, one span per row (the
-/// inside pixels of a row are consecutive, the triangle being convex); with
-/// `test` false, every pixel is emitted untested (for a rectangle known to
-/// lie inside).
-pub(crate) fn step_over(
+/// inside pixels of a row are consecutive, the triangle being convex).
+#[inline]
+pub(crate) fn step_over<O: WalkObserver>(
     t: &TriangleSetup,
     r: PixelRect,
-    test: bool,
     sink: &mut dyn FragmentSink,
     work: &mut WorkCounters,
+    observer: &mut O,
 ) {
     let (step_x, step_y) = t.pixel_steps();
     let mut row = t.edge_values_at_pixel(r.x0, r.y0);
     for y in r.y0..=r.y1 {
-        if test {
-            let (run, tested) = run_in_row(t, row, step_x, r.x0, r.x1);
-            report_tested(sink, t, y, r.x0, tested, work);
-            if let Some(run) = run {
-                work.fragments += (run.last - run.first + 1) as u64;
-                emit_span(sink, t, y, run.first, run.last, run.edges);
-            }
-        } else {
-            work.fragments += (r.x1 - r.x0 + 1) as u64;
-            emit_span(sink, t, y, r.x0, r.x1, row);
+        let (run, tested) = run_in_row(t, row, step_x, r.x0, r.x1, y, observer);
+        report_tested(sink, t, y, r.x0, tested, work);
+        if let Some(run) = run {
+            work.fragments += (run.last - run.first + 1) as u64;
+            emit_span(sink, t, y, run.first, run.last, run.edges);
         }
         for k in 0..3 {
             row[k] += step_y[k];
@@ -112,23 +107,27 @@ pub(crate) struct Run {
     pub edges: [i64; 3],
 }
 
-/// Tests pixels `x0..=x1` of a row whose edge values at `x0` are `e`, left
-/// to right, and returns the run of inside pixels, if any, and how many
+/// Tests pixels `x0..=x1` of row `y` whose edge values at `x0` are `e`,
+/// left to right (each sample reported to `observer`), and returns the run of inside pixels, if any, and how many
 /// pixels were tested (the walk stops at the first outside pixel after the
 /// run: the triangle is convex, so nothing further right is inside).
 #[inline]
-pub(crate) fn run_in_row(
+pub(crate) fn run_in_row<O: WalkObserver>(
     t: &TriangleSetup,
     mut e: [i64; 3],
     step_x: [i64; 3],
     x0: i64,
     x1: i64,
+    y: i64,
+    observer: &mut O,
 ) -> (Option<Run>, u64) {
     let mut run: Option<Run> = None;
     let mut tested = 0;
     for x in x0..=x1 {
         tested += 1;
-        if t.inside(e) {
+        let inside = t.inside(e);
+        observer.sample(x, y, e, inside);
+        if inside {
             match &mut run {
                 Some(r) => r.last = x,
                 None => {
@@ -140,6 +139,7 @@ pub(crate) fn run_in_row(
                 }
             }
         } else if run.is_some() {
+            observer.row_stops(y, x);
             break;
         }
         for k in 0..3 {

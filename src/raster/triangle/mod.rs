@@ -55,13 +55,152 @@ pub enum TriangleWalk {
     Own(&'static str),
 }
 
+/// What the corner test says about a block of pixels (a hierarchical
+/// walk's step).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum BlockClass {
+    /// No sample of the block is inside.
+    Outside,
+    /// Every sample of the block is inside.
+    Inside,
+    /// The block straddles an edge: test each sample.
+    Partial,
+}
+
+/// What one edge says about a row's span, solved without testing a pixel
+/// (a scanline walk's step).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Bound {
+    /// A left edge: the span starts at this column.
+    First(i64),
+    /// A right edge: the span ends at this column.
+    Last(i64),
+    /// A horizontal edge the row's samples pass: every column.
+    All,
+    /// A horizontal edge the row's samples fail: no column.
+    None,
+}
+
+/// The steps of a walk, as a back-end reports them while it draws: what
+/// a trace records. Every method does nothing by default; the step for
+/// one triangle is generic over its observer, so with [`Unobserved`] (how
+/// every draw runs) the calls compile to nothing.
+pub trait WalkObserver {
+    /// Pixel `(x, y)`'s sample was tested: its edge values and whether it
+    /// is inside.
+    #[inline(always)]
+    fn sample(&mut self, x: i64, y: i64, edges: [i64; 3], inside: bool) {
+        let _ = (x, y, edges, inside);
+    }
+    /// Row `y`'s walk stops after pixel `x` (the row's span is behind it).
+    #[inline(always)]
+    fn row_stops(&mut self, y: i64, x: i64) {
+        let _ = (y, x);
+    }
+    /// Edge `edge` bounds row `y`'s span so.
+    #[inline(always)]
+    fn crossing(&mut self, y: i64, edge: usize, bound: Bound) {
+        let _ = (y, edge, bound);
+    }
+    /// Row `y`'s span is `first..=last` (empty when `last < first`).
+    #[inline(always)]
+    fn span(&mut self, y: i64, first: i64, last: i64) {
+        let _ = (y, first, last);
+    }
+    /// The pixels of `rect` were classified as a whole.
+    #[inline(always)]
+    fn block(&mut self, rect: PixelRect, class: BlockClass) {
+        let _ = (rect, class);
+    }
+}
+
+/// The observer of an untraced draw: it keeps nothing.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct Unobserved;
+
+impl WalkObserver for Unobserved {}
+
+/// One step of a walk, as recorded ([`WalkObserver`]'s calls as data).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum WalkStep {
+    /// [`WalkObserver::sample`].
+    Sample {
+        /// Column.
+        x: i64,
+        /// Row.
+        y: i64,
+        /// Edge values at the sample.
+        edges: [i64; 3],
+        /// The verdict.
+        inside: bool,
+    },
+    /// [`WalkObserver::row_stops`].
+    RowStops {
+        /// Row.
+        y: i64,
+        /// Last column tested.
+        x: i64,
+    },
+    /// [`WalkObserver::crossing`].
+    Crossing {
+        /// Row.
+        y: i64,
+        /// The edge (opposite vertex `edge`).
+        edge: usize,
+        /// What it says of the span.
+        bound: Bound,
+    },
+    /// [`WalkObserver::span`].
+    Span {
+        /// Row.
+        y: i64,
+        /// First column.
+        first: i64,
+        /// Last column (empty span when below `first`).
+        last: i64,
+    },
+    /// [`WalkObserver::block`].
+    Block {
+        /// The pixels classified.
+        rect: PixelRect,
+        /// Their class.
+        class: BlockClass,
+    },
+}
+
+/// A recording: every step, in the order the walk made them.
+impl WalkObserver for Vec<WalkStep> {
+    fn sample(&mut self, x: i64, y: i64, edges: [i64; 3], inside: bool) {
+        self.push(WalkStep::Sample {
+            x,
+            y,
+            edges,
+            inside,
+        });
+    }
+    fn row_stops(&mut self, y: i64, x: i64) {
+        self.push(WalkStep::RowStops { y, x });
+    }
+    fn crossing(&mut self, y: i64, edge: usize, bound: Bound) {
+        self.push(WalkStep::Crossing { y, edge, bound });
+    }
+    fn span(&mut self, y: i64, first: i64, last: i64) {
+        self.push(WalkStep::Span { y, first, last });
+    }
+    fn block(&mut self, rect: PixelRect, class: BlockClass) {
+        self.push(WalkStep::Block { rect, class });
+    }
+}
+
 /// A triangle rasterization algorithm, as its file writes it: its facts
 /// and the per-triangle step. The loop over the triangles a draw selects
 /// is provided once, by the [`TriangleRasterizer`] every algorithm is.
 ///
 /// ```
 /// use rasterlab::raster::descriptor::{CostClass, Role};
-/// use rasterlab::raster::triangle::{emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+/// use rasterlab::raster::triangle::{
+///     emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver,
+/// };
 /// use rasterlab::{FragmentSink, PixelRect, TriangleRasterizer, TriangleSetup, WorkCounters};
 ///
 /// /// The bounding box, walked bottom row first.
@@ -75,14 +214,17 @@ pub enum TriangleWalk {
 ///         role: Role::Alternative,
 ///         cost: CostClass::FollowsSize,
 ///     };
-///     fn draw_triangle(&self, t: &TriangleSetup, viewport: PixelRect,
-///                      sink: &mut dyn FragmentSink, work: &mut WorkCounters) {
+///     fn draw_triangle<O: WalkObserver>(&self, t: &TriangleSetup, viewport: PixelRect,
+///                      sink: &mut dyn FragmentSink, work: &mut WorkCounters,
+///                      observer: &mut O) {
 ///         let r = t.bounds_within(viewport);
 ///         for y in (r.y0..=r.y1).rev() {
 ///             for x in r.x0..=r.x1 {
 ///                 work.samples_tested += 1;
 ///                 let e = t.edge_values_at_pixel(x, y);
-///                 if t.inside(e) {
+///                 let inside = t.inside(e);
+///                 observer.sample(x, y, e, inside);
+///                 if inside {
 ///                     work.fragments += 1;
 ///                     emit(sink, t, x, y, e);
 ///                 }
@@ -91,6 +233,12 @@ pub enum TriangleWalk {
 ///     }
 /// }
 /// assert_eq!(BottomUp.name(), "bottom-up");
+/// // Its trace is the recording of its walk: the bottom row first.
+/// let t = TriangleSetup::new(0, [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)]
+///     .map(|(x, y)| rasterlab::FixedPoint::snap_f64(x, y).unwrap()),
+///     rasterlab::FillRule::TopLeft).unwrap();
+/// let (steps, _) = BottomUp.record(&t, PixelRect::of_target(6, 4), &mut rasterlab::raster::fragment::FragmentList::default());
+/// assert!(matches!(steps[0], rasterlab::raster::triangle::WalkStep::Sample { y: 3, .. }));
 /// ```
 pub trait TriangleAlgorithm: Send + Sync {
     /// The back-end's name, description, walk, role and cost class.
@@ -98,14 +246,16 @@ pub trait TriangleAlgorithm: Send + Sync {
 
     /// Emits every fragment of triangle `t` whose pixel lies in
     /// `viewport`, for each pixel in ascending triangle order (one call per
-    /// triangle does that), and adds the samples tested, fragments and
-    /// spans to `work`.
-    fn draw_triangle(
+    /// triangle does that), adds the samples tested, fragments and spans
+    /// to `work`, and reports its steps to `observer` (a sample tested, a
+    /// row's crossings and span, a block's class).
+    fn draw_triangle<O: WalkObserver>(
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
         work: &mut WorkCounters,
+        observer: &mut O,
     );
 }
 
@@ -133,6 +283,15 @@ pub trait TriangleRasterizer: Send + Sync {
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters;
+
+    /// Draws triangle `t` into `sink` as [`Self::rasterize`] does,
+    /// recording every step of the walk: what its trace shows.
+    fn record(
+        &self,
+        t: &TriangleSetup,
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+    ) -> (Vec<WalkStep>, WorkCounters);
 
     /// Emits every fragment of `triangles` whose pixel lies in `viewport`,
     /// and returns the work done.
@@ -162,9 +321,21 @@ impl<A: TriangleAlgorithm> TriangleRasterizer for A {
         let mut work = WorkCounters::default();
         for t in triangles.iter() {
             work.primitives += 1;
-            self.draw_triangle(t, viewport, sink, &mut work);
+            self.draw_triangle(t, viewport, sink, &mut work, &mut Unobserved);
         }
         work
+    }
+
+    fn record(
+        &self,
+        t: &TriangleSetup,
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+    ) -> (Vec<WalkStep>, WorkCounters) {
+        let (mut steps, mut work) = (Vec::new(), WorkCounters::default());
+        work.primitives += 1;
+        self.draw_triangle(t, viewport, sink, &mut work, &mut steps);
+        (steps, work)
     }
 }
 

@@ -28,7 +28,7 @@
 //! is tested: the work is one solve per active edge per row, and each
 //! row's pixels go to the fragment stage as one span.
 
-use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+use super::{emit_span, Bound, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{EdgeFunction, PixelRect, TriangleSetup};
 use crate::raster::fixed::{
@@ -51,8 +51,9 @@ pub(crate) struct Span {
 
 impl Span {
     /// Narrows the span to the pixels of row sample `y` (fixed units) that
-    /// pass edge `e` with tie bias `bias`.
-    pub fn clip_to_edge(&mut self, e: &EdgeFunction, bias: i64, y: i64) {
+    /// pass edge `e` with tie bias `bias`, and says what the edge alone
+    /// bounds.
+    pub fn clip_to_edge(&mut self, e: &EdgeFunction, bias: i64, y: i64) -> Bound {
         // Value of E + bias at the sample of pixel i is a*256*i + r.
         let r = e.a * HALF_PIXEL + e.b * y + e.c + bias;
         let step = e.a * SUBPIXEL_SCALE;
@@ -60,12 +61,17 @@ impl Span {
             // i >= ceil(-r / step)
             let first = -(r.div_euclid(step));
             self.first = self.first.max(first);
+            Bound::First(first)
         } else if step < 0 {
             // i <= floor(r / -step)
             let last = r.div_euclid(-step);
             self.last = self.last.min(last);
+            Bound::Last(last)
         } else if r < 0 {
             self.last = self.first - 1;
+            Bound::None
+        } else {
+            Bound::All
         }
     }
 
@@ -109,16 +115,26 @@ pub(crate) fn active_edges(
     .flatten()
 }
 
-/// The span of row `j` (clipped to `viewport` columns).
-pub(crate) fn row_span(t: &TriangleSetup, order: [usize; 3], j: i64, viewport: PixelRect) -> Span {
+/// The span of row `j` (clipped to `viewport` columns), each active
+/// edge's bound and the span reported to `observer`.
+#[inline]
+pub(crate) fn row_span<O: WalkObserver>(
+    t: &TriangleSetup,
+    order: [usize; 3],
+    j: i64,
+    viewport: PixelRect,
+    observer: &mut O,
+) -> Span {
     let y = j * SUBPIXEL_SCALE + HALF_PIXEL;
     let mut span = Span {
         first: viewport.x0,
         last: viewport.x1,
     };
     for k in active_edges(t, order, y) {
-        span.clip_to_edge(&t.edges[k], t.bias[k], y);
+        let bound = span.clip_to_edge(&t.edges[k], t.bias[k], y);
+        observer.crossing(j, k, bound);
     }
+    observer.span(j, span.first, span.last);
     span
 }
 
@@ -143,18 +159,19 @@ impl TriangleAlgorithm for Scanline {
     };
 
     #[inline]
-    fn draw_triangle(
+    fn draw_triangle<O: WalkObserver>(
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
         work: &mut WorkCounters,
+        observer: &mut O,
     ) {
         let order = sorted_by_y(t);
         let (first_row, last_row) = row_range(t, order, viewport);
         for j in first_row..=last_row {
             work.spans += 1;
-            let span = row_span(t, order, j, viewport);
+            let span = row_span(t, order, j, viewport, observer);
             if span.is_empty() {
                 continue;
             }

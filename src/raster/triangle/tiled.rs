@@ -45,7 +45,8 @@
 //! ```
 
 use super::incremental::{report_tested, run_in_row, step_over, Run};
-use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk};
+pub use super::BlockClass;
+use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
@@ -61,44 +62,10 @@ pub const STRETCH: i64 = 8;
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Tiled;
 
-/// What the corner test says about a block.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub enum BlockClass {
-    /// No sample of the block is inside.
-    Outside,
-    /// Every sample of the block is inside.
-    Inside,
-    /// The block straddles an edge: test each sample.
-    Partial,
-}
-
-/// The blocks of `t`'s bounding box within `viewport` (on the grid's block
-/// lines, clipped to the box) with their classes, block by block, for
-/// traces and pictures; empty when the box fits in one block, which the
-/// back-end tests pixel by pixel.
-pub(crate) fn blocks(t: &TriangleSetup, viewport: PixelRect) -> Vec<(PixelRect, BlockClass)> {
-    let r = t.bounds_within(viewport);
-    if r.is_empty() || (r.x1 - r.x0 < BLOCK && r.y1 - r.y0 < BLOCK) {
-        return Vec::new();
-    }
-    let mut out = Vec::new();
-    for by in r.y0.div_euclid(BLOCK)..=r.y1.div_euclid(BLOCK) {
-        for bx in r.x0.div_euclid(BLOCK)..=r.x1.div_euclid(BLOCK) {
-            let block = PixelRect {
-                x0: (bx * BLOCK).max(r.x0),
-                y0: (by * BLOCK).max(r.y0),
-                x1: (bx * BLOCK + BLOCK - 1).min(r.x1),
-                y1: (by * BLOCK + BLOCK - 1).min(r.y1),
-            };
-            out.push((block, classify_block(t, block)));
-        }
-    }
-    out
-}
-
 /// Classifies the pixels of `r` against triangle `t` from the edge values
 /// at `r`'s four corner samples.
-pub(crate) fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
+#[cfg(test)]
+fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
     let (step_x, step_y) = t.pixel_steps();
     let top_left = t.edge_values_at_pixel(r.x0, r.y0);
     classify_from_corner(t, top_left, step_x, step_y, r.x1 - r.x0, r.y1 - r.y0)
@@ -146,12 +113,13 @@ impl TriangleAlgorithm for Tiled {
     };
 
     #[inline]
-    fn draw_triangle(
+    fn draw_triangle<O: WalkObserver>(
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
         work: &mut WorkCounters,
+        observer: &mut O,
     ) {
         let r = t.bounds_within(viewport);
         if r.is_empty() {
@@ -162,14 +130,14 @@ impl TriangleAlgorithm for Tiled {
         // thread) tests the same samples as one draw of the target.
         let (w, h) = (r.x1 - r.x0, t.bounds.y1 - t.bounds.y0);
         if w <= 1 && h <= 1 {
-            tiny_box(t, r, sink, work);
+            tiny_box(t, r, sink, work, observer);
             return;
         }
         if w < BLOCK && h < BLOCK {
-            step_over(t, r, true, sink, work);
+            step_over(t, r, sink, work, observer);
             return;
         }
-        BLOCK_ROW.with_borrow_mut(|blocks| walk_blocks(t, r, blocks, sink, work));
+        BLOCK_ROW.with_borrow_mut(|blocks| walk_blocks(t, r, blocks, sink, work, observer));
     }
 }
 
@@ -189,12 +157,13 @@ thread_local! {
 /// not only those within the viewport, so that a band of rows (a thread's
 /// part of the target) classifies a block as the whole target does, and
 /// the samples tested do not depend on how the target is cut.
-fn walk_blocks(
+fn walk_blocks<O: WalkObserver>(
     t: &TriangleSetup,
     r: PixelRect,
     blocks: &mut Vec<(PixelRect, BlockClass)>,
     sink: &mut dyn FragmentSink,
     work: &mut WorkCounters,
+    observer: &mut O,
 ) {
     let (step_x, step_y) = t.pixel_steps();
     let (bx0, by0) = (r.x0.div_euclid(BLOCK), r.y0.div_euclid(BLOCK));
@@ -233,11 +202,13 @@ fn walk_blocks(
             work.spans += 1;
             let (stretch_rect, class) = classify(bx, last);
             if class != BlockClass::Partial || last == bx {
+                observer.block(stretch_rect, class);
                 push_merged(blocks, stretch_rect, class);
             } else {
                 for b in bx..=last {
                     work.spans += 1;
                     let (block, class) = classify(b, b);
+                    observer.block(block, class);
                     push_merged(blocks, block, class);
                 }
             }
@@ -249,7 +220,7 @@ fn walk_blocks(
                 let n = x - r.x0;
                 [0, 1, 2].map(|k| row[k] + step_x[k] * n)
             };
-            if let Some(run) = row_run(t, y, blocks, step_x, at, sink, work) {
+            if let Some(run) = row_run(t, y, blocks, step_x, at, sink, work, observer) {
                 work.fragments += (run.last - run.first + 1) as u64;
                 emit_span(sink, t, y, run.first, run.last, run.edges);
             }
@@ -267,21 +238,35 @@ fn walk_blocks(
 /// has both tested: the walk stops after an outside pixel that follows
 /// the run, which here is the last one anyway).
 #[inline]
-fn tiny_box(t: &TriangleSetup, r: PixelRect, sink: &mut dyn FragmentSink, work: &mut WorkCounters) {
+fn tiny_box<O: WalkObserver>(
+    t: &TriangleSetup,
+    r: PixelRect,
+    sink: &mut dyn FragmentSink,
+    work: &mut WorkCounters,
+    observer: &mut O,
+) {
     let (step_x, step_y) = t.pixel_steps();
     let plus = |e: [i64; 3], step: [i64; 3]| [e[0] + step[0], e[1] + step[1], e[2] + step[2]];
     let mut left = t.edge_values_at_pixel(r.x0, r.y0);
     for y in r.y0..=r.y1 {
         if r.x0 == r.x1 {
             report_tested(sink, t, y, r.x0, 1, work);
-            if t.inside(left) {
+            let inside = t.inside(left);
+            observer.sample(r.x0, y, left, inside);
+            if inside {
                 work.fragments += 1;
                 emit_span(sink, t, y, r.x0, r.x0, left);
             }
         } else {
             report_tested(sink, t, y, r.x0, 2, work);
             let right = plus(left, step_x);
-            let run = match (t.inside(left), t.inside(right)) {
+            let (l, r_in) = (t.inside(left), t.inside(right));
+            observer.sample(r.x0, y, left, l);
+            observer.sample(r.x1, y, right, r_in);
+            if l && !r_in {
+                observer.row_stops(y, r.x1);
+            }
+            let run = match (l, r_in) {
                 (true, true) => Some((r.x0, r.x1, left)),
                 (true, false) => Some((r.x0, r.x0, left)),
                 (false, true) => Some((r.x1, r.x1, right)),
@@ -311,7 +296,8 @@ fn push_merged(blocks: &mut Vec<(PixelRect, BlockClass)>, block: PixelRect, clas
 /// blocks join the run untested, and
 /// only straddling blocks are tested pixel by pixel. `at(x)` gives the
 /// edge values at column `x` of the row.
-fn row_run(
+#[allow(clippy::too_many_arguments)]
+fn row_run<O: WalkObserver>(
     t: &TriangleSetup,
     y: i64,
     blocks: &[(PixelRect, BlockClass)],
@@ -319,6 +305,7 @@ fn row_run(
     at: impl Fn(i64) -> [i64; 3],
     sink: &mut dyn FragmentSink,
     work: &mut WorkCounters,
+    observer: &mut O,
 ) -> Option<Run> {
     let mut run: Option<Run> = None;
     for &(block, class) in blocks {
@@ -328,7 +315,7 @@ fn row_run(
             BlockClass::Outside => continue,
             BlockClass::Inside => (x0, x1, None),
             BlockClass::Partial => {
-                let (part, tested) = run_in_row(t, at(x0), step_x, x0, x1);
+                let (part, tested) = run_in_row(t, at(x0), step_x, x0, x1, y, observer);
                 report_tested(sink, t, y, x0, tested, work);
                 match part {
                     Some(p) => (p.first, p.last, Some(p.edges)),
@@ -387,7 +374,8 @@ mod tests {
 
         /// A box of at most 2x2 pixels tested sample by sample gives what
         /// the per-pixel loop gives: the same fragments with the same edge
-        /// values, the same tested runs, the same counts, under every rule.
+        /// values, the same tested runs, the same counts and the same
+        /// recorded steps, under every rule.
         #[test]
         fn tiny_boxes_give_what_the_pixel_loop_gives(
             origin in (1i64..5, 1i64..5),
@@ -400,11 +388,14 @@ mod tests {
             let r = t.bounds_within(PixelRect::of_target(16, 16));
             prop_assume!(!r.is_empty() && r.x1 - r.x0 <= 1 && r.y1 - r.y0 <= 1);
             let (mut tiny, mut tiny_work) = (Recorder::default(), WorkCounters::default());
-            tiny_box(&t, r, &mut tiny, &mut tiny_work);
+            let mut tiny_steps = Vec::new();
+            tiny_box(&t, r, &mut tiny, &mut tiny_work, &mut tiny_steps);
             let (mut looped, mut looped_work) = (Recorder::default(), WorkCounters::default());
-            step_over(&t, r, true, &mut looped, &mut looped_work);
+            let mut looped_steps = Vec::new();
+            step_over(&t, r, &mut looped, &mut looped_work, &mut looped_steps);
             prop_assert_eq!(tiny, looped);
             prop_assert_eq!(tiny_work, looped_work);
+            prop_assert_eq!(tiny_steps, looped_steps);
         }
     }
 
