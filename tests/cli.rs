@@ -465,3 +465,31 @@ fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
     let out = rasterlab(&["compare", polygon.to_str().unwrap(), "--size", "0x4"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// Two triangles covering a full-HD target are drawn band by band (they
+/// are few), on one thread or two; each still counts as one primitive.
+#[test]
+fn render_counts_each_triangle_once_whatever_the_bands() {
+    let dir = std::env::temp_dir().join(format!("rasterlab-cli-bands-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let soup = dir.join("two.txt");
+    std::fs::write(&soup, "0 0 1920 0 0 1080\n1920 0 1920 1080 0 1080\n").unwrap();
+    let out = dir.join("two.png");
+    for threads in ["1", "2"] {
+        let text = success_stdout(rasterlab(&[
+            "--threads",
+            threads,
+            "render",
+            soup.to_str().unwrap(),
+            "--size",
+            "1920x1080",
+            "--out",
+            out.to_str().unwrap(),
+        ]));
+        assert!(
+            text.contains("2 primitives, 0 samples tested, 2073600 fragments"),
+            "{threads} threads: {text}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -33,8 +33,9 @@
 //!
 //! The number of threads is rayon's: all cores by default,
 //! `RAYON_NUM_THREADS` or a pool installed by the caller (`--threads N` on
-//! the command line). Work counters are summed over bands, so a triangle
-//! met by three bands counts three primitives.
+//! the command line). Work counters are summed over bands, but for the
+//! primitives: each triangle drawn counts once, however many bands it
+//! meets, so the counts do not depend on the bands or the threads.
 
 use super::bands::{Bands, Bins};
 use super::geometry::{Geometry, Runs};
@@ -197,6 +198,7 @@ fn draw_runs(
         }
         stage.finish();
     }
+    work.primitives = triangles as u64;
     work
 }
 
@@ -247,7 +249,7 @@ pub(crate) fn draw_runs_binned(
             computed.chunks.iter().map(|(r, b)| (*r, &b[..])).collect()
         }
     };
-    target
+    let mut work = target
         .bands_clearing(bands.rows(), pass.clear)
         .into_par_iter()
         .enumerate()
@@ -269,5 +271,7 @@ pub(crate) fn draw_runs_binned(
         .reduce(WorkCounters::default, |mut a, b| {
             a.add(&b);
             a
-        })
+        });
+    work.primitives = runs.iter().map(|r| r.setups.len() as u64).sum();
+    work
 }
