@@ -37,7 +37,6 @@ use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt::{self, Write};
-use std::str::FromStr;
 
 /// How lines are judged.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
@@ -75,37 +74,16 @@ impl LineConvention {
         LineConvention::Vulkan,
         LineConvention::PixelIndex,
     ];
-
-    /// The convention's command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            LineConvention::Midpoint => "midpoint",
-            LineConvention::Diamond => "diamond",
-            LineConvention::Vulkan => "vulkan",
-            LineConvention::PixelIndex => "pixel-index",
-        }
-    }
 }
 
-impl fmt::Display for LineConvention {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for LineConvention {
-    type Err = crate::error::Error;
-    fn from_str(s: &str) -> crate::error::Result<Self> {
-        LineConvention::ALL
-            .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| crate::error::Error::UnknownName {
-                what: "line convention",
-                name: s.to_string(),
-                known: LineConvention::ALL.map(LineConvention::name).join(", "),
-            })
-    }
-}
+crate::names::named_enum!(
+    LineConvention,
+    "line convention",
+    Midpoint = "midpoint",
+    Diamond = "diamond",
+    Vulkan = "vulkan",
+    PixelIndex = "pixel-index"
+);
 
 /// What a check requires of every case.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
