@@ -172,29 +172,20 @@ pub enum FailureKind {
     Count,
 }
 
-impl FailureKind {
-    /// The kind's stable identifier.
-    pub fn name(self) -> &'static str {
-        match self {
-            FailureKind::OffTarget => "off-target",
-            FailureKind::UnknownPrimitive => "unknown-primitive",
-            FailureKind::ListedTwice => "listed-twice",
-            FailureKind::Missing => "missing",
-            FailureKind::Extra => "extra",
-            FailureKind::Tie => "tie",
-            FailureKind::Gap => "gap",
-            FailureKind::DoubleDraw => "double-draw",
-            FailureKind::Connectivity => "connectivity",
-            FailureKind::Count => "count",
-        }
-    }
-}
-
-impl fmt::Display for FailureKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
+crate::names::named_enum!(
+    FailureKind,
+    "failure kind",
+    OffTarget = "off-target",
+    UnknownPrimitive = "unknown-primitive",
+    ListedTwice = "listed-twice",
+    Missing = "missing",
+    Extra = "extra",
+    Tie = "tie",
+    Gap = "gap",
+    DoubleDraw = "double-draw",
+    Connectivity = "connectivity",
+    Count = "count"
+);
 
 /// Where a case came from: recorded in the counterexample file, the
 /// report page and the JSON.

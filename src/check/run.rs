@@ -62,20 +62,7 @@ pub enum Kind {
     Lines,
 }
 
-impl FromStr for Kind {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Kind> {
-        match s {
-            "triangles" => Ok(Kind::Triangles),
-            "lines" => Ok(Kind::Lines),
-            _ => Err(Error::UnknownName {
-                what: "kind",
-                name: s.to_string(),
-                known: "triangles, lines".into(),
-            }),
-        }
-    }
-}
+crate::names::named_enum!(Kind, "kind", Triangles = "triangles", Lines = "lines");
 
 /// What triangles are judged by.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

@@ -21,8 +21,8 @@ pub struct CheckArgs {
     backend: Option<String>,
     /// What the cases hold: triangles or lines (default: the back-end's
     /// kind, or triangles).
-    #[arg(long, value_parser = clap::value_parser!(KindArg))]
-    kind: Option<KindArg>,
+    #[arg(long)]
+    kind: Option<Kind>,
     /// Triangles: the fill rule the answer must follow exactly
     /// (top-left, bottom-right, top-right, bottom-left, offscreen-point,
     /// inclusive, exclusive), `watertight` (no gaps, no double draws,
@@ -30,13 +30,13 @@ pub struct CheckArgs {
     /// nothing twice) or `any` (which rule does it follow?). Default:
     /// top-left.
     #[arg(long)]
-    rule: Option<RuleArg>,
+    rule: Option<RuleChoice>,
     /// Lines: midpoint (exactly `bresenham`), diamond (exactly `diamond`),
     /// vulkan (Vulkan's tolerance of the diamond rule) or pixel-index
     /// (whole-number endpoints naming pixels, integer Bresenham). Default:
     /// midpoint.
     #[arg(long)]
-    convention: Option<ConventionArg>,
+    convention: Option<LineConvention>,
     /// How many cases.
     #[arg(long, default_value_t = 150)]
     cases: u32,
@@ -66,37 +66,6 @@ pub struct CheckArgs {
     json: bool,
 }
 
-/// `--kind`, parsed by the library.
-#[derive(Clone, Debug)]
-struct KindArg(Kind);
-/// `--rule`, parsed by the library.
-#[derive(Clone, Debug)]
-struct RuleArg(RuleChoice);
-/// `--convention`, parsed by the library.
-#[derive(Clone, Debug)]
-struct ConventionArg(LineConvention);
-
-impl std::str::FromStr for KindArg {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        s.parse().map(KindArg)
-    }
-}
-
-impl std::str::FromStr for RuleArg {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        s.parse().map(RuleArg)
-    }
-}
-
-impl std::str::FromStr for ConventionArg {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        s.parse().map(ConventionArg)
-    }
-}
-
 pub fn run(args: &CheckArgs) -> Result<()> {
     let subject = match (&args.exec, &args.backend) {
         (Some(command), _) => SubjectSpec::Exec(command.clone()),
@@ -114,9 +83,9 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         )));
     }
     let request = CheckRequest {
-        kind: args.kind.as_ref().map(|k| k.0),
-        rule: args.rule.as_ref().map(|r| r.0),
-        convention: args.convention.as_ref().map(|c| c.0),
+        kind: args.kind,
+        rule: args.rule,
+        convention: args.convention,
         cases: args.cases,
         seed: args.seed,
         timeout: Duration::from_secs_f64(args.timeout),

@@ -52,12 +52,10 @@
 //! assert_eq!((count(&upper), count(&lower)), (15, 10));
 //! ```
 
-use crate::error::{Error, Result};
 use crate::raster::fixed::{
     first_sample_at_or_after, last_sample_at_or_before, FixedPoint, SUBPIXEL_SCALE,
 };
 use std::fmt;
-use std::str::FromStr;
 
 /// The implicit line equation `a * x + b * y + c` of a directed edge, in
 /// fixed-point units (see the module docs).
@@ -212,19 +210,6 @@ impl FillRule {
         FillRule::OffscreenPoint,
     ];
 
-    /// The rule's command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            FillRule::TopLeft => "top-left",
-            FillRule::BottomRight => "bottom-right",
-            FillRule::TopRight => "top-right",
-            FillRule::BottomLeft => "bottom-left",
-            FillRule::OffscreenPoint => "offscreen-point",
-            FillRule::Inclusive => "inclusive",
-            FillRule::Exclusive => "exclusive",
-        }
-    }
-
     /// Does the inside-positive edge `e` own the samples lying exactly on it?
     pub fn owns_ties(self, e: &EdgeFunction) -> bool {
         match self {
@@ -268,25 +253,17 @@ impl FillRule {
     }
 }
 
-impl fmt::Display for FillRule {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for FillRule {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        FillRule::ALL
-            .into_iter()
-            .find(|r| r.name() == s)
-            .ok_or_else(|| Error::UnknownName {
-                what: "fill rule",
-                name: s.to_string(),
-                known: FillRule::ALL.map(FillRule::name).join(", "),
-            })
-    }
-}
+crate::names::named_enum!(
+    FillRule,
+    "fill rule",
+    TopLeft = "top-left",
+    BottomRight = "bottom-right",
+    TopRight = "top-right",
+    BottomLeft = "bottom-left",
+    OffscreenPoint = "offscreen-point",
+    Inclusive = "inclusive",
+    Exclusive = "exclusive"
+);
 
 /// An inclusive rectangle of pixel indices (`x0..=x1`, `y0..=y1`); empty
 /// when `x0 > x1` or `y0 > y1`.
@@ -497,6 +474,7 @@ impl TriangleSetup {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Error;
 
     fn p(x: f32, y: f32) -> FixedPoint {
         FixedPoint::snap(x, y).unwrap()
