@@ -33,20 +33,24 @@ use std::fmt;
 use std::time::Duration;
 
 /// Where one frame's time went; the parts add up to [`total`](Self::total).
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct FrameTimes {
     /// Clearing the target as a pass of its own (zero when folded into
     /// the draw, see [`clear_folded`](Self::clear_folded)).
+    #[serde(serialize_with = "milliseconds")]
     pub clear: Duration,
     /// Whether the clear was folded into the draw, and so is part of
     /// [`raster`](Self::raster).
     pub clear_folded: bool,
     /// Vertex shading, clipping, culling and set-up.
+    #[serde(serialize_with = "milliseconds")]
     pub geometry: Duration,
     /// Rasterizing and shading the fragments (with a folded clear, the
     /// clear too).
+    #[serde(serialize_with = "milliseconds")]
     pub raster: Duration,
     /// The frame's time outside the named parts.
+    #[serde(serialize_with = "milliseconds")]
     pub rest: Duration,
 }
 
@@ -86,6 +90,11 @@ impl FrameTimes {
         sorted.sort_by_key(FrameTimes::total);
         sorted.get(sorted.len() / 2).copied()
     }
+}
+
+/// A duration as milliseconds, in the JSON of a report.
+pub(crate) fn milliseconds<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_f64(d.as_secs_f64() * 1e3)
 }
 
 impl fmt::Display for FrameTimes {

@@ -103,7 +103,7 @@ pub trait FragmentSink {
 /// same for any number of threads; `primitives` and `spans` also count the
 /// binning's extra work: a triangle reaching two bands is set up twice,
 /// and a row of blocks cut by a band's edge is classified in both bands.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct WorkCounters {
     /// Primitives that reached the back-end's set-up (once per band they
     /// reach, on several threads).

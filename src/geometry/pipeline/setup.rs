@@ -15,7 +15,7 @@ use crate::raster::primitive::{ShadedTriangle, ShadedVertex};
 use crate::raster::vector;
 
 /// What happened to the primitives of a draw.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct GeometryStats {
     /// Triangles assembled.
     pub primitives: u64,
