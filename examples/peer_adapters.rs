@@ -6,11 +6,12 @@
 //! rasterlab check --rule watertight --exec "target/release/examples/peer_adapters tiny-skia {input} {width} {height}"
 //! rasterlab check --rule watertight --exec "target/release/examples/peer_adapters euc {input} {width} {height}"
 //! rasterlab check --rule watertight --exec "target/release/examples/peer_adapters embedded-graphics {input} {width} {height}"
+//! rasterlab check --rule any --exec "target/release/examples/peer_adapters opengl {input} {width} {height}"
 //! ```
 //!
 //! Each adapter reads the input file (triangles `x0 y0 x1 y1 x2 y2` in
 //! screen pixels, one per line, `#` comments), draws every triangle alone
-//! into a cleared target of the given size with the crate's own filling,
+//! into a cleared target of the given size with the library's own filling,
 //! and prints the pixels it covered as `x y t`.
 //!
 //! * `tiny-skia`: a path of three points filled aliased (`anti_alias =
@@ -19,11 +20,42 @@
 //!   normalised device coordinates (x right, y up), back faces drawn;
 //! * `embedded-graphics`: a filled `Triangle`, whose vertices are whole
 //!   pixels: each coordinate is rounded down to the pixel it lies in (the
-//!   crate's points name pixels, as a display's do).
+//!   crate's points name pixels, as a display's do);
+//! * `opengl`: OpenGL 3.3 through EGL's surfaceless platform (no window,
+//!   no GPU), with Mesa's llvmpipe, the software driver Debian's
+//!   `libegl1 libegl-mesa0 libgl1-mesa-dri` install (the context is made
+//!   by the benchmarks' `benches/support/gl.rs`). GL's window coordinates
+//!   have their origin at the *lower* left, y up, pixel centres at +0.5,
+//!   and a framebuffer's row 0 is its bottom row; the screen's y runs
+//!   down. So the adapter flips y: the screen point `(x, y)` of a `W x H`
+//!   target is GL's window point `(x, H - y)`, and the screen's pixel
+//!   `(i, j)` is GL's pixel `(i, H - 1 - j)`, read back from the bottom.
+//!   GL's specification leaves the tie rule to the driver. llvmpipe
+//!   applies the top-left rule to the framebuffer's rows as stored, row 0
+//!   first, and row 0 is GL's bottom row: a centre on an edge goes to the
+//!   triangle when the edge is a left edge, or an edge below the triangle
+//!   in GL's window (lower y). Seen through the flip, in the screen's
+//!   y-down coordinates, those are the left and bottom edges: the
+//!   **bottom-left** rule, which `rasterlab check --rule any` names. The
+//!   target lies inside a larger viewport, with a margin of 64 px on
+//!   every side and a side a power of two, so that the viewport transform
+//!   is exact in `f32` and every vertex lands on the 1/256 px grid it was
+//!   given on: a triangle crossing the target's edge is not clipped
+//!   there; only one reaching beyond the margin is, with vertices the
+//!   driver makes of its own.
+
+// The support module serves the benchmarks and tests too: this adapter
+// uses part of it.
+#[allow(dead_code)]
+#[path = "../benches/support/gl.rs"]
+mod gl;
 
 use std::process::ExitCode;
 
 type Triangle = [(f32, f32); 3];
+
+/// Draws one triangle alone on a `w x h` target: the pixels it covers.
+type Draw<'a> = Box<dyn Fn(&Triangle, u32, u32) -> Vec<(u32, u32)> + 'a>;
 
 fn read(path: &str) -> Result<Vec<Triangle>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
@@ -159,6 +191,57 @@ fn embedded_graphics_pixels(t: &Triangle, w: u32, h: u32) -> Vec<(u32, u32)> {
     covered(w, h, |i| recorder.set[i])
 }
 
+/// The margin around the target inside OpenGL's viewport, in pixels.
+const GL_MARGIN: u32 = 64;
+
+/// OpenGL: a context on a square framebuffer holding the target and its
+/// margin, and the transform from window pixels to clip space.
+struct OpenGl {
+    gl: gl::Llvmpipe,
+    side: u32,
+    transform: [f32; 16],
+}
+
+impl OpenGl {
+    fn new(w: u32, h: u32) -> Result<OpenGl, String> {
+        let side = (w.max(h) + 2 * GL_MARGIN).next_power_of_two();
+        let gl = gl::Llvmpipe::new(side, side, 0)?;
+        let transform = gl.window_transform();
+        Ok(OpenGl {
+            gl,
+            side,
+            transform,
+        })
+    }
+
+    /// The pixels of the `w x h` target GL covers drawing `t` alone.
+    fn pixels(&self, t: &Triangle, w: u32, h: u32) -> Vec<(u32, u32)> {
+        let m = GL_MARGIN as f32;
+        // The y flip of the module docs, then the margin: exact in f32
+        // for coordinates on the 1/256 grid within the guard band.
+        let vertices = t.map(|(x, y)| gl::Vertex {
+            position: [x + m, (h as f32 - y) + m, 0.5],
+            light: 1.0,
+        });
+        let shape = self.gl.shape(&vertices, &[0, 1, 2]);
+        self.gl.draw(
+            &shape,
+            &self.transform,
+            gl::DrawState {
+                depth: false,
+                cull_back: false,
+            },
+        );
+        let coverage = self.gl.coverage();
+        self.gl.delete(shape);
+        let (side, margin) = (self.side, GL_MARGIN);
+        covered(w, h, |i| {
+            let (x, y) = (i as u32 % w, i as u32 / w);
+            coverage[((margin + h - 1 - y) * side + margin + x) as usize]
+        })
+    }
+}
+
 fn covered(w: u32, h: u32, is_set: impl Fn(usize) -> bool) -> Vec<(u32, u32)> {
     (0..h)
         .flat_map(|y| (0..w).map(move |x| (x, y)))
@@ -168,7 +251,7 @@ fn covered(w: u32, h: u32, is_set: impl Fn(usize) -> bool) -> Vec<(u32, u32)> {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
-    let usage = "usage: peer_adapters tiny-skia|euc|embedded-graphics INPUT WIDTH HEIGHT";
+    let usage = "usage: peer_adapters tiny-skia|euc|embedded-graphics|opengl INPUT WIDTH HEIGHT";
     let [_, crate_name, input, width, height] = args.as_slice() else {
         eprintln!("{usage}");
         return ExitCode::from(2);
@@ -177,19 +260,34 @@ fn main() -> ExitCode {
         eprintln!("{usage}");
         return ExitCode::from(2);
     };
-    let draw: fn(&Triangle, u32, u32) -> Vec<(u32, u32)> = match crate_name.as_str() {
-        "tiny-skia" => tiny_skia_pixels,
-        "euc" => euc_pixels,
-        "embedded-graphics" => embedded_graphics_pixels,
-        _ => {
-            eprintln!("{usage}");
-            return ExitCode::from(2);
-        }
-    };
+    if w == 0 || h == 0 {
+        eprintln!("the target is empty: {w}x{h}");
+        return ExitCode::from(2);
+    }
     let triangles = match read(input) {
         Ok(t) => t,
         Err(e) => {
             eprintln!("{e}");
+            return ExitCode::from(2);
+        }
+    };
+    let opengl;
+    let draw: Draw = match crate_name.as_str() {
+        "tiny-skia" => Box::new(tiny_skia_pixels),
+        "euc" => Box::new(euc_pixels),
+        "embedded-graphics" => Box::new(embedded_graphics_pixels),
+        "opengl" => {
+            opengl = match OpenGl::new(w, h) {
+                Ok(gl) => gl,
+                Err(e) => {
+                    eprintln!("OpenGL unavailable: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            Box::new(|t: &Triangle, w, h| opengl.pixels(t, w, h))
+        }
+        _ => {
+            eprintln!("{usage}");
             return ExitCode::from(2);
         }
     };

@@ -1143,3 +1143,84 @@ fn the_python_adapters_are_judged_not_broken() {
         eprintln!("{adapter}: follows {}", json["rules"]["followed"]);
     }
 }
+
+/// The `peer_adapters` example beside this test's executable: `cargo
+/// test` builds it, as does `cargo build --release --example
+/// peer_adapters`.
+fn peer_adapters() -> Option<std::path::PathBuf> {
+    let exe = std::env::current_exe().ok()?;
+    let profile = exe.parent()?.parent()?;
+    let path = profile
+        .join("examples")
+        .join(format!("peer_adapters{}", std::env::consts::EXE_SUFFIX));
+    path.is_file().then_some(path)
+}
+
+#[test]
+fn opengl_through_egl_follows_the_bottom_left_rule() {
+    const TEST: &str = "opengl_through_egl_follows_the_bottom_left_rule";
+    const REQUIRED: &str = "RASTERLAB_REQUIRE_MESA";
+    let Some(adapter) = peer_adapters() else {
+        common::part_missing(
+            TEST,
+            "the peer_adapters example (cargo build --release --example peer_adapters)",
+            REQUIRED,
+        );
+        return;
+    };
+    // One triangle first: is there an OpenGL at all? Pixel (0, 0)'s
+    // centre is inside, (1, 0)'s on the hypotenuse (a right edge).
+    let dir = tempfile::tempdir().unwrap();
+    let probe = dir.path().join("probe.txt");
+    std::fs::write(&probe, "# size 2x2\n0 0 2 0 0 2\n").unwrap();
+    let out = Command::new(&adapter)
+        .arg("opengl")
+        .arg(&probe)
+        .args(["2", "2"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() {
+        assert!(err.contains("OpenGL unavailable"), "{err}");
+        common::part_missing(
+            TEST,
+            &format!("OpenGL through EGL ({})", err.trim()),
+            REQUIRED,
+        );
+        return;
+    }
+    assert_eq!(String::from_utf8_lossy(&out.stdout), "0 0 0\n");
+    let out = rasterlab(&[
+        "check",
+        "--rule",
+        "any",
+        "--cases",
+        "60",
+        "--jobs",
+        "2",
+        "--json",
+        "--exec",
+        // 60 cases: six of each exact family, overflow included.
+        &format!(
+            "{} opengl {{input}} {{width}} {{height}}",
+            adapter.display()
+        ),
+        "--out",
+        dir.path().join("out").to_str().unwrap(),
+    ]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    valid(&schema(), &json);
+    assert_eq!(out.status.code(), Some(0), "{json:#}");
+    let rules = &json["rules"];
+    assert_eq!(
+        rules["followed"],
+        serde_json::json!(["bottom-left"]),
+        "{json:#}"
+    );
+    for property in ["watertight", "crack_free"] {
+        assert_eq!(
+            rules[property]["agreeing"], rules[property]["total"],
+            "{json:#}"
+        );
+    }
+}
