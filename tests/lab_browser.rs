@@ -2,8 +2,14 @@
 //! Chromium opens its page, and the test drives it through the DevTools
 //! protocol as a student would, with the mouse: it drags a vertex and
 //! checks that the grid, the trace and the URL follow, hovers a pixel and
-//! checks that the trace highlights its lines. The server's answers to bad
-//! requests (4xx, never a panic) are checked over plain HTTP.
+//! checks that the trace highlights its lines. It checks that the page
+//! draws with the one palette and shows its legend, that the grid has row
+//! and column numbers and the trace pane its scanline `span` column at
+//! 1400 px, that the course's depth-buffer example shows kept and hidden
+//! fragments (not double draws) with the depth buffer's trace, and that a
+//! student's program (`--exec`) gets a legend entry and a count of wrong
+//! pixels. The server's answers to bad requests (4xx, never a panic) are
+//! checked over plain HTTP.
 //!
 //! Chromium is found as for the report's browser test; without one this
 //! test passes with a message unless `RASTERLAB_REQUIRE_BROWSER` is set.
@@ -11,6 +17,10 @@
 mod common;
 
 use common::{chromium, HEADLESS};
+use rasterlab::geometry::scene::Scene2D;
+use rasterlab::raster::edge::FillRule;
+use rasterlab::teaching::grid_picture::DepthCells;
+use rasterlab::teaching::palette::Role;
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
@@ -25,8 +35,14 @@ struct Lab {
 
 impl Lab {
     fn start() -> Lab {
+        Lab::start_with(&[])
+    }
+
+    /// `rasterlab lab` with more arguments (`--exec ...`).
+    fn start_with(args: &[&str]) -> Lab {
         let mut child = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
             .args(["lab", "--port", "0"])
+            .args(args)
             .stdout(Stdio::piped())
             .spawn()
             .expect("the lab starts");
@@ -232,56 +248,156 @@ impl DevTools {
     }
 }
 
+/// Headless Chromium, 1400 x 1000 px, and a DevTools session on it;
+/// closed and its profile removed when dropped.
+struct Browser {
+    chrome: Killed,
+    dev: DevTools,
+    profile: std::path::PathBuf,
+}
+
+impl Browser {
+    /// Starts Chromium, or says `test` did not run and returns `None`
+    /// when there is none.
+    fn start(test: &str) -> Option<Browser> {
+        let Some(browser) = chromium() else {
+            common::part_missing(
+                test,
+                "chromium (Debian's package `chromium`)",
+                "RASTERLAB_REQUIRE_BROWSER",
+            );
+            return None;
+        };
+        let profile = std::env::temp_dir().join(format!(
+            "rasterlab-lab-chromium-{}-{}",
+            std::process::id(),
+            test.replace(|c: char| !c.is_ascii_alphanumeric(), "-")
+        ));
+        let mut chrome = Killed(
+            Command::new(browser)
+                .args(HEADLESS)
+                .args(["--remote-debugging-port=0", "--window-size=1400,1000"])
+                .arg(format!("--user-data-dir={}", profile.display()))
+                .arg("about:blank")
+                .stdout(Stdio::null())
+                .stderr(Stdio::piped())
+                .spawn()
+                .expect("chromium starts"),
+        );
+        let mut lines = BufReader::new(chrome.0.stderr.take().unwrap()).lines();
+        let ws = loop {
+            let line = lines
+                .next()
+                .expect("chromium prints its DevTools address")
+                .unwrap();
+            if let Some(at) = line.find("ws://") {
+                break line[at..].trim().to_string();
+            }
+        };
+        // Keep reading Chromium's messages so it never blocks on a full pipe.
+        std::thread::spawn(move || for _ in lines {});
+        let (socket, _) = tungstenite::connect(ws.as_str()).expect("DevTools connects");
+        let dev = DevTools {
+            socket,
+            session: String::new(),
+            next_id: 0,
+        };
+        Some(Browser {
+            chrome,
+            dev,
+            profile,
+        })
+    }
+}
+
+impl Drop for Browser {
+    fn drop(&mut self) {
+        let _ = self.dev.call("Browser.close", json!({}), false);
+        let _ = self.chrome.0.wait();
+        let _ = std::fs::remove_dir_all(&self.profile);
+    }
+}
+
+/// The keys of the legend's entries under `#legend`, after checking that
+/// it is the one palette's legend and that every role's swatch has the
+/// role's colour.
+fn legend(dev: &mut DevTools) -> Vec<String> {
+    let entries = dev.eval(
+        "[...document.querySelectorAll('#legend .legend[data-palette=\"okabe-ito\"] .entry')].map(e => [e.dataset.role, getComputedStyle(e.querySelector('.swatch')).backgroundColor, e.textContent])",
+    );
+    let entries = entries.as_array().expect("a legend under the grid");
+    let mut keys = Vec::new();
+    for e in entries {
+        let (key, colour, label) = (
+            e[0].as_str().unwrap(),
+            e[1].as_str().unwrap(),
+            e[2].as_str().unwrap(),
+        );
+        if let Some(role) = Role::ALL.iter().find(|r| r.key() == key) {
+            let [r, g, b] = role.rgb();
+            assert_eq!(colour, format!("rgb({r}, {g}, {b})"), "{key}");
+            assert!(label.contains(role.label()), "{key}: {label}");
+        } else {
+            assert!(key.starts_with("triangle-"), "{key}");
+        }
+        keys.push(key.to_string());
+    }
+    keys
+}
+
+/// Waits for the page to settle on the answer to its latest state.
+fn settle(dev: &mut DevTools, updates: u64) {
+    dev.wait_for(&format!(
+        "Number(document.body.dataset.updates) > {updates} && document.body.dataset.busy === '0'"
+    ));
+}
+
+fn updates(dev: &mut DevTools) -> u64 {
+    dev.eval("Number(document.body.dataset.updates)")
+        .as_u64()
+        .unwrap()
+}
+
 #[test]
 fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
-    let Some(browser) = chromium() else {
-        common::part_missing(
-            "the lab's browser test",
-            "chromium (Debian's package `chromium`)",
-            "RASTERLAB_REQUIRE_BROWSER",
-        );
+    let Some(mut browser) = Browser::start("the lab's browser test") else {
         return;
     };
     let lab = Lab::start();
-    let profile =
-        std::env::temp_dir().join(format!("rasterlab-lab-chromium-{}", std::process::id()));
-    let mut chrome = Killed(
-        Command::new(browser)
-            .args(HEADLESS)
-            .args(["--remote-debugging-port=0", "--window-size=1400,1000"])
-            .arg(format!("--user-data-dir={}", profile.display()))
-            .arg("about:blank")
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("chromium starts"),
-    );
-    let mut lines = BufReader::new(chrome.0.stderr.take().unwrap()).lines();
-    let ws = loop {
-        let line = lines
-            .next()
-            .expect("chromium prints its DevTools address")
-            .unwrap();
-        if let Some(at) = line.find("ws://") {
-            break line[at..].trim().to_string();
-        }
-    };
-    // Keep reading Chromium's messages so it never blocks on a full pipe.
-    std::thread::spawn(move || for _ in lines {});
-    let (socket, _) = tungstenite::connect(ws.as_str()).expect("DevTools connects");
-    let mut dev = DevTools {
-        socket,
-        session: String::new(),
-        next_id: 0,
-    };
+    let dev = &mut browser.dev;
     dev.open(&format!("http://{}/", lab.address));
+
+    // The one palette's legend, for what the grid shows: fragments,
+    // samples tested outside, the true edges, the pixel centres.
+    let keys = legend(dev);
+    for role in [
+        Role::Drawn,
+        Role::TestedOutside,
+        Role::Geometry,
+        Role::PixelCentre,
+    ] {
+        assert!(keys.iter().any(|k| k == role.key()), "{role:?} in {keys:?}");
+    }
+    // Row and column numbers, 16 of each.
+    assert_eq!(
+        dev.eval("[document.querySelectorAll('#grid .axes .column').length, document.querySelectorAll('#grid .axes .row').length]"),
+        json!([16, 16])
+    );
+    // At 1400 px every scanline row shows its span, on one line, inside
+    // the trace pane.
+    let spans = dev.eval(
+        "(() => { const t = document.getElementById('trace'), box = t.getBoundingClientRect(); const rows = [...t.children].filter(d => / px\\)$/.test(d.textContent)); return [rows.length, rows.filter(d => { const r = document.createRange(); r.selectNodeContents(d); const b = r.getBoundingClientRect(); return b.right <= box.right - 4 && b.height < 20; }).length, window.innerWidth]; })()",
+    );
+    assert_eq!(spans[2], json!(1400));
+    assert!(spans[0].as_u64().unwrap() > 5, "{spans}");
+    assert_eq!(spans[0], spans[1], "rows whose span is cut off: {spans}");
 
     let fragments = |dev: &mut DevTools| {
         dev.eval("document.querySelectorAll('#grid rect.fragment').length")
             .as_u64()
             .unwrap()
     };
-    let before = fragments(&mut dev);
+    let before = fragments(dev);
     let first_line = "document.getElementById('trace').firstChild.textContent";
     let trace_before = dev.eval(first_line).as_str().unwrap().to_string();
     assert!(
@@ -328,7 +444,7 @@ fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
         json!(trace_before)
     ));
     dev.wait_for("document.querySelectorAll('#grid rect.fragment').length > 0");
-    let after = fragments(&mut dev);
+    let after = fragments(dev);
     assert_ne!(before, after, "the grid follows the drag");
     let trace_after = dev.eval(first_line).as_str().unwrap().to_string();
     assert_ne!(trace_before, trace_after);
@@ -353,7 +469,7 @@ fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
     let cell_of = |dev: &mut DevTools| {
         dev.eval("(() => { const f = document.querySelector('#grid rect.fragment'); const r = f.getBoundingClientRect(); return [r.x + r.width / 2, r.y + r.height / 2]; })()")
     };
-    let p = cell_of(&mut dev);
+    let p = cell_of(dev);
     dev.mouse(
         "mouseMoved",
         p[0].as_f64().unwrap(),
@@ -366,13 +482,119 @@ fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
     let shared = dev.eval("location.href").as_str().unwrap().to_string();
     dev.open(&shared);
     assert_eq!(
-        fragments(&mut dev),
+        fragments(dev),
         after,
         "the link restores the dragged triangle"
     );
     assert_eq!(dev.eval(first_line).as_str().unwrap(), trace_after);
+}
 
-    let _ = dev.call("Browser.close", json!({}), false);
-    let _ = chrome.0.wait();
-    let _ = std::fs::remove_dir_all(&profile);
+#[test]
+fn the_depth_view_shows_kept_and_hidden_fragments_not_double_draws() {
+    let Some(mut browser) = Browser::start("the lab's depth-view browser test") else {
+        return;
+    };
+    let lab = Lab::start();
+    let dev = &mut browser.dev;
+    dev.open(&format!("http://{}/", lab.address));
+    let before = updates(dev);
+    dev.eval("(() => { const p = document.getElementById('preset'); p.value = 'depth'; p.onchange(); })()");
+    settle(dev, before);
+    dev.wait_for("document.getElementById('depth-summary') !== null");
+    // What the depth test did, as the library counts it.
+    let cells = DepthCells::of_scene(
+        &Scene2D::depth_example(true),
+        rasterlab::triangle_backend("bbox").unwrap(),
+        FillRule::TopLeft,
+    )
+    .unwrap();
+    let kept: usize = cells.kept.iter().map(Vec::len).sum();
+    let hidden: usize = cells.hidden.iter().map(Vec::len).sum();
+    assert_eq!(hidden, 4, "the course's example hides 4 fragments");
+    let summary = dev.eval(
+        "(() => { const s = document.getElementById('depth-summary'); return [Number(s.dataset.kept), Number(s.dataset.hidden), s.textContent]; })()",
+    );
+    assert_eq!(
+        (summary[0].clone(), summary[1].clone()),
+        (json!(kept), json!(hidden)),
+        "{summary}"
+    );
+    assert!(
+        summary[2].as_str().unwrap().contains("4 hidden"),
+        "{summary}"
+    );
+    // Hidden fragments are marked where the library hid them; nothing is
+    // called a double draw.
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#grid .hidden').length"),
+        json!(cells.hidden.iter().filter(|h| !h.is_empty()).count())
+    );
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#grid .double, #grid .gap').length"),
+        json!(0)
+    );
+    let keys = legend(dev);
+    assert!(keys.iter().any(|k| k == Role::Hidden.key()), "{keys:?}");
+    assert!(keys.iter().any(|k| k == "triangle-0") && keys.iter().any(|k| k == "triangle-1"));
+    assert!(
+        !keys.iter().any(|k| k == Role::DoubleDraw.key()),
+        "{keys:?}"
+    );
+    // The stored depth in every cell, and no pixel centre on a number.
+    let labels = dev.eval(
+        "(() => { const texts = [...document.querySelectorAll('#grid text.depth')]; const dots = [...document.querySelectorAll('#grid circle.centre')].map(d => d.getBoundingClientRect()); const overlaps = texts.filter(t => { const a = t.getBoundingClientRect(); return dots.some(b => a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom); }).length; return [texts.length, overlaps, texts.map(t => t.textContent).join(' ')]; })()",
+    );
+    assert_eq!(labels[0], json!(14 * 9));
+    assert_eq!(labels[1], json!(0), "pixel centres on the printed depths");
+    let printed: Vec<String> = cells.depth.iter().map(|z| format!("{z:.1}")).collect();
+    assert_eq!(labels[2], json!(printed.join(" ")));
+    // The depth buffer's trace, every triangle, not one back-end's.
+    let trace = dev
+        .eval("document.getElementById('trace').textContent")
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(trace.starts_with("depth buffer, 14 x 9"), "{trace}");
+    assert!(trace.contains("triangle 1 (z = 0.5") && trace.contains("triangle 2 (z = 0.8"));
+    assert!(trace.contains(&format!("{hidden} hidden")), "{trace}");
+}
+
+#[test]
+fn a_students_program_gets_a_legend_entry_and_a_count_of_wrong_pixels() {
+    let Some(mut browser) = Browser::start("the lab's --exec browser test") else {
+        return;
+    };
+    // A "rasterizer" that draws pixel (0, 0) whatever it is given.
+    let lab = Lab::start_with(&["--exec", "echo 0 0 0"]);
+    let dev = &mut browser.dev;
+    dev.open(&format!("http://{}/", lab.address));
+    dev.wait_for("!document.getElementById('student-box').hidden");
+    let answer = dev
+        .eval("document.querySelectorAll('#grid rect.fragment').length")
+        .as_u64()
+        .unwrap();
+    let before = updates(dev);
+    dev.eval("(() => { const b = document.getElementById('student'); b.checked = true; b.onchange(); })()");
+    settle(dev, before);
+    dev.wait_for("document.getElementById('student-summary') !== null");
+    // Every pixel of the answer is missing, and (0, 0) is extra.
+    let summary = dev.eval(
+        "(() => { const s = document.getElementById('student-summary'); return [Number(s.dataset.wrong), s.textContent, document.querySelectorAll('#grid .missing').length, document.querySelectorAll('#grid .extra').length]; })()",
+    );
+    assert_eq!(summary[0], json!(answer + 1), "{summary}");
+    assert!(
+        summary[1]
+            .as_str()
+            .unwrap()
+            .contains(&format!("{} wrong pixels", answer + 1)),
+        "{summary}"
+    );
+    assert_eq!(
+        (summary[2].clone(), summary[3].clone()),
+        (json!(answer), json!(1))
+    );
+    let keys = legend(dev);
+    for role in [Role::Missing, Role::Extra] {
+        assert!(keys.iter().any(|k| k == role.key()), "{role:?} in {keys:?}");
+    }
 }

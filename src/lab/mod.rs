@@ -4,11 +4,22 @@
 //! `rasterlab lab` serves a page ([`page`]) on the loopback address. Each
 //! time a student drags a vertex, the page sends the whole state as a
 //! [`LabRequest`] (JSON) and gets a [`LabResponse`]: for every chosen
-//! back-end, the pixels it tested (red) and the fragments it emitted
-//! (green), its trace as `rasterlab explain` prints it, the fill rule's
-//! heat map (gaps, double draws) when there are several triangles, the
-//! depth buffer for triangles that carry a depth, and, with `--exec`, the
+//! back-end, the pixels it tested and the fragments it emitted, its trace
+//! as `rasterlab explain` prints it, the fill rule's heat map (gaps,
+//! double draws) when there are several triangles, and, with `--exec`, the
 //! student's own rasterizer against the exact answer.
+//!
+//! Triangles that carry a depth are the course's depth-buffer example:
+//! overlap is what the depth test resolves, not a fill-rule error, so
+//! instead of a heat map the answer has a [`DepthView`] (per pixel the
+//! depth stored, whose fragment was kept, how many were hidden) and the
+//! trace is the depth buffer's ([`trace::depth_buffer_trace`], every
+//! triangle in turn), as `rasterlab explain --backend depth-buffer`
+//! prints it.
+//!
+//! The page draws with the one palette ([`crate::teaching::palette`]):
+//! [`page`] writes its colours, labels and legend style in, and the page
+//! shows a legend of everything it draws.
 //!
 //! Requests are input like any other: [`LabRequest::parse`] refuses a
 //! malformed, oversized or out-of-range request with a message (the server
@@ -33,7 +44,11 @@ use crate::raster::backend::{backend, line_backends, triangle_backends, Backend}
 use crate::raster::edge::{FillRule, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::line::LineOptions;
-use crate::teaching::grid_picture::{is_fragment_green, GridPicture, INSIDE, TESTED_OUTSIDE};
+use crate::teaching::explain::DEPTH_BUFFER;
+use crate::teaching::grid_picture::{
+    is_fragment_green, DepthCells, GridPicture, INSIDE, TESTED_OUTSIDE,
+};
+use crate::teaching::palette;
 use crate::teaching::trace::{self, LineEnds};
 use serde::{Deserialize, Serialize};
 
@@ -41,20 +56,23 @@ use serde::{Deserialize, Serialize};
 /// back-ends into it: one HTML file, no build step, nothing fetched.
 const PAGE: &str = include_str!("page.html");
 
-/// The page the lab serves, with the names of the registry's triangle and
-/// line back-ends (every one has a trace).
+/// The page the lab serves, with the one palette's colours, labels and
+/// legend style, and the names of the registry's triangle and line
+/// back-ends (every one has a trace).
 pub fn page() -> String {
     let names = |names: Vec<&str>| serde_json::to_string(&names).expect("names serialise");
-    PAGE.replacen(
-        "/*TRIANGLE_BACKENDS*/[]",
-        &names(triangle_backends().iter().map(|b| b.name()).collect()),
-        1,
-    )
-    .replacen(
-        "/*LINE_BACKENDS*/[]",
-        &names(line_backends().iter().map(|b| b.name()).collect()),
-        1,
-    )
+    PAGE.replacen("/*PALETTE_CSS*/", &palette::css(), 1)
+        .replacen("/*PALETTE*/{}", &palette::json(), 1)
+        .replacen(
+            "/*TRIANGLE_BACKENDS*/[]",
+            &names(triangle_backends().iter().map(|b| b.name()).collect()),
+            1,
+        )
+        .replacen(
+            "/*LINE_BACKENDS*/[]",
+            &names(line_backends().iter().map(|b| b.name()).collect()),
+            1,
+        )
 }
 
 #[cfg(feature = "lab")]
@@ -95,7 +113,8 @@ pub struct LabRequest {
     /// The fill rule for triangles (default top-left).
     #[serde(default)]
     pub rule: Option<String>,
-    /// The back-end whose trace to return (default: the first that has one).
+    /// The back-end whose trace to return, or `depth-buffer` (the default
+    /// when the triangles carry depths); otherwise the first back-end.
     #[serde(default)]
     pub trace: Option<String>,
     /// Run the `--exec` program on this input too.
@@ -219,8 +238,56 @@ pub struct StudentView {
     pub extra: Vec<[i64; 2]>,
     /// Pixels the answer has that it did not draw.
     pub missing: Vec<[i64; 2]>,
+    /// How many pixels it got wrong: extra and missing together.
+    pub wrong: usize,
     /// An error running it, if any.
     pub error: Option<String>,
+}
+
+/// The depth test at every pixel of triangles drawn in order, each with
+/// its depth (the course's depth-buffer example): what
+/// `rasterlab explain --backend depth-buffer --picture` shows.
+#[derive(Clone, Debug, Serialize)]
+pub struct DepthView {
+    /// The depth stored, row by row (1.0 where nothing was drawn).
+    pub depth: Vec<f32>,
+    /// Per pixel, row by row, the triangle (from 0, in drawing order)
+    /// whose fragment the depth buffer holds; `None` where nothing was
+    /// drawn.
+    pub stored: Vec<Option<u32>>,
+    /// Pixels where the depth test hid fragments, `[x, y, how many]`.
+    pub hidden: Vec<[u32; 3]>,
+    /// Fragments the depth test kept (nearer than the buffer).
+    pub kept_fragments: usize,
+    /// Fragments the depth test hid behind nearer ones.
+    pub hidden_fragments: usize,
+    /// Each triangle's name and depth, `triangle 1 (z = 0.5)`, as the
+    /// trace names them.
+    pub triangles: Vec<String>,
+}
+
+impl DepthView {
+    fn of(cells: &DepthCells, depths: &[f64]) -> DepthView {
+        let w = cells.width as usize;
+        DepthView {
+            depth: cells.depth.clone(),
+            stored: cells.kept.iter().map(|k| k.last().copied()).collect(),
+            hidden: cells
+                .hidden
+                .iter()
+                .enumerate()
+                .filter(|(_, h)| !h.is_empty())
+                .map(|(i, h)| [(i % w) as u32, (i / w) as u32, h.len() as u32])
+                .collect(),
+            kept_fragments: cells.kept.iter().map(Vec::len).sum(),
+            hidden_fragments: cells.hidden.iter().map(Vec::len).sum(),
+            triangles: depths
+                .iter()
+                .enumerate()
+                .map(|(i, z)| format!("triangle {} (z = {z})", i + 1))
+                .collect(),
+        }
+    }
 }
 
 /// The answer to one update.
@@ -228,18 +295,21 @@ pub struct StudentView {
 pub struct LabResponse {
     /// One view per requested back-end, in request order.
     pub backends: Vec<BackendView>,
-    /// The trace of the chosen back-end, as `rasterlab explain` prints it
-    /// (empty when it has none for this input).
+    /// The trace of the chosen back-end (or of the depth buffer), as
+    /// `rasterlab explain` prints it (empty when it has none for this
+    /// input).
     pub trace: String,
-    /// Whose trace it is.
+    /// Whose trace it is: a back-end's name or `depth-buffer`.
     pub trace_backend: String,
-    /// Under the rule, for several triangles: pixels inside the union
-    /// that no triangle draws, `[x, y]`.
+    /// Under the rule, for several triangles without depths: pixels
+    /// inside the union that no triangle draws, `[x, y]`.
     pub gaps: Vec<[i64; 2]>,
-    /// Pixels drawn more than once, `[x, y, times]`.
+    /// Pixels drawn more than once, `[x, y, times]` (triangles without
+    /// depths only: where they carry depths, overlap is the depth test's
+    /// business).
     pub doubles: Vec<[i64; 3]>,
-    /// The depth buffer after drawing, row by row, when depths were given.
-    pub depth: Vec<f32>,
+    /// The depth test's outcome, when the triangles carry depths.
+    pub depth: Option<DepthView>,
     /// The student's program, when asked for and available.
     pub student: Option<StudentView>,
 }
@@ -269,39 +339,46 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         };
         views.push(view(name, &picture));
     }
-    // Every back-end has a trace: the one asked for, else the first shown.
-    let trace_backend = request
-        .trace
-        .clone()
-        .filter(|t| backend(t).is_ok())
-        .or_else(|| request.backends.first().cloned())
-        .unwrap_or_default();
-    let trace = if trace_backend.is_empty() {
-        String::new()
-    } else {
-        trace_text(request, &trace_backend, rule).unwrap_or_else(|e| e.to_string())
-    };
-    let (gaps, doubles) = if request.kind == "triangles" && snapped.len() > 1 {
-        heat_map(&snapped, rule, w, h)
-    } else {
-        (Vec::new(), Vec::new())
-    };
-    let depth = if request.kind == "triangles" && !request.depths.is_empty() {
+    let scene = if request.kind == "triangles" && !request.depths.is_empty() {
         let numbers: Vec<f64> = request
             .triangles
             .iter()
             .zip(&request.depths)
             .flat_map(|(t, z)| [t[0][0], t[0][1], t[1][0], t[1][1], t[2][0], t[2][1], *z])
             .collect();
-        let scene = Scene2D::with_depths(w, h, &numbers)?;
-        let (target, _) = scene.render(
-            crate::raster::backend::default_triangle_backend(),
-            rule,
-            &crate::raster::shader::Flat,
-        )?;
-        target.depth
+        Some(Scene2D::with_depths(w, h, &numbers)?)
     } else {
-        Vec::new()
+        None
+    };
+    // Every back-end has a trace: the one asked for, else the depth
+    // buffer's when there are depths, else the first back-end shown.
+    let asked = request
+        .trace
+        .clone()
+        .filter(|t| backend(t).is_ok() || (t == DEPTH_BUFFER && scene.is_some()));
+    let trace_backend = asked
+        .or_else(|| scene.as_ref().map(|_| DEPTH_BUFFER.to_string()))
+        .or_else(|| request.backends.first().cloned())
+        .unwrap_or_default();
+    let drawing = crate::raster::backend::default_triangle_backend();
+    let trace = match &scene {
+        _ if trace_backend.is_empty() => String::new(),
+        Some(scene) if trace_backend == DEPTH_BUFFER => {
+            trace::depth_buffer_trace(scene, drawing, rule).unwrap_or_else(|e| e.to_string())
+        }
+        _ => trace_text(request, &trace_backend, rule).unwrap_or_else(|e| e.to_string()),
+    };
+    let (gaps, doubles) = if request.kind == "triangles" && snapped.len() > 1 && scene.is_none() {
+        heat_map(&snapped, rule, w, h)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let depth = match &scene {
+        Some(scene) => Some(DepthView::of(
+            &DepthCells::of_scene(scene, drawing, rule)?,
+            &request.depths,
+        )),
+        None => None,
     };
     let student = match (request.student, program) {
         (true, Some(program)) => Some(student_view(request, rule, program)),
@@ -414,6 +491,7 @@ fn student_view(request: &LabRequest, rule: FillRule, program: &mut Program) -> 
             correct: Vec::new(),
             extra: Vec::new(),
             missing: Vec::new(),
+            wrong: 0,
             error: Some(e.to_string()),
         },
         Ok(drawn) => {
@@ -426,12 +504,13 @@ fn student_view(request: &LabRequest, rule: FillRule, program: &mut Program) -> 
                     extra.push([f.x, f.y]);
                 }
             }
-            let missing = expected
+            let missing: Vec<[i64; 2]> = expected
                 .iter()
                 .filter(|p| !seen.contains(p))
                 .map(|&(x, y)| [x, y])
                 .collect();
             StudentView {
+                wrong: extra.len() + missing.len(),
                 correct,
                 extra,
                 missing,
@@ -443,6 +522,43 @@ fn student_view(request: &LabRequest, rule: FillRule, program: &mut Program) -> 
 
 #[cfg(test)]
 mod tests {
+    use super::{answer, LabRequest};
+
+    #[test]
+    fn the_depth_view_reports_kept_and_hidden_fragments_not_double_draws() {
+        // The course's depth-buffer example: the z = 0.8 triangle, drawn
+        // second, is hidden behind the z = 0.5 one at the 4 pixels where
+        // they overlap.
+        let request = LabRequest::parse(
+            r#"{"width": 14, "height": 9, "kind": "triangles",
+                "triangles": [[[2.75, 3], [12.3359375, 3], [1.9296875, 6.9]], [[3.6, 1], [6.8, 1], [10, 9]]],
+                "depths": [0.5, 0.8], "backends": ["bbox"]}"#,
+        )
+        .unwrap();
+        let response = answer(&request, None).unwrap();
+        assert!(response.doubles.is_empty() && response.gaps.is_empty());
+        let depth = response.depth.expect("a depth view");
+        assert_eq!((depth.kept_fragments, depth.hidden_fragments), (27, 4));
+        assert_eq!(depth.hidden.len(), 4);
+        for &[x, y, n] in &depth.hidden {
+            let i = (y * 14 + x) as usize;
+            assert_eq!((depth.stored[i], depth.depth[i], n), (Some(0), 0.5, 1));
+        }
+        assert_eq!(response.trace_backend, "depth-buffer");
+        assert!(response.trace.starts_with("depth buffer, 14 x 9"));
+        assert!(response
+            .trace
+            .contains("triangle 2 (z = 0.8, 0.8, 0.8): 12 fragments, 8 kept"));
+        // The same triangles without depths: a heat map, no depth view.
+        let flat = LabRequest {
+            depths: Vec::new(),
+            ..request
+        };
+        let response = answer(&flat, None).unwrap();
+        assert!(response.depth.is_none() && response.doubles.len() == 4);
+        assert_eq!(response.trace_backend, "bbox");
+    }
+
     #[test]
     fn the_page_lists_every_back_end_of_the_registry() {
         let page = super::page();

@@ -544,15 +544,17 @@ impl GridPicture {
                     // Below the centre, so the sample point stays visible.
                     let _ = writeln!(
                         out,
-                        r##"<text x="{cx}" y="{}" font-size="{label_size:.1}" text-anchor="middle">{}</text><circle cx="{cx}" cy="{}" r="1.8" fill="#333"/>"##,
+                        r##"<text x="{cx}" y="{}" font-size="{label_size:.1}" text-anchor="middle">{}</text><circle cx="{cx}" cy="{}" r="1.8" fill="{}"/>"##,
                         cy + s * 0.34,
                         escape(label),
-                        cy - s * 0.12
+                        cy - s * 0.12,
+                        Role::PixelCentre.hex()
                     );
                 } else if dots {
                     let _ = writeln!(
                         out,
-                        r##"<circle cx="{cx}" cy="{cy}" r="2.2" fill="#333"/>"##
+                        r#"<circle cx="{cx}" cy="{cy}" r="2.2" fill="{}"/>"#,
+                        Role::PixelCentre.hex()
                     );
                 }
             }

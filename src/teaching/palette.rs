@@ -16,6 +16,7 @@
 //! | grey | a fragment hidden by the depth test; a block outside the triangle |
 //! | blue | a block inside the triangle |
 //! | black | the true geometry: edges, vertices, the ideal line |
+//! | dark grey | a pixel centre, where the sample is taken |
 //!
 //! Where two roles share a colour they mean the same thing seen from two
 //! tools (a gap in a heat map is a pixel missing from the answer). Each
@@ -56,6 +57,8 @@ const BLUE: [u8; 3] = [0, 114, 178];
 const YELLOW: [u8; 3] = [240, 228, 66];
 /// The grey beside the set.
 const GREY: [u8; 3] = [153, 153, 153];
+/// Dark grey: the dots of pixel centres.
+const DARK_GREY: [u8; 3] = [51, 51, 51];
 /// Black.
 const BLACK: [u8; 3] = [0, 0, 0];
 /// White: a pixel no one looked at.
@@ -100,11 +103,13 @@ pub enum Role {
     /// A pixel whose colour, depth or coverage differs from a reference
     /// back-end's.
     Differs,
+    /// A pixel centre: the point where the pixel's sample is taken.
+    PixelCentre,
 }
 
 impl Role {
     /// Every role, in legend order.
-    pub const ALL: [Role; 17] = [
+    pub const ALL: [Role; 18] = [
         Role::Untested,
         Role::Drawn,
         Role::TestedOutside,
@@ -122,6 +127,7 @@ impl Role {
         Role::BlockOutside,
         Role::BlockPartial,
         Role::Differs,
+        Role::PixelCentre,
     ];
 
     /// The role's colour.
@@ -138,6 +144,7 @@ impl Role {
             Role::Hidden | Role::BlockOutside => GREY,
             Role::BlockInside => BLUE,
             Role::Geometry => BLACK,
+            Role::PixelCentre => DARK_GREY,
         }
     }
 
@@ -166,6 +173,7 @@ impl Role {
             Role::BlockOutside => "block-outside",
             Role::BlockPartial => "block-partial",
             Role::Differs => "differs",
+            Role::PixelCentre => "pixel-centre",
         }
     }
 
@@ -189,6 +197,7 @@ impl Role {
             Role::BlockOutside => "block outside (O)",
             Role::BlockPartial => "block partly covered (P)",
             Role::Differs => "differs from the reference",
+            Role::PixelCentre => "pixel centre (the sample point)",
         }
     }
 }
