@@ -352,6 +352,40 @@ impl CheckReport {
             VerdictWord::Broken => 2,
         }
     }
+
+    /// The verdict as a result, for a program's exit: `Ok` on a pass; on
+    /// a fail, [`Error::Mismatch`] with the first failing case's problem
+    /// (exit status 1); on a broken subject, [`Error::InvalidArgument`]
+    /// with what went wrong, whether it fails so on every input, and the
+    /// file holding the shrunk input that triggers it (exit status 2).
+    pub fn outcome(&self) -> Result<()> {
+        match self.verdict {
+            VerdictWord::Pass => Ok(()),
+            VerdictWord::Fail => Err(Error::Mismatch(format!(
+                "the check failed: {}",
+                self.failing_cases
+                    .first()
+                    .map_or("no rule is followed", |f| f.problem.as_str())
+            ))),
+            VerdictWord::Broken => Err(Error::InvalidArgument(self.error.as_ref().map_or_else(
+                || "the subject is broken".to_string(),
+                |e| {
+                    let mut m = e.message.clone();
+                    if e.on_every_input {
+                        m.push_str(
+                            "\nit fails so on every input, the simplest included: broken, not wrong",
+                        );
+                    } else {
+                        m.push_str("\nthe input that triggers it (shrunk)");
+                    }
+                    if let Some(f) = e.files.first() {
+                        m.push_str(&format!(": {f}"));
+                    }
+                    m
+                },
+            ))),
+        }
+    }
 }
 
 /// What the check judges by.

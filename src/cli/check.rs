@@ -109,31 +109,5 @@ pub fn run(args: &CheckArgs) -> Result<()> {
     } else if report.exit_code() != 2 {
         super::print::line(&report)?;
     }
-    match report.exit_code() {
-        0 => Ok(()),
-        1 => Err(Error::Mismatch(format!(
-            "the check failed: {}",
-            report
-                .failing_cases
-                .first()
-                .map_or("no rule is followed", |f| f.problem.as_str())
-        ))),
-        _ => Err(Error::InvalidArgument(report.error.as_ref().map_or_else(
-            || "the subject is broken".to_string(),
-            |e| {
-                let mut m = e.message.clone();
-                if e.on_every_input {
-                    m.push_str(
-                        "\nit fails so on every input, the simplest included: broken, not wrong",
-                    );
-                } else {
-                    m.push_str("\nthe input that triggers it (shrunk)");
-                }
-                if let Some(f) = e.files.first() {
-                    m.push_str(&format!(": {f}"));
-                }
-                m
-            },
-        ))),
-    }
+    report.outcome()
 }
