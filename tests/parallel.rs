@@ -2,8 +2,11 @@
 //! same bits as the single-threaded, fragment-by-fragment path.
 
 mod common;
+#[path = "properties/parallel.rs"]
+mod properties;
 
 use glam::{Mat4, Vec3, Vec4};
+use properties::soup_geometry;
 use proptest::prelude::*;
 use rasterlab::geometry::mesh::Mesh;
 use rasterlab::geometry::pipeline::draw_binned;
@@ -13,12 +16,9 @@ use rasterlab::geometry::pipeline::{
     PipelineOptions, Viewport,
 };
 use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
-use rasterlab::geometry::scene::setup_triangles;
 use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::{FillRule, PixelRect};
-use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::edge::PixelRect;
 use rasterlab::raster::fragment::{FragmentList, FragmentSink};
-use rasterlab::raster::primitive::ShadedVertex;
 use rasterlab::raster::shader::FragmentShader;
 use rasterlab::raster::shader::{Constant, Flat, Gouraud};
 use rasterlab::raster::stage::{FragmentStage, Interpolation};
@@ -30,19 +30,6 @@ fn pool(threads: usize) -> rayon::ThreadPool {
         .num_threads(threads)
         .build()
         .unwrap()
-}
-
-/// A 2D soup as a draw: depths and colours per triangle from `depths`.
-fn soup_geometry(soup: &[[FixedPoint; 3]], depths: &[f32]) -> Geometry {
-    let setups = setup_triangles(soup, FillRule::TopLeft);
-    let vertices: Vec<[ShadedVertex; 3]> = (0..soup.len())
-        .map(|i| {
-            let z = depths[i % depths.len()];
-            let c = Vec4::new(z, 1.0 - z, (i % 7) as f32 / 7.0, 1.0);
-            [0.0, 0.1, 0.2].map(|dz| ShadedVertex::flat((z + dz).min(1.0), c + Vec4::splat(dz)))
-        })
-        .collect();
-    Geometry::of_screen_triangles(setups, &vertices)
 }
 
 /// Twelve bunnies, the k-th moved by `offset(k)`: 44k triangles, so
@@ -290,28 +277,7 @@ proptest! {
         backend in 0..rasterlab::triangle_backends().len(),
         counts in any::<bool>(),
     ) {
-        let geometry = soup_geometry(&soup, &depths);
-        let b = triangle_backends()[backend];
-        let mut dirty = RenderTarget::new(common::SIZE, common::SIZE).unwrap();
-        if !counts {
-            dirty.coverage = Vec::new();
-        }
-        for (i, (c, d)) in dirty.color.iter_mut().zip(dirty.depth.iter_mut()).enumerate() {
-            *c = [i as u8, 7, (i / 256) as u8, 200];
-            *d = (i % 11) as f32 / 10.0;
-        }
-        dirty.coverage.fill(5);
-        let clears = [Clear::NOTHING, Clear::DEPTH_AND_COVERAGE, Clear::color([9, 8, 7, 255]), Clear::all([1, 2, 3, 255])];
-        for clear in clears {
-            for depth in [DepthState::DEFAULT, DepthState::OFF] {
-                let mut eager = dirty.clone();
-                eager.clear_now(clear);
-                draw(&geometry, b, &Gouraud, depth, Interpolation::PerspectiveCorrect, &mut eager);
-                let mut folded = dirty.clone();
-                draw_clearing(&geometry, b, &Gouraud, depth, Interpolation::PerspectiveCorrect, clear, &mut folded);
-                prop_assert!(folded == eager, "{} {:?} {:?}", b.name(), clear, depth);
-            }
-        }
+        properties::clears_folded_into_the_draw_equal_a_clear_then_the_draw(&soup, &depths, backend, counts)?;
     }
 
     /// A draw of a few triangles on one thread goes band by band (bands

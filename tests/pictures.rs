@@ -2,51 +2,21 @@
 //! green cells are the fragments, the red ones the failed tests.
 
 mod common;
+#[path = "properties/pictures.rs"]
+mod properties;
 
 use common::{point, quantum, SIZE};
 use proptest::prelude::*;
-use rasterlab::geometry::scene::{setup_triangles, Scene2D};
-use rasterlab::raster::backend::{line_backends, triangle_backend, triangle_backends};
+use rasterlab::geometry::scene::Scene2D;
+use rasterlab::raster::backend::{line_backends, triangle_backend};
 use rasterlab::raster::edge::{FillRule, PixelRect};
 use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::fragment::{FragmentList, FragmentSink, LineFragment, TriangleFragment};
+use rasterlab::raster::fragment::FragmentList;
 use rasterlab::raster::line::LineOptions;
 use rasterlab::raster::shader::Flat;
 use rasterlab::teaching::grid_picture::{
-    is_fragment_green, GridPicture, AS_REFERENCE, GAP, OVERDRAWN, OVERDRAWN_MORE, TESTED_OUTSIDE,
+    is_fragment_green, GridPicture, AS_REFERENCE, GAP, OVERDRAWN, OVERDRAWN_MORE,
 };
-
-/// Counts the samples a back-end reports as tested, per pixel.
-struct TestedCells(Vec<bool>);
-
-impl FragmentSink for TestedCells {
-    fn triangle_fragment(&mut self, _: &TriangleFragment) {}
-    fn line_fragment(&mut self, _: &LineFragment) {}
-    fn samples_tested(&mut self, _: u32, y: u32, x0: u32, x1: u32) {
-        for x in x0..=x1 {
-            self.0[(y * SIZE + x) as usize] = true;
-        }
-    }
-}
-
-/// The cell colour at an offset inside each cell of a PNG drawn at `zoom`
-/// (clear of the borders and the centre dot; the outlines, which may cross
-/// that point, are left out).
-fn png_cells(picture: &GridPicture, zoom: u32) -> Vec<[u8; 3]> {
-    let cells_only = GridPicture {
-        outlines: Vec::new(),
-        segments: Vec::new(),
-        ..picture.clone()
-    };
-    let png = cells_only.to_png(zoom).unwrap();
-    let mut cells = Vec::new();
-    for y in 0..picture.height {
-        for x in 0..picture.width {
-            cells.push(png.get_pixel(x * zoom + 3, y * zoom + 3).0);
-        }
-    }
-    cells
-}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
@@ -61,45 +31,7 @@ proptest! {
         }),
         rule_index in 0usize..5,
     ) {
-        let rule = [
-            FillRule::TopLeft,
-            FillRule::BottomRight,
-            FillRule::OffscreenPoint,
-            FillRule::Inclusive,
-            FillRule::Exclusive,
-        ][rule_index];
-        let setups = setup_triangles(&[t], rule);
-        for backend in triangle_backends() {
-            let picture = GridPicture::of_snapped_triangles(*backend, &[t], rule, SIZE, SIZE).unwrap();
-            let mut list = FragmentList::default();
-            let work = backend.rasterize(&setups, PixelRect::of_target(SIZE, SIZE), &mut list);
-            let mut tested = TestedCells(vec![false; (SIZE * SIZE) as usize]);
-            backend.rasterize(&setups, PixelRect::of_target(SIZE, SIZE), &mut tested);
-            let mut inside = vec![false; (SIZE * SIZE) as usize];
-            for f in &list.triangles {
-                inside[(f.y * SIZE + f.x) as usize] = true;
-            }
-            let failed = (0..inside.len()).filter(|&i| tested.0[i] && !inside[i]).count();
-            prop_assert_eq!(picture.inside_cells() as u64, work.fragments, "{}", backend.name());
-            prop_assert_eq!(picture.outside_cells(), failed, "{}", backend.name());
-            // Each back-end reports each tested sample once.
-            prop_assert!(tested.0.iter().filter(|&&b| b).count() as u64 <= work.samples_tested);
-            match backend.name() {
-                "naive" if !setups.is_empty() => prop_assert_eq!(
-                    picture.inside_cells() + picture.outside_cells(),
-                    (SIZE * SIZE) as usize
-                ),
-                "bbox" | "incremental" => prop_assert_eq!(
-                    (picture.inside_cells() + picture.outside_cells()) as u64,
-                    work.samples_tested
-                ),
-                "scanline" => prop_assert_eq!(picture.outside_cells(), 0),
-                _ => {}
-            }
-            let png = png_cells(&picture, 12);
-            prop_assert_eq!(png.iter().filter(|&&c| is_fragment_green(c)).count() as u64, work.fragments);
-            prop_assert_eq!(png.iter().filter(|&&c| c == TESTED_OUTSIDE).count(), failed);
-        }
+        properties::green_cells_are_the_fragments_and_red_cells_the_failed_tests(t, rule_index)?;
     }
 
     /// Lines between pixel centres, every line back-end: a cell per pixel

@@ -2,6 +2,8 @@
 //! meshes, each rendered by every triangle back-end.
 
 mod common;
+#[path = "properties/pipeline.rs"]
+mod properties;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use proptest::prelude::*;
@@ -16,7 +18,6 @@ use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use rasterlab::geometry::scene::Scene2D;
 use rasterlab::raster::backend::{triangle_backend, triangle_backends};
 use rasterlab::raster::edge::FillRule;
-use rasterlab::raster::fragment::FragmentList;
 use rasterlab::raster::primitive::{ShadedVertex, Varyings};
 use rasterlab::raster::shader::{Constant, Filter, Flat, Texture, Textured};
 use rasterlab::raster::stage::Interpolation;
@@ -479,40 +480,6 @@ fn perspective_correct_checkerboard_matches_the_analytic_answer() {
     );
 }
 
-/// Solves for the clip-space barycentrics of the point of the triangle that
-/// projects to `ndc`, and says whether it is in the triangle and in the
-/// frustum; `None` when the pixel is too close to a border to decide.
-fn oracle(t: &[Vec4; 3], ndc: (f64, f64)) -> Option<bool> {
-    let p = t.map(|v| v.as_dvec4());
-    // sum b_i (x_i - nx w_i) = 0, sum b_i (y_i - ny w_i) = 0, sum b_i = 1.
-    let row = |f: &dyn Fn(glam::DVec4) -> f64| glam::DVec3::new(f(p[0]), f(p[1]), f(p[2]));
-    let m = glam::DMat3::from_cols(
-        row(&|v| v.x - ndc.0 * v.w),
-        row(&|v| v.y - ndc.1 * v.w),
-        glam::DVec3::ONE,
-    )
-    .transpose();
-    if m.determinant().abs() < 1e-9 {
-        return None;
-    }
-    let b = m.inverse() * glam::DVec3::new(0., 0., 1.);
-    let q = p[0] * b.x + p[1] * b.y + p[2] * b.z;
-    // Inside the triangle, beyond the w >= W_MIN plane, between near and far.
-    let w_min = f64::from(rasterlab::geometry::pipeline::clip::W_MIN);
-    let margins = [
-        b.x,
-        b.y,
-        b.z,
-        (q.w - w_min) / w_min,
-        (q.z + q.w) / q.w.abs().max(1e-300),
-        (q.w - q.z) / q.w.abs().max(1e-300),
-    ];
-    if margins.iter().any(|m| m.abs() < 1e-3) {
-        return None;
-    }
-    Some(margins.iter().all(|m| *m > 0.0))
-}
-
 /// Clip-space coordinates: ordinary ones, large ones (a million times the
 /// screen), and ones near zero (w near zero).
 fn clip_coordinate() -> impl Strategy<Value = f32> {
@@ -548,35 +515,7 @@ proptest! {
     fn clipping_draws_exactly_the_visible_part(
         t in proptest::array::uniform3((clip_coordinate(), clip_coordinate(), clip_coordinate(), clip_coordinate()))
     ) {
-        let (w, h) = (24u32, 16u32);
-        let tri = t.map(|(x, y, z, w)| Vec4::new(x, y, z, w));
-        let shader = |v: &Vec4| ClipVertex { position: *v, varyings: Varyings::default() };
-        let geometry = process_triangles(&tri, &[[0, 1, 2]], &shader, Viewport { width: w, height: h }, &PipelineOptions::default()).unwrap();
-        let mut list = FragmentList::default();
-        triangle_backends()[2].rasterize(&geometry.setups, rasterlab::raster::edge::PixelRect::of_target(w, h), &mut list);
-        let mut covered = vec![false; (w * h) as usize];
-        for f in &list.triangles {
-            prop_assert!(!covered[(f.y * w + f.x) as usize], "pixel ({}, {}) drawn twice", f.x, f.y);
-            covered[(f.y * w + f.x) as usize] = true;
-            let z = geometry.shaded.triangles[f.triangle as usize].depth.at(f.x, f.y);
-            prop_assert!((-1e-3..=1.001).contains(&z), "depth {z} outside [0, 1]");
-        }
-        for y in 0..h {
-            for x in 0..w {
-                // The oracle at the pixel centre and 1/50 px around it: a
-                // pixel is checked only when all five agree, so snapping
-                // (1/512 px) cannot decide it.
-                let probe = |dx: f64, dy: f64| {
-                    oracle(&tri, ((x as f64 + 0.5 + dx) / w as f64 * 2. - 1., 1. - (y as f64 + 0.5 + dy) / h as f64 * 2.))
-                };
-                let d = 0.02;
-                let probes = [probe(0., 0.), probe(d, 0.), probe(-d, 0.), probe(0., d), probe(0., -d)];
-                if probes.iter().all(|p| *p == probes[0]) {
-                    let Some(inside) = probes[0] else { continue };
-                    prop_assert_eq!(covered[(y * w + x) as usize], inside, "pixel ({}, {}), stats {:?}", x, y, geometry.stats);
-                }
-            }
-        }
+        properties::clipping_draws_exactly_the_visible_part(t)?;
     }
 
     /// Extreme coordinates (up to f32::MAX) are no error and no panic; what
@@ -585,14 +524,7 @@ proptest! {
     fn extreme_coordinates_never_fail(
         t in proptest::array::uniform3((extreme_coordinate(), extreme_coordinate(), extreme_coordinate(), extreme_coordinate()))
     ) {
-        let tri = t.map(|(x, y, z, w)| Vec4::new(x, y, z, w));
-        let shader = |v: &Vec4| ClipVertex { position: *v, varyings: Varyings::default() };
-        let geometry = process_triangles(&tri, &[[0, 1, 2]], &shader, Viewport { width: 24, height: 16 }, &PipelineOptions::default()).unwrap();
-        let mut target = RenderTarget::new(24, 16).unwrap();
-        for b in triangle_backends() {
-            draw(&geometry, *b, &Flat, DepthState::DEFAULT, Interpolation::PerspectiveCorrect, &mut target);
-        }
-        prop_assert!(target.depth.iter().all(|z| (-1e-3..=1.001).contains(z)));
+        properties::extreme_coordinates_never_fail(t)?;
     }
 
     /// With a depth test and no two triangles at equal depth, the image

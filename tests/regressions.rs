@@ -4,6 +4,12 @@
 //! the snapping grid (1/256 px), as the shrunk cases were printed.
 
 mod common;
+#[path = "properties/parallel.rs"]
+mod parallel;
+#[path = "properties/pictures.rs"]
+mod pictures;
+#[path = "properties/pipeline.rs"]
+mod pipeline;
 
 use common::*;
 use rasterlab::raster::edge::FillRule;
@@ -59,4 +65,122 @@ fn a_thin_triangle_moved_one_pixel_down_moves_its_coverage() {
             .collect();
         assert_eq!(pixels(moved, rule), expected, "{rule}");
     }
+}
+
+/// Clip-space triangles the pipeline's properties shrank to: each must be
+/// drawn exactly where it is visible and, with extreme coordinates, be no
+/// error. A case from the range both properties draw from runs both.
+mod clipping {
+    use super::pipeline::{
+        clipping_draws_exactly_the_visible_part, extreme_coordinates_never_fail, ClipTriangle,
+    };
+
+    fn both(t: ClipTriangle) {
+        clipping_draws_exactly_the_visible_part(t).unwrap();
+        extreme_coordinates_never_fail(t).unwrap();
+    }
+
+    /// Two vertices at the origin with w = 0 and one at w = 1e30: nothing
+    /// to draw, and nothing may fail.
+    #[test]
+    fn two_vertices_at_w_zero_and_one_at_w_1e30() {
+        extreme_coordinates_never_fail([
+            (0.0, 0.0, 0.0, 0.0),
+            (0.0, 0.0, 0.0, 0.0),
+            (0.0, 0.0, 0.0, 1e30),
+        ])
+        .unwrap();
+    }
+
+    /// Vertices at x = -1e30 and y = 1e30 with w = 0, and one ordinary.
+    #[test]
+    fn vertices_at_1e30_with_w_zero() {
+        extreme_coordinates_never_fail([
+            (-1e30, 0.0, 1e30, 0.0),
+            (0.0, 1e30, 0.0, 0.0),
+            (0.0, 1.909922, 0.0, 1.5878407),
+        ])
+        .unwrap();
+    }
+
+    /// Coordinates from 1e-30 to f32::MAX in one triangle, some w negative.
+    #[test]
+    fn coordinates_from_1e_minus_30_to_f32_max() {
+        extreme_coordinates_never_fail([
+            (1e30, 1e30, 1e30, -3.4028235e38),
+            (1e-30, 1e-30, -3.4028235e38, 3.4028235e38),
+            (1e30, 1e-30, 3.4028235e38, 1e30),
+        ])
+        .unwrap();
+    }
+
+    /// One vertex at w = 0 (on the camera's plane), two in front of it.
+    #[test]
+    fn a_vertex_on_the_cameras_plane() {
+        both([
+            (-1.2198987, 0.0, 0.0, 0.0),
+            (0.0, 0.0, -2.8675845, 1.0883697),
+            (0.0, 0.80198634, 0.0, 0.8871113),
+        ]);
+    }
+
+    /// A vertex behind the camera (w = 0) and two crossing the near plane.
+    #[test]
+    fn a_vertex_behind_the_camera_and_two_across_the_near_plane() {
+        both([
+            (-2.7202687, 0.5258993, 0.0, 0.0),
+            (0.66660595, -1.158189, 0.0, 2.9193134),
+            (0.0, -0.72356486, 0.0, 2.8196368),
+        ]);
+    }
+
+    /// A sliver: two vertices a millionth of a unit off the x axis, one of
+    /// them behind the camera.
+    #[test]
+    fn a_sliver_a_millionth_off_the_axis() {
+        clipping_draws_exactly_the_visible_part([
+            (-0.18087348, 0.0, 0.0, 0.0),
+            (0.0, -9.875913e-7, 0.0, 2.5187917),
+            (2.7744963, -7.7449096e-7, 0.0, -2.098718),
+        ])
+        .unwrap();
+    }
+
+    /// One vertex far away (w = 59688), one behind the camera.
+    #[test]
+    fn a_vertex_far_away_and_one_behind_the_camera() {
+        clipping_draws_exactly_the_visible_part([
+            (0.0, -0.5772273, 0.0, 59688.594),
+            (-0.638286, -0.050384615, 0.0, 0.52742136),
+            (0.0, 0.0, 0.0, -1.3590423),
+        ])
+        .unwrap();
+    }
+}
+
+/// A triangle of zero area at the target's corner, in the grid picture
+/// under top-left: no green cell, no fragment, for every back-end.
+#[test]
+fn a_point_triangle_at_the_corner_has_no_green_cell() {
+    let t = [raw(0, 0), raw(0, 0), raw(0, 0)];
+    pictures::green_cells_are_the_fragments_and_red_cells_the_failed_tests(t, 0).unwrap();
+}
+
+/// A right triangle with a leg on the target's left edge and its third
+/// vertex a third of a pixel left of the target: its picture's green and
+/// red cells are the fragments and the failed tests.
+#[test]
+fn a_triangle_reaching_left_of_the_target_pictures_its_tests() {
+    let t = [raw(0, 0), raw(0, 2992), raw(-85, 0)];
+    pictures::green_cells_are_the_fragments_and_red_cells_the_failed_tests(t, 0).unwrap();
+}
+
+/// A triangle of zero area at the origin, drawn with the clear folded in
+/// and no coverage buffer: the target must still be cleared as an eager
+/// clear leaves it, though no row receives a fragment.
+#[test]
+fn a_clear_folded_into_a_draw_with_no_fragment_still_clears() {
+    let soup = [[raw(0, 0), raw(0, 0), raw(0, 0)]];
+    parallel::clears_folded_into_the_draw_equal_a_clear_then_the_draw(&soup, &[0.0], 0, false)
+        .unwrap();
 }
