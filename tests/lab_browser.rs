@@ -386,7 +386,7 @@ fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
     // At 1400 px every scanline row shows its span, on one line, inside
     // the trace pane.
     let spans = dev.eval(
-        "(() => { const t = document.getElementById('trace'), box = t.getBoundingClientRect(); const rows = [...t.children].filter(d => / px\\)$/.test(d.textContent)); return [rows.length, rows.filter(d => { const r = document.createRange(); r.selectNodeContents(d); const b = r.getBoundingClientRect(); return b.right <= box.right - 4 && b.height < 20; }).length, window.innerWidth]; })()",
+        "(() => { const t = document.getElementById('trace'), box = t.getBoundingClientRect(); const spans = [...t.querySelectorAll('tr')].map(tr => tr.lastElementChild).filter(d => / px\\)$/.test(d.textContent)); return [spans.length, spans.filter(d => { const b = d.getBoundingClientRect(); return b.right <= box.right - 4 && b.height < 20; }).length, window.innerWidth]; })()",
     );
     assert_eq!(spans[2], json!(1400));
     assert!(spans[0].as_u64().unwrap() > 5, "{spans}");
@@ -557,6 +557,21 @@ fn the_depth_view_shows_kept_and_hidden_fragments_not_double_draws() {
     assert!(trace.starts_with("depth buffer, 14 x 9"), "{trace}");
     assert!(trace.contains("triangle 1 (z = 0.5") && trace.contains("triangle 2 (z = 0.8"));
     assert!(trace.contains(&format!("{hidden} hidden")), "{trace}");
+    // Pointing at a pixel highlights its row in each of the three
+    // matrices (before, after triangle 1, after triangle 2), by the rows'
+    // pixels.
+    let p = dev.eval(
+        "(() => { const g = document.getElementById('grid'), r = g.getBoundingClientRect(), c = +g.dataset.cell; return [r.left + +g.dataset.left + 5.5 * c, r.top + +g.dataset.top + 4.5 * c]; })()",
+    );
+    dev.mouse(
+        "mouseMoved",
+        p[0].as_f64().unwrap(),
+        p[1].as_f64().unwrap(),
+        0,
+    );
+    dev.wait_for("document.querySelectorAll('#trace .hl').length > 0");
+    let lit = dev.eval("[...document.querySelectorAll('#trace .hl')].map(r => r.children.length)");
+    assert_eq!(lit, json!([14, 14, 14]), "the row y = 4 of each matrix");
 }
 
 #[test]

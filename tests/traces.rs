@@ -467,3 +467,55 @@ mod recordings {
         assert!(bbox.lines().any(|l| l.starts_with("   4    0 ")));
     }
 }
+
+/// A trace is data: each row carries the pixel it is about (the one its
+/// cells name), its text is what `explain` prints, and it goes to the lab
+/// as JSON.
+#[test]
+fn every_row_carries_the_pixels_it_is_about() {
+    use rasterlab::teaching::trace::{of_line, of_line_backend, of_triangle, of_triangle_backend};
+    use rasterlab::{line_backend, triangle_backend};
+    let vertices = [(1.5, 1.25), (13.75, 4.5), (4.25, 13.5)];
+    let rule = FillRule::TopLeft;
+    for name in ["naive", "bbox", "incremental"] {
+        let b = triangle_backend(name).unwrap();
+        let trace = of_triangle(b, vertices, rule, 16, 16).unwrap();
+        assert_eq!(
+            trace.to_text(),
+            of_triangle_backend(b, vertices, rule, 16, 16).unwrap()
+        );
+        let tested: usize = trace.footer[0].split(' ').next().unwrap().parse().unwrap();
+        assert_eq!(trace.rows.len(), tested, "{name}");
+        for row in &trace.rows {
+            let x: i64 = row.cells[0].parse().unwrap();
+            let y: i64 = row.cells[1].parse().unwrap();
+            assert_eq!(row.about, vec![[x, y, x, y]], "{name}");
+        }
+    }
+    // Scanline: a row of the table is a row of pixels, the grid's width.
+    let trace = of_triangle(
+        triangle_backend("scanline").unwrap(),
+        vertices,
+        rule,
+        16,
+        16,
+    )
+    .unwrap();
+    for row in &trace.rows {
+        let y: i64 = row.cells[0].parse().unwrap();
+        assert_eq!(row.about, vec![[0, y, 15, y]]);
+    }
+    // Bresenham: each column's pixel.
+    let ends = LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap();
+    let b = line_backend("bresenham").unwrap();
+    let trace = of_line(b, &ends).unwrap();
+    assert_eq!(trace.to_text(), of_line_backend(b, &ends).unwrap());
+    for row in &trace.rows {
+        let (x, y) = row.cells[2].split_once(',').unwrap();
+        let (x, y): (i64, i64) = (x.parse().unwrap(), y.parse().unwrap());
+        assert!(row.is_about(x, y) && !row.is_about(x + 1, y));
+    }
+    let json = serde_json::to_value(&trace).unwrap();
+    assert_eq!(json["rows"][3]["about"], serde_json::json!([[3, 1, 3, 1]]));
+    assert_eq!(json["columns"][4]["name"], "choice");
+}

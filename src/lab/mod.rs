@@ -5,7 +5,9 @@
 //! time a student drags a vertex, the page sends the whole state as a
 //! [`LabRequest`] (JSON) and gets a [`LabResponse`]: for every chosen
 //! back-end, the pixels it tested and the fragments it emitted, its trace
-//! as `rasterlab explain` prints it, the fill rule's heat map (gaps,
+//! as data ([`Trace`]: the rows `rasterlab explain` prints, each with the
+//! pixels it is about, so the page highlights a row by its pixels), the
+//! fill rule's heat map (gaps,
 //! double draws) when there are several triangles, and, with `--exec`, the
 //! student's own rasterizer against the exact answer.
 //!
@@ -13,7 +15,7 @@
 //! overlap is what the depth test resolves, not a fill-rule error, so
 //! instead of a heat map the answer has a [`DepthView`] (per pixel the
 //! depth stored, whose fragment was kept, how many were hidden) and the
-//! trace is the depth buffer's ([`trace::depth_buffer_trace`], every
+//! trace is the depth buffer's ([`trace::depth_buffer`], every
 //! triangle in turn), as `rasterlab explain --backend depth-buffer`
 //! prints it.
 //!
@@ -49,7 +51,7 @@ use crate::teaching::grid_picture::{
     is_fragment_green, DepthCells, GridPicture, INSIDE, TESTED_OUTSIDE,
 };
 use crate::teaching::palette;
-use crate::teaching::trace::{self, LineEnds};
+use crate::teaching::trace::{self, LineEnds, Trace};
 use serde::{Deserialize, Serialize};
 
 /// The page the lab serves, before [`page`] writes the registry's
@@ -295,10 +297,11 @@ impl DepthView {
 pub struct LabResponse {
     /// One view per requested back-end, in request order.
     pub backends: Vec<BackendView>,
-    /// The trace of the chosen back-end (or of the depth buffer), as
-    /// `rasterlab explain` prints it (empty when it has none for this
-    /// input).
-    pub trace: String,
+    /// The trace of the chosen back-end (or of the depth buffer): the
+    /// rows `rasterlab explain` prints, each with its pixels (empty when it
+    /// has none for this input; one header line saying why when it cannot
+    /// be traced).
+    pub trace: Trace,
     /// Whose trace it is: a back-end's name or `depth-buffer`.
     pub trace_backend: String,
     /// Under the rule, for several triangles without depths: pixels
@@ -362,12 +365,11 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         .unwrap_or_default();
     let drawing = crate::raster::backend::default_triangle_backend();
     let trace = match &scene {
-        _ if trace_backend.is_empty() => String::new(),
-        Some(scene) if trace_backend == DEPTH_BUFFER => {
-            trace::depth_buffer_trace(scene, drawing, rule).unwrap_or_else(|e| e.to_string())
-        }
-        _ => trace_text(request, &trace_backend, rule).unwrap_or_else(|e| e.to_string()),
-    };
+        _ if trace_backend.is_empty() => Ok(Trace::default()),
+        Some(scene) if trace_backend == DEPTH_BUFFER => trace::depth_buffer(scene, drawing, rule),
+        _ => trace_of(request, &trace_backend, rule),
+    }
+    .unwrap_or_else(|e| Trace::saying(e.to_string()));
     let (gaps, doubles) = if request.kind == "triangles" && snapped.len() > 1 && scene.is_none() {
         heat_map(&snapped, rule, w, h)
     } else {
@@ -418,15 +420,15 @@ fn view(name: &str, picture: &GridPicture) -> BackendView {
 }
 
 /// The trace `rasterlab explain` prints for the first primitive.
-fn trace_text(request: &LabRequest, backend: &str, rule: FillRule) -> Result<String> {
+fn trace_of(request: &LabRequest, backend: &str, rule: FillRule) -> Result<Trace> {
     let (w, h) = (request.width, request.height);
     match crate::raster::backend::backend(backend)? {
         Backend::Line(b) => {
             let Some(l) = request.lines.first().filter(|_| request.kind == "lines") else {
-                return Ok(String::new());
+                return Ok(Trace::default());
             };
             let ends = LineEnds::screen([l[0][0], l[0][1], l[1][0], l[1][1]])?;
-            trace::of_line_backend(b, &ends)
+            trace::of_line(b, &ends)
         }
         Backend::Triangle(b) => {
             let Some(t) = request
@@ -434,9 +436,9 @@ fn trace_text(request: &LabRequest, backend: &str, rule: FillRule) -> Result<Str
                 .first()
                 .filter(|_| request.kind == "triangles")
             else {
-                return Ok(String::new());
+                return Ok(Trace::default());
             };
-            trace::of_triangle_backend(b, t.map(|p| (p[0], p[1])), rule, w, h)
+            trace::of_triangle(b, t.map(|p| (p[0], p[1])), rule, w, h)
         }
     }
 }
@@ -545,10 +547,14 @@ mod tests {
             assert_eq!((depth.stored[i], depth.depth[i], n), (Some(0), 0.5, 1));
         }
         assert_eq!(response.trace_backend, "depth-buffer");
-        assert!(response.trace.starts_with("depth buffer, 14 x 9"));
+        assert!(response.trace.header[0].starts_with("depth buffer, 14 x 9"));
         assert!(response
             .trace
+            .to_text()
             .contains("triangle 2 (z = 0.8, 0.8, 0.8): 12 fragments, 8 kept"));
+        // One row per row of pixels in each of the three matrices.
+        let rows = response.trace.rows.iter().filter(|r| r.is_about(5, 4));
+        assert_eq!(rows.count(), 3);
         // The same triangles without depths: a heat map, no depth view.
         let flat = LabRequest {
             depths: Vec::new(),

@@ -2,6 +2,8 @@
 //!
 //! * [`trace`]: step-by-step traces of every back-end, in the course's
 //!   terms (decision variables, edge values, active edges, blocks);
+//! * [`trace_table`]: a trace as data (header, columns, rows with their
+//!   pixels, totals), printed as text or sent to the lab as JSON;
 //! * [`grid_picture`]: zoomed pictures of the pixel grid and fill-rule
 //!   heat maps;
 //! * [`palette`]: the one colour-blind safe palette every picture, page
@@ -22,3 +24,4 @@ pub mod grid_picture;
 pub mod palette;
 pub mod report;
 pub mod trace;
+pub mod trace_table;

@@ -1,5 +1,8 @@
 //! Step-by-step traces of one algorithm on one small input, in the
-//! course's terms, as plain-text tables (what `rasterlab explain` prints).
+//! course's terms, as data ([`Trace`]: header lines, a table whose rows
+//! carry the pixels they are about, totals) and as the plain-text tables
+//! `rasterlab explain` prints. The triangle traces are recordings of the
+//! back-ends' real walks.
 //!
 //! * [`bresenham_trace`]: the line-drawing slides' midpoint loop, each column's `x`, `y`,
 //!   decision variable `d = f(x + 1, y + 1/2)` and the choice it makes;
@@ -51,7 +54,7 @@ use crate::raster::triangle::incremental::Incremental;
 use crate::raster::triangle::scanline::{row_range, sorted_by_y, Scanline};
 use crate::raster::triangle::tiled::{Tiled, BLOCK};
 use crate::raster::triangle::{BlockClass, Bound, TriangleRasterizer, TriangleWalk, WalkStep};
-use std::fmt::Write;
+pub use crate::teaching::trace_table::{Column, Trace, TraceRow};
 
 /// The most pixel lines a triangle trace prints, and the most depth-buffer
 /// cells the depth-buffer trace prints (about 5 MB of text): a trace is
@@ -153,21 +156,28 @@ fn frame_note(frame: &OctantFrame) -> String {
     }
 }
 
-/// The line-drawing slides' midpoint / Bresenham loop on one line.
+/// The line-drawing slides' midpoint / Bresenham loop on one line, as
+/// text ([`bresenham`]).
 pub fn bresenham_trace(ends: &LineEnds) -> String {
+    bresenham(ends).to_text()
+}
+
+/// The line-drawing slides' midpoint / Bresenham loop on one line: each
+/// column's `x`, `y`, pixel, decision variable and choice.
+pub fn bresenham(ends: &LineEnds) -> Trace {
     let frame = OctantFrame::new(ends.from, ends.to);
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
+    let mut out = Trace::saying(format!(
         "bresenham (midpoint) {}; {}",
         ends.describe(),
         frame_note(&frame)
-    );
-    let _ = writeln!(
-        out,
-        "{:>4} {:>6} {:>6} {:>12}  choice",
-        "x", "y", "pixel", "d"
-    );
+    ));
+    out.columns = vec![
+        Column::right("x", 4, 0),
+        Column::right("y", 6, 1),
+        Column::right("pixel", 6, 1),
+        Column::right("d", 12, 1),
+        Column::left("choice", 0, 2),
+    ];
     for step in Bresenham::steps(&frame) {
         let (px, py) = frame.to_screen(step.i, step.k);
         let d = step.d as f64 / AREA_UNIT;
@@ -176,28 +186,25 @@ pub fn bresenham_trace(ends: &LineEnds) -> String {
         } else {
             "d >= 0: midpoint on or above the line, keep y"
         };
-        let _ = writeln!(
-            out,
-            "{:>4} {:>6} {:>6} {:>12.3}  {choice}",
-            step.i,
-            step.k,
-            format!("{px},{py}"),
-            d
-        );
+        out.rows.push(TraceRow::at_pixel(
+            vec![
+                step.i.to_string(),
+                step.k.to_string(),
+                format!("{px},{py}"),
+                format!("{d:.3}"),
+                choice.to_string(),
+            ],
+            px,
+            py,
+        ));
     }
-    let _ = writeln!(
-        out,
-        "d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame"
+    out.footer.push(
+        "d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame".to_string(),
     );
     out
 }
 
-/// The step-by-step trace of a triangle back-end on one triangle given in
-/// screen pixels, on a `width` x `height` grid: the recording of its
-/// real walk ([`TriangleRasterizer::record`]), every step it reported
-/// (samples tested, rows' crossings and spans, blocks' classes), printed
-/// in the form its [walk](crate::raster::descriptor::Descriptor::walk)
-/// is taught in.
+/// [`of_triangle`] as text, as `rasterlab explain` prints it.
 pub fn of_triangle_backend(
     backend: &dyn TriangleRasterizer,
     vertices: [(f64, f64); 3],
@@ -205,6 +212,22 @@ pub fn of_triangle_backend(
     width: u32,
     height: u32,
 ) -> Result<String> {
+    of_triangle(backend, vertices, rule, width, height).map(|t| t.to_text())
+}
+
+/// The step-by-step trace of a triangle back-end on one triangle given in
+/// screen pixels, on a `width` x `height` grid: the recording of its
+/// real walk ([`TriangleRasterizer::record`]), every step it reported
+/// (samples tested, rows' crossings and spans, blocks' classes), in the
+/// form its [walk](crate::raster::descriptor::Descriptor::walk) is taught
+/// in, each row with the pixels it is about.
+pub fn of_triangle(
+    backend: &dyn TriangleRasterizer,
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<Trace> {
     let walk = backend.descriptor().walk;
     let nothing = match walk {
         TriangleWalk::Scanline => "no row is filled, nothing is drawn",
@@ -213,7 +236,7 @@ pub fn of_triangle_backend(
         _ => "no pixel is tested, nothing is drawn",
     };
     let grid = PixelRect::of_target(width, height);
-    let mut out = String::new();
+    let mut out = Trace::default();
     let Some(t) = snapped_or_say(vertices, rule, &mut out, nothing)? else {
         return Ok(out);
     };
@@ -284,10 +307,9 @@ impl Recorded<'_> {
     /// `name, rule: triangle ..., twice its area, winding`, the box (for
     /// the bounding-box loop), the walk's own words, the edges' kinds, then
     /// every sample tested with its edge values, barycentrics and verdict.
-    fn per_pixel(&self, mut out: String, walk: TriangleWalk) -> String {
+    fn per_pixel(&self, mut out: Trace, walk: TriangleWalk) -> Trace {
         let (t, rule, region) = (self.t, self.rule, self.region);
-        let _ = writeln!(
-            out,
+        out.header.push(format!(
             "{}, {} rule: triangle {:?}, twice its area = {:.4} px^2, {}",
             self.name,
             rule.name(),
@@ -298,34 +320,40 @@ impl Recorded<'_> {
             } else {
                 "clockwise on screen (edges flipped so inside is positive)"
             }
-        );
+        ));
         match walk {
             TriangleWalk::BoundingBox => {
-                let _ = writeln!(
-                    out,
+                out.header.push(format!(
                     "bounding box: pixels x {}..={}, y {}..={}",
                     region.x0, region.x1, region.y0, region.y1
-                );
+                ));
             }
             TriangleWalk::Own(words) => {
-                let _ = writeln!(out, "walk: {words}; the samples it tested, in its order");
+                out.header.push(format!(
+                    "walk: {words}; the samples it tested, in its order"
+                ));
             }
             _ => {}
         }
         for k in 0..3 {
             let e = t.edges[k];
-            let _ = writeln!(
-                out,
+            out.header.push(format!(
                 "E{k} (opposite v{k}): {} edge; {}",
                 e.kind(),
                 rule.explain_tie(&e)
-            );
+            ));
         }
-        let _ = writeln!(
-            out,
-            "{:>4} {:>4} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7}  verdict",
-            "x", "y", "E0", "E1", "E2", "alpha", "beta", "gamma"
-        );
+        out.columns = vec![
+            Column::right("x", 4, 0),
+            Column::right("y", 4, 1),
+            Column::right("E0", 9, 1),
+            Column::right("E1", 9, 1),
+            Column::right("E2", 9, 1),
+            Column::right("alpha", 7, 1),
+            Column::right("beta", 7, 1),
+            Column::right("gamma", 7, 1),
+            Column::left("verdict", 0, 2),
+        ];
         let samples = self.samples();
         let mut inside_count = 0;
         for &(x, y, e, inside, _) in &samples {
@@ -345,30 +373,33 @@ impl Recorded<'_> {
                     None => "inside".to_string(),
                 },
             };
-            let _ = writeln!(
-                out,
-                "{:>4} {:>4} {:>9.4} {:>9.4} {:>9.4} {:>7.3} {:>7.3} {:>7.3}  {verdict}",
+            let edge = |k: usize| format!("{:.4}", e[k] as f64 / AREA_UNIT);
+            out.rows.push(TraceRow::at_pixel(
+                vec![
+                    x.to_string(),
+                    y.to_string(),
+                    edge(0),
+                    edge(1),
+                    edge(2),
+                    format!("{alpha:.3}"),
+                    format!("{beta:.3}"),
+                    format!("{gamma:.3}"),
+                    verdict,
+                ],
                 x,
                 y,
-                e[0] as f64 / AREA_UNIT,
-                e[1] as f64 / AREA_UNIT,
-                e[2] as f64 / AREA_UNIT,
-                alpha,
-                beta,
-                gamma
-            );
+            ));
         }
-        let _ = writeln!(
-            out,
+        out.footer.push(format!(
             "{} pixels tested, {inside_count} fragments",
             samples.len()
-        );
+        ));
         out
     }
 
     /// The vertices sorted by y, the rows, then each row's crossings (the
     /// bound each active edge gives) and its span, as the walk solved them.
-    fn scanline(&self, mut out: String) -> String {
+    fn scanline(&self, mut out: Trace) -> Trace {
         let (t, grid) = (self.t, self.grid);
         let order = sorted_by_y(t);
         let [top, mid, bottom] = order;
@@ -376,28 +407,26 @@ impl Recorded<'_> {
             let (x, y) = t.vertices[k].to_f64();
             format!("v{k} ({x}, {y})")
         };
-        let _ = writeln!(
-            out,
+        out.header.push(format!(
             "scanline, {} rule: sorted by y, top {}, mid {}, bottom {}",
             self.rule.name(),
             pixel(top),
             pixel(mid),
             pixel(bottom)
-        );
-        let _ = writeln!(
-            out,
+        ));
+        out.header.push(format!(
             "long edge v{top}-v{bottom} (E{mid}) bounds every row; short edges v{top}-v{mid} (E{bottom}) above mid, v{mid}-v{bottom} (E{top}) below"
-        );
+        ));
         let (first_row, last_row) = row_range(t, order, grid);
-        let _ = writeln!(
-            out,
+        out.header.push(format!(
             "rows {first_row}..={last_row}: their sample lines y = row + 0.5 lie between top and bottom"
-        );
-        let _ = writeln!(
-            out,
-            "{:>4} {:>8}  {:<72} span",
-            "row", "sample y", "edge crossings: exact x -> pixel bound"
-        );
+        ));
+        out.columns = vec![
+            Column::right("row", 4, 0),
+            Column::right("sample y", 8, 1),
+            Column::left("edge crossings: exact x -> pixel bound", 72, 2),
+            Column::left("span", 0, 1),
+        ];
         let (mut filled, mut rows) = (0, 0);
         let mut crossings: Vec<String> = Vec::new();
         for step in self.steps {
@@ -432,33 +461,33 @@ impl Recorded<'_> {
                         format!("{first}..={last} ({} px)", last - first + 1)
                     };
                     let y = j * SUBPIXEL_SCALE + HALF_PIXEL;
-                    let _ = writeln!(
-                        out,
-                        "{:>4} {:>8.3}  {:<72} {filled_text}",
-                        j,
-                        y as f64 / SUBPIXEL_SCALE as f64,
-                        crossings.join("; ")
+                    out.rows.push(
+                        TraceRow::new(vec![
+                            j.to_string(),
+                            format!("{:.3}", y as f64 / SUBPIXEL_SCALE as f64),
+                            crossings.join("; "),
+                            filled_text,
+                        ])
+                        .about(grid.x0, j, grid.x1, j),
                     );
                     crossings.clear();
                 }
                 _ => {}
             }
         }
-        let _ = writeln!(
-            out,
+        out.footer.push(format!(
             "{rows} rows, {filled} fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last"
-        );
+        ));
         out
     }
 
     /// The box, the edge values at its first sample and the steps, then
     /// every sample the walk tested with its stepped edge values.
-    fn incremental(&self, mut out: String) -> String {
+    fn incremental(&self, mut out: Trace) -> Trace {
         let (t, r) = (self.t, self.region);
         let (step_x, step_y) = t.pixel_steps();
         let px = |v: [i64; 3]| v.map(|e| format!("{:+.4}", e as f64 / AREA_UNIT)).join(" ");
-        let _ = writeln!(
-            out,
+        out.header.push(format!(
             "{}, {} rule: bounding box x {}..={}, y {}..={}; E evaluated once, at pixel ({}, {}), then only added to",
             self.name,
             self.rule.name(),
@@ -468,25 +497,25 @@ impl Recorded<'_> {
             r.y1,
             r.x0,
             r.y0
-        );
+        ));
         if r.is_empty() {
-            let _ = writeln!(
-                out,
-                "no pixel centre of the grid is in the box: nothing is tested"
-            );
+            out.header
+                .push("no pixel centre of the grid is in the box: nothing is tested".to_string());
             return out;
         }
-        let _ = writeln!(
-            out,
+        out.header.push(format!(
             "per pixel right E += ({})   per row down E += ({})",
             px(step_x),
             px(step_y)
-        );
-        let _ = writeln!(
-            out,
-            "{:>4} {:>4} {:>10} {:>10} {:>10}  verdict",
-            "x", "y", "E0", "E1", "E2"
-        );
+        ));
+        out.columns = vec![
+            Column::right("x", 4, 0),
+            Column::right("y", 4, 1),
+            Column::right("E0", 10, 1),
+            Column::right("E1", 10, 1),
+            Column::right("E2", 10, 1),
+            Column::left("verdict", 0, 2),
+        ];
         let samples = self.samples();
         let mut fragments = 0;
         for &(x, y, e, inside, stops) in &samples {
@@ -498,26 +527,25 @@ impl Recorded<'_> {
             } else {
                 "outside"
             };
-            let [a, b, c] = e.map(|v| v as f64 / AREA_UNIT);
-            let _ = writeln!(
-                out,
-                "{x:>4} {y:>4} {a:>10.4} {b:>10.4} {c:>10.4}  {verdict}"
-            );
+            let [a, b, c] = e.map(|v| format!("{:.4}", v as f64 / AREA_UNIT));
+            out.rows.push(TraceRow::at_pixel(
+                vec![x.to_string(), y.to_string(), a, b, c, verdict.to_string()],
+                x,
+                y,
+            ));
         }
-        let _ = writeln!(
-            out,
+        out.footer.push(format!(
             "{} pixels tested, {fragments} fragments; no multiplication after the first pixel",
             samples.len()
-        );
+        ));
         out
     }
 
     /// The box, then every block (or stretch of blocks) the walk
     /// classified, with its class, and the count of pixels it tested.
-    fn blocks(&self, mut out: String) -> String {
+    fn blocks(&self, mut out: Trace) -> Trace {
         let r = self.region;
-        let _ = writeln!(
-            out,
+        out.header.push(format!(
             "{}, {} rule: the bounding box x {}..={}, y {}..={} in {BLOCK} x {BLOCK} blocks on the grid's block lines; each block classified from its corners",
             self.name,
             self.rule.name(),
@@ -525,7 +553,7 @@ impl Recorded<'_> {
             r.x1,
             r.y0,
             r.y1
-        );
+        ));
         if r.is_empty() {
             return out;
         }
@@ -539,13 +567,16 @@ impl Recorded<'_> {
             })
             .collect();
         if blocks.is_empty() {
-            let _ = writeln!(
-                out,
+            out.header.push(format!(
                 "the box is smaller than a block: the back-end skips the corner test and tests its pixels one by one, {tested} of them"
-            );
+            ));
             return out;
         }
-        let _ = writeln!(out, "{:>15} {:>15}  class", "columns", "rows");
+        out.columns = vec![
+            Column::right("columns", 15, 0),
+            Column::right("rows", 15, 1),
+            Column::left("class", 0, 2),
+        ];
         let mut counts = [0u64; 3];
         for (block, class) in blocks {
             let what = match class {
@@ -562,30 +593,37 @@ impl Recorded<'_> {
                     "partial: an edge crosses it, each pixel tested"
                 }
             };
-            let _ = writeln!(
-                out,
-                "{:>15} {:>15}  {what}",
-                format!("{}..={}", block.x0, block.x1),
-                format!("{}..={}", block.y0, block.y1)
+            out.rows.push(
+                TraceRow::new(vec![
+                    format!("{}..={}", block.x0, block.x1),
+                    format!("{}..={}", block.y0, block.y1),
+                    what.to_string(),
+                ])
+                .about(block.x0, block.y0, block.x1, block.y1),
             );
         }
-        let _ = writeln!(
-            out,
+        out.footer.push(format!(
             "{} outside, {} inside, {} partial blocks or stretches; {tested} pixels tested (a row of a partial block stops past its span)",
             counts[0], counts[1], counts[2]
-        );
+        ));
         out
     }
 }
 
-/// The step-by-step trace of a line back-end on one segment: the trace of
-/// the way it [chooses](crate::raster::descriptor::Descriptor::walk) its pixels.
+/// [`of_line`] as text, as `rasterlab explain` prints it.
 pub fn of_line_backend(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String> {
+    of_line(backend, ends).map(|t| t.to_text())
+}
+
+/// The step-by-step trace of a line back-end on one segment: the trace of
+/// the way it [chooses](crate::raster::descriptor::Descriptor::walk) its
+/// pixels, each row with the pixels it is about.
+pub fn of_line(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> {
     match backend.descriptor().walk {
         LineWalk::DirectEvaluation | LineWalk::Incremental => column_trace(backend, ends),
-        LineWalk::Midpoint => Ok(bresenham_trace(ends)),
-        LineWalk::AntiAliased => Ok(wu_trace(ends)),
-        LineWalk::DiamondExit => diamond_trace(ends),
+        LineWalk::Midpoint => Ok(bresenham(ends)),
+        LineWalk::AntiAliased => Ok(wu(ends)),
+        LineWalk::DiamondExit => diamond(ends),
     }
 }
 
@@ -593,11 +631,11 @@ pub fn of_line_backend(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<
 /// on one line, by the name of its back-end (`direct` or `dda`): each
 /// column's exact and rounded `y`.
 pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
-    column_trace(line_backend(backend)?, ends)
+    column_trace(line_backend(backend)?, ends).map(|t| t.to_text())
 }
 
 /// [`line_trace`] of a back-end that walks by direct evaluation or the DDA.
-fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String> {
+fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> {
     let name = backend.name();
     let frame = OctantFrame::new(ends.from, ends.to);
     let scale = SUBPIXEL_SCALE as f64;
@@ -607,7 +645,6 @@ fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String>
     } else {
         0.0
     };
-    let mut out = String::new();
     let walk = backend.descriptor().walk;
     let how = match walk {
         LineWalk::DirectEvaluation => {
@@ -622,17 +659,17 @@ fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String>
             )))
         }
     };
-    let _ = writeln!(
-        out,
+    let mut out = Trace::saying(format!(
         "{name} {}, m = {m:.4}: {how}; {}",
         ends.describe(),
         frame_note(&frame)
-    );
-    let _ = writeln!(
-        out,
-        "{:>4} {:>10} {:>6} {:>6}",
-        "x", "exact y", "y", "pixel"
-    );
+    ));
+    out.columns = vec![
+        Column::right("x", 4, 0),
+        Column::right("exact y", 10, 1),
+        Column::right("y", 6, 1),
+        Column::right("pixel", 6, 1),
+    ];
     let columns: Vec<(i64, f64, i64)> = match walk {
         LineWalk::DirectEvaluation => (frame.i0..=frame.i1)
             .map(|i| {
@@ -644,18 +681,20 @@ fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String>
     };
     for (i, exact, k) in columns {
         let (px, py) = frame.to_screen(i, k);
-        let _ = writeln!(
-            out,
-            "{:>4} {:>10.4} {:>6} {:>6}",
-            i,
-            exact,
-            k,
-            format!("{px},{py}")
-        );
+        out.rows.push(TraceRow::at_pixel(
+            vec![
+                i.to_string(),
+                format!("{exact:.4}"),
+                k.to_string(),
+                format!("{px},{py}"),
+            ],
+            px,
+            py,
+        ));
     }
-    let _ = writeln!(
-        out,
+    out.footer.push(
         "rounding: the nearest row; a tie (exactly .5) goes to the row nearer the start"
+            .to_string(),
     );
     Ok(out)
 }
@@ -695,15 +734,25 @@ pub fn scanline_trace(
     of_triangle_backend(&Scanline, vertices, rule, width, height)
 }
 
-/// The rasterization slides' depth-buffer loop on a scene: each triangle in turn drawn by
-/// `backend` through the shared stage (`if f.z < depthBuffer[f.xy]: draw
-/// f, depthBuffer[f.xy] = f.z`), and the depth buffer printed after each,
-/// as the slides' matrix.
+/// [`depth_buffer`] as text, as `rasterlab explain --backend
+/// depth-buffer` prints it.
 pub fn depth_buffer_trace(
     scene: &Scene2D,
     backend: &dyn TriangleRasterizer,
     rule: FillRule,
 ) -> Result<String> {
+    depth_buffer(scene, backend, rule).map(|t| t.to_text())
+}
+
+/// The rasterization slides' depth-buffer loop on a scene: each triangle in turn drawn by
+/// `backend` through the shared stage (`if f.z < depthBuffer[f.xy]: draw
+/// f, depthBuffer[f.xy] = f.z`), and the depth buffer after each, as the
+/// slides' matrix: one row of the trace per row of pixels.
+pub fn depth_buffer(
+    scene: &Scene2D,
+    backend: &dyn TriangleRasterizer,
+    rule: FillRule,
+) -> Result<Trace> {
     let mut target = RenderTarget::new(scene.width, scene.height)?;
     let matrices = scene.triangles.len() as u64 + 1;
     check_trace_length(
@@ -714,12 +763,10 @@ pub fn depth_buffer_trace(
         test: DepthTest::Less,
         write: true,
     };
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
+    let mut out = Trace::saying(format!(
         "depth buffer, {} x {}, initialised with 1.0; each fragment f is kept if f.z < depthBuffer[f.xy]",
         scene.width, scene.height
-    );
+    ));
     print_matrix(&mut out, &target.depth, scene.width);
     for (i, (triangle, vertices)) in scene.triangles.iter().zip(&scene.vertices).enumerate() {
         let one = Scene2D {
@@ -735,23 +782,26 @@ pub fn depth_buffer_trace(
             .filter(|(b, a)| a != b)
             .count();
         let z: Vec<String> = vertices.iter().map(|v| format!("{}", v.depth)).collect();
-        let _ = writeln!(
-            out,
-            "\ntriangle {} (z = {}): {} fragments, {kept} kept (nearer than the buffer), {} hidden",
+        out.rows.push(TraceRow::note(String::new()));
+        out.rows.push(TraceRow::note(format!(
+            "triangle {} (z = {}): {} fragments, {kept} kept (nearer than the buffer), {} hidden",
             i + 1,
             z.join(", "),
             work.fragments,
             work.fragments - kept as u64
-        );
+        )));
         print_matrix(&mut out, &target.depth, scene.width);
     }
     Ok(out)
 }
 
-fn print_matrix(out: &mut String, depth: &[f32], width: u32) {
-    for row in depth.chunks(width as usize) {
+/// The depth buffer as the slides' matrix, a row of the trace per row of
+/// pixels.
+fn print_matrix(out: &mut Trace, depth: &[f32], width: u32) {
+    for (y, row) in depth.chunks(width as usize).enumerate() {
         let cells: Vec<String> = row.iter().map(|z| format!("{z:.1}")).collect();
-        let _ = writeln!(out, "{}", cells.join(" "));
+        out.rows
+            .push(TraceRow::new(cells).about(0, y as i64, i64::from(width) - 1, y as i64));
     }
 }
 
@@ -761,13 +811,14 @@ fn print_matrix(out: &mut String, depth: &[f32], width: u32) {
 fn snapped_or_say(
     vertices: [(f64, f64); 3],
     rule: FillRule,
-    out: &mut String,
+    out: &mut Trace,
     nothing: &str,
 ) -> Result<Option<TriangleSetup>> {
     let [a, b, c] = vertices.map(|(x, y)| FixedPoint::snap_f64(x, y));
     let t = TriangleSetup::new(0, [a?, b?, c?], rule);
     if t.is_none() {
-        let _ = writeln!(out, "the snapped triangle has zero area: {nothing}");
+        out.header
+            .push(format!("the snapped triangle has zero area: {nothing}"));
     }
     Ok(t)
 }
@@ -798,9 +849,14 @@ pub fn tiled_trace(
     of_triangle_backend(&Tiled, vertices, rule, width, height)
 }
 
-/// Xiaolin Wu's anti-aliased line: each column's exact height and the two
-/// pixels around it, with their weights `1 - frac(y)` and `frac(y)`.
+/// [`wu`] as text.
 pub fn wu_trace(ends: &LineEnds) -> String {
+    wu(ends).to_text()
+}
+
+/// Xiaolin Wu's anti-aliased line: each column's two pixels around the
+/// ideal line, with their weights `1 - frac(y)` and `frac(y)`.
+pub fn wu(ends: &LineEnds) -> Trace {
     use crate::raster::line::{wu::Wu, LineOptions, LineSetup};
     let frame = OctantFrame::new(ends.from, ends.to);
     let line = LineSetup {
@@ -808,18 +864,17 @@ pub fn wu_trace(ends: &LineEnds) -> String {
         from: ends.from,
         to: ends.to,
     };
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
+    let mut out = Trace::saying(format!(
         "wu (anti-aliased) {}; {}",
         ends.describe(),
         frame_note(&frame)
-    );
-    let _ = writeln!(
-        out,
-        "{:>12}  {:>8}  {:>12}  {:>8}",
-        "pixel", "weight", "pixel", "weight"
-    );
+    ));
+    out.columns = vec![
+        Column::right("pixel", 12, 0),
+        Column::right("weight", 8, 2),
+        Column::right("pixel", 12, 2),
+        Column::right("weight", 8, 2),
+    ];
     let pixels = Wu::pixels(&line, &LineOptions::DEFAULT);
     // Pixels come in columns of one or two (a weight of 0 is not drawn);
     // a column's pixels share the major coordinate.
@@ -830,42 +885,55 @@ pub fn wu_trace(ends: &LineEnds) -> String {
         let pair = pixels.get(i + 1).filter(|q| major(q.0) == major(p));
         match pair {
             Some(&(q, v)) => {
-                let _ = writeln!(
-                    out,
-                    "{:>12}  {w:>8.4}  {:>12}  {v:>8.4}",
-                    format!("{},{}", p.0, p.1),
-                    format!("{},{}", q.0, q.1)
+                out.rows.push(
+                    TraceRow::at_pixel(
+                        vec![
+                            format!("{},{}", p.0, p.1),
+                            format!("{w:.4}"),
+                            format!("{},{}", q.0, q.1),
+                            format!("{v:.4}"),
+                        ],
+                        p.0,
+                        p.1,
+                    )
+                    .about(q.0, q.1, q.0, q.1),
                 );
                 i += 2;
             }
             None => {
-                let _ = writeln!(out, "{:>12}  {w:>8.4}", format!("{},{}", p.0, p.1));
+                out.rows.push(TraceRow::at_pixel(
+                    vec![format!("{},{}", p.0, p.1), format!("{w:.4}")],
+                    p.0,
+                    p.1,
+                ));
                 i += 1;
             }
         }
     }
-    let _ = writeln!(
-        out,
-        "at each column the ideal line passes between two pixel centres; the nearer one gets more: 1 - frac(y) and frac(y)"
+    out.footer.push(
+        "at each column the ideal line passes between two pixel centres; the nearer one gets more: 1 - frac(y) and frac(y)".to_string(),
     );
     out
+}
+
+/// [`diamond`] as text.
+pub fn diamond_trace(ends: &LineEnds) -> Result<String> {
+    diamond(ends).map(|t| t.to_text())
 }
 
 /// The diamond-exit rule: for each column (row, for steep lines) the three
 /// candidate pixels around the line, and whether the segment leaves each
 /// pixel's diamond (then the pixel is drawn).
-pub fn diamond_trace(ends: &LineEnds) -> Result<String> {
+pub fn diamond(ends: &LineEnds) -> Result<Trace> {
     use crate::raster::line::diamond::exits_diamond;
     let (a, b) = (ends.from, ends.to);
     let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
     let x_major = dx.abs() >= dy.abs();
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
+    let mut out = Trace::saying(format!(
         "diamond exit rule {}; {}-major: a pixel is drawn when the segment leaves its diamond |x - cx| + |y - cy| < 1/2 (the end point's diamond is not)",
         ends.describe(),
         if x_major { "x" } else { "y" }
-    );
+    ));
     let (a_major, b_major, a_minor, b_minor) = if x_major {
         (a.x.raw(), b.x.raw(), a.y.raw(), b.y.raw())
     } else {
@@ -874,7 +942,7 @@ pub fn diamond_trace(ends: &LineEnds) -> Result<String> {
     let first = (a_major.min(b_major) - HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) - 1;
     let last = (a_major.max(b_major) + HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) + 1;
     check_trace_length(3 * (last - first + 1) as u64, "candidate lines")?;
-    let _ = writeln!(out, "{:>12}  verdict", "pixel");
+    out.columns = vec![Column::right("pixel", 12, 0), Column::left("verdict", 0, 2)];
     let mut drawn = 0;
     for i in first..=last {
         let centre = i * SUBPIXEL_SCALE + HALF_PIXEL;
@@ -889,18 +957,18 @@ pub fn diamond_trace(ends: &LineEnds) -> Result<String> {
             let (px, py) = if x_major { (i, row) } else { (row, i) };
             let exits = exits_diamond(a, b, px, py);
             drawn += usize::from(exits);
-            let _ = writeln!(
-                out,
-                "{:>12}  {}",
-                format!("{px},{py}"),
-                if exits {
-                    "exits its diamond: drawn"
-                } else {
-                    "does not exit its diamond"
-                }
-            );
+            let verdict = if exits {
+                "exits its diamond: drawn"
+            } else {
+                "does not exit its diamond"
+            };
+            out.rows.push(TraceRow::at_pixel(
+                vec![format!("{px},{py}"), verdict.to_string()],
+                px,
+                py,
+            ));
         }
     }
-    let _ = writeln!(out, "{drawn} pixels drawn");
+    out.footer.push(format!("{drawn} pixels drawn"));
     Ok(out)
 }
