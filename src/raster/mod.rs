@@ -5,6 +5,8 @@
 //! * [`edge`]: the course's implicit line equation as exact `i64` edge
 //!   functions, fill rules (top-left, bottom-right, off-screen point,
 //!   inclusive, exclusive) and triangle set-up;
+//! * [`compact`]: the same edge functions in 32 bits for small triangles,
+//!   relative to their box's corner, and the bound that keeps them exact;
 //! * [`triangle`]: the triangle back-ends, one file each, and the
 //!   [`TriangleRasterizer`](triangle::TriangleRasterizer) trait;
 //! * [`line`](mod@line): the line back-ends, one file each, the
@@ -25,6 +27,7 @@
 //! teaching and measurement are built on this.
 
 pub mod backend;
+pub mod compact;
 pub mod descriptor;
 pub mod edge;
 pub mod fixed;

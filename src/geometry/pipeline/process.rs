@@ -108,8 +108,10 @@ impl<V, S: VertexShader<V>> vector::Kernel for ShadeVertices<'_, V, S> {
 /// sets up what is left.
 ///
 /// Triangles whose bounding box holds no pixel centre of the viewport are
-/// dropped here too (counted in [`GeometryStats::empty_bounds`]): they
-/// could not produce a fragment.
+/// dropped here too (counted in [`GeometryStats::empty_bounds`]), and so
+/// are those whose box holds at most 2x2 pixel centres, none of them
+/// inside ([`GeometryStats::no_sample`]): they could not produce a
+/// fragment.
 ///
 /// The work is spread over rayon's threads: vertices are shaded in
 /// parallel, triangles are processed in chunks in parallel, and the chunks'

@@ -9,6 +9,7 @@ use super::vertex::VertexShader;
 use super::viewport::to_screen_vertex;
 use super::{CullMode, FrontFace, PipelineOptions, Viewport};
 use crate::error::Result;
+use crate::raster::compact::SmallTriangle;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fixed::FixedPoint;
 use crate::raster::primitive::{ShadedTriangle, ShadedVertex};
@@ -34,6 +35,10 @@ pub struct GeometryStats {
     /// (too small to cover a sample, or off-screen): dropped, as they
     /// could not produce a fragment.
     pub empty_bounds: u64,
+    /// Triangles whose bounding box holds at most 2x2 pixel centres, none
+    /// of them inside (tested in 32 bits, [`crate::raster::compact`]):
+    /// dropped before their set-up, as they could not produce a fragment.
+    pub no_sample: u64,
     /// Triangles handed to the rasterizer.
     pub triangles: u64,
 }
@@ -48,6 +53,7 @@ impl GeometryStats {
         self.degenerate += other.degenerate;
         self.unresolvable += other.unresolvable;
         self.empty_bounds += other.empty_bounds;
+        self.no_sample += other.no_sample;
         self.triangles += other.triangles;
     }
 }
@@ -98,8 +104,9 @@ impl Part {
 
     /// Keeps the triangle with these vertices (indices, snapped positions
     /// and depths) and sets it up, unless it is degenerate, of a winding
-    /// other than `winding` (when given), culled, or without a pixel sample
-    /// of the viewport in its bounding box.
+    /// other than `winding` (when given), culled, without a pixel sample
+    /// of the viewport in its bounding box, or small (at most 2x2 samples
+    /// in its box) and without a sample inside.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn push(
@@ -129,10 +136,22 @@ impl Part {
             self.stats.culled += 1;
             return;
         }
-        let bounds = TriangleSetup::sample_bounds(points).intersect(viewport);
+        let whole = TriangleSetup::sample_bounds(points);
+        let bounds = whole.intersect(viewport);
         if bounds.is_empty() {
             self.stats.empty_bounds += 1;
             return;
+        }
+        // Most triangles of a dense mesh have a box of one to four pixel
+        // centres; many of them cover none. Those are found in 32 bits
+        // and dropped here, before the set-up is computed and stored.
+        if whole.x1 - whole.x0 <= 1 && whole.y1 - whole.y0 <= 1 {
+            let origin = SmallTriangle::first_sample_of(bounds);
+            let small = SmallTriangle::around(points, origin, signed_area);
+            if small.is_some_and(|s| !s.may_cover_a_sample(bounds)) {
+                self.stats.no_sample += 1;
+                return;
+            }
         }
         let id = self.setups.len() as u32;
         if let Some(bands) = self.bands {
