@@ -1224,3 +1224,105 @@ fn opengl_through_egl_follows_the_bottom_left_rule() {
         );
     }
 }
+
+/// Every coordinate of the primitives' paths in a picture.
+fn primitive_coordinates(svg: &str) -> Vec<f64> {
+    svg.split("<path class=\"primitive\"")
+        .skip(1)
+        .flat_map(|p| {
+            let start = p.find(" d=\"").unwrap() + 4;
+            let end = start + p[start..].find('"').unwrap();
+            p[start..end]
+                .split([' ', ',', 'M', 'L'])
+                .filter(|v| !v.is_empty())
+                .map(|v| v.parse::<f64>().unwrap())
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+#[test]
+fn the_counterexample_picture_labels_clips_and_uses_the_palette() {
+    use rasterlab::check::judge::judge;
+    use rasterlab::teaching::palette::{hex, triangle_colour, Role};
+    let scanline = triangle_backend("scanline").unwrap();
+    // Two triangles sharing a diagonal; one fragment missing, one drawn
+    // off the target, left of it.
+    let case = Case::from_text("# size 3x2\n0 0 3 0 0 2\n3 0 3 2 0 2\n").unwrap();
+    let mut drawn = triangle_fragments(scanline, &case, FillRule::TopLeft);
+    let gone = drawn.remove(0);
+    drawn.push(Fragment { x: -1, y: 0, id: 1 });
+    let finding = judge(Property::Exact(FillRule::TopLeft), &case, &drawn).unwrap();
+    let svg = finding.to_svg();
+    // The palette's colours, none of the old private ones.
+    for role in [Role::Correct, Role::Extra, Role::Missing, Role::OffTarget] {
+        assert!(svg.contains(&role.hex()), "{role:?}");
+    }
+    for old in ["#86c98a", "#e0524d", "#f2b233", "#1d4ed8", "#e8e8e8"] {
+        assert!(!svg.contains(old), "{old}");
+    }
+    assert!(svg.contains(&format!(
+        "data-x=\"{}\" data-y=\"{}\" data-role=\"missing\"",
+        gone.x, gone.y
+    )));
+    assert!(svg.contains("data-x=\"-1\" data-y=\"0\" data-role=\"extra\""));
+    // A colour and a label per triangle and per vertex.
+    for (i, name) in ["t0", "t1"].iter().enumerate() {
+        let colour = hex(triangle_colour(i));
+        assert!(
+            svg.contains(&format!("stroke=\"{colour}\"")),
+            "{name} {colour}"
+        );
+        assert!(svg.contains(&format!("fill=\"{colour}\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">{name}</text>")));
+    }
+    assert_ne!(triangle_colour(0), triangle_colour(1));
+    assert_eq!(svg.matches("class=\"vertex-label\"").count(), 6);
+    for k in 0..3 {
+        assert_eq!(svg.matches(&format!(">v{k}</text>")).count(), 2, "v{k}");
+    }
+    // Pixel indices on both axes, over the target and its margin of 3.
+    assert_eq!(svg.matches("class=\"column\"").count(), 3 + 6);
+    assert_eq!(svg.matches("class=\"row\"").count(), 2 + 6);
+    assert!(svg.contains(">-3</text>") && svg.contains(">5</text>"));
+    // The legend, in the picture: the cell colours and the triangles.
+    assert!(svg.contains("<g class=\"legend\" data-palette=\"okabe-ito\">"));
+    assert!(svg.contains("t0: v0 (0, 0), v1 (3, 0), v2 (0, 2)"), "{svg}");
+    assert!(svg.contains("t1: v0 (3, 0), v1 (3, 2), v2 (0, 2)"), "{svg}");
+    assert!(svg.contains(Role::OffTarget.label()));
+    // Big enough for a person.
+    let size = |attribute: &str| -> f64 {
+        let start = svg.find(&format!("{attribute}=\"")).unwrap() + attribute.len() + 2;
+        svg[start..start + svg[start..].find('"').unwrap()]
+            .parse()
+            .unwrap()
+    };
+    assert!(size("width") >= 256.0 && size("height") >= 256.0);
+    // The page shows the picture and its legend.
+    let html = finding.to_html();
+    assert!(html.contains(&svg));
+
+    // A triangle of the overflow family, vertices 9,000 px off a 1x1
+    // target: clipped to the view (40 px cells, 3 of margin), its
+    // vertices named in the legend.
+    let far = Case::from_text(
+        "# size 1x1\n-9075 -73.5 -9073.66796875 -73.59375 3991.6953125 33.08984375\n",
+    )
+    .unwrap();
+    let finding = judge(
+        Property::Exact(FillRule::BottomLeft),
+        &far,
+        &[Fragment { x: 0, y: 0, id: 0 }],
+    )
+    .unwrap();
+    let svg = finding.to_svg();
+    let coordinates = primitive_coordinates(&svg);
+    assert!(!coordinates.is_empty(), "{svg}");
+    assert!(
+        coordinates.iter().all(|v| (-120.0..=160.0).contains(v)),
+        "{coordinates:?}"
+    );
+    // v0 and v1 lie 0.17 px apart, 9,000 px to the left: one label.
+    assert!(svg.contains(">v0, v1 (off view)</text>"), "{svg}");
+    assert!(svg.contains(">v2 (off view)</text>"), "{svg}");
+    assert!(svg.contains("v0 (-9075, -73.5), v1 (-9073.66796875, -73.59375)"));
+}

@@ -1,132 +1,462 @@
-//! A counterexample as a self-contained HTML page: the pixel grid with
-//! the primitives drawn over it, each cell coloured by what the checked
-//! rasterizer did against the expected answer.
+//! A counterexample as a picture and a self-contained HTML page: the pixel
+//! grid with the primitives drawn over it, each cell coloured by what the
+//! checked rasterizer did against the expected answer.
+//!
+//! The picture follows the course's grid drawings: one cell per pixel,
+//! its centre marked, pixel indices along both axes, and the triangles as
+//! given (snapped to the 1/256 px grid), each in its own colour and
+//! labelled `t0`, `t1`, ..., its vertices `v0`-`v2`. A few cells of
+//! margin around the target show the primitives just outside it; a
+//! primitive reaching beyond the view (the huge and overflow families
+//! have vertices thousands of pixels away) is clipped to it, and its
+//! vertices are listed in the legend. Colours are the palette's
+//! ([`crate::teaching::palette`]): correct, extra, missing, off the
+//! target, pixel centres, and the triangle colours.
 
-use super::judge::Finding;
+use super::judge::{Finding, LineConvention, Property};
 use crate::teaching::grid_picture::escape;
+use crate::teaching::palette::{hex, triangle_colour, Legend, Role};
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
-/// Pixels per grid cell in the page.
-const CELL: f64 = 40.0;
-/// The most cells drawn on a side (the shrunk target is usually small).
+/// The most cells drawn on a side of the target (the shrunk target is
+/// usually small).
 const MAX_SIDE: i64 = 64;
 /// Cells shown around the target, so the primitives near a one-pixel
 /// counterexample can be seen.
 const MARGIN: i64 = 3;
+/// The picture's grid, at most, in SVG pixels on its longer side.
+const GRID_SIZE: f64 = 720.0;
 
-/// Colours: correct fragment, extra fragment, missing fragment.
-const CORRECT: &str = "#86c98a";
-const EXTRA: &str = "#e0524d";
-const MISSING: &str = "#f2b233";
+/// A point in pixels (screen coordinates).
+type P = (f64, f64);
+
+/// The visible rectangle, in pixels: `[x0, x1] x [y0, y1]`.
+#[derive(Copy, Clone, Debug)]
+struct View {
+    x0: f64,
+    y0: f64,
+    x1: f64,
+    y1: f64,
+}
+
+impl View {
+    fn contains(self, (x, y): P) -> bool {
+        (self.x0..=self.x1).contains(&x) && (self.y0..=self.y1).contains(&y)
+    }
+
+    fn clamp(self, (x, y): P) -> P {
+        (x.clamp(self.x0, self.x1), y.clamp(self.y0, self.y1))
+    }
+
+    /// `polygon` clipped to the view (Sutherland and Hodgman: against
+    /// each side's half-plane in turn).
+    fn clip(self, polygon: &[P]) -> Vec<P> {
+        // (axis, bound, keep the side >= bound)
+        let sides = [
+            (0, self.x0, true),
+            (0, self.x1, false),
+            (1, self.y0, true),
+            (1, self.y1, false),
+        ];
+        let mut out = polygon.to_vec();
+        for (axis, bound, above) in sides {
+            let coord = |p: P| if axis == 0 { p.0 } else { p.1 };
+            let inside = |p: P| {
+                if above {
+                    coord(p) >= bound
+                } else {
+                    coord(p) <= bound
+                }
+            };
+            let input = std::mem::take(&mut out);
+            for (i, &b) in input.iter().enumerate() {
+                let a = input[(i + input.len() - 1) % input.len()];
+                let cross = |a: P, b: P| {
+                    let t = (bound - coord(a)) / (coord(b) - coord(a));
+                    (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+                };
+                match (inside(a), inside(b)) {
+                    (true, true) => out.push(b),
+                    (true, false) => out.push(cross(a, b)),
+                    (false, true) => {
+                        out.push(cross(a, b));
+                        out.push(b);
+                    }
+                    (false, false) => {}
+                }
+            }
+        }
+        out
+    }
+
+    /// The segment `a`-`b` clipped to the view (Liang and Barsky), or
+    /// `None` when none of it is seen.
+    fn clip_segment(self, a: P, b: P) -> Option<(P, P)> {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        for (p, q) in [
+            (-dx, a.0 - self.x0),
+            (dx, self.x1 - a.0),
+            (-dy, a.1 - self.y0),
+            (dy, self.y1 - a.1),
+        ] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return None;
+                }
+            } else if p < 0.0 {
+                t0 = t0.max(q / p);
+            } else {
+                t1 = t1.min(q / p);
+            }
+        }
+        (t0 <= t1).then_some((
+            (a.0 + t0 * dx, a.1 + t0 * dy),
+            (a.0 + t1 * dx, a.1 + t1 * dy),
+        ))
+    }
+}
+
+/// The mean of `points` (`None` for none).
+fn centroid(points: &[P]) -> Option<P> {
+    let n = points.len() as f64;
+    (!points.is_empty()).then(|| {
+        points
+            .iter()
+            .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n))
+    })
+}
+
+/// A coordinate as the input writes it: up to 1/256 px, no trailing zeros.
+fn number(v: f64) -> String {
+    let text = format!("{v:.8}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" {
+        "0".into()
+    } else {
+        text.into()
+    }
+}
+
+/// One primitive of the picture: its name, its vertices in pixels.
+struct Primitive {
+    name: String,
+    points: Vec<P>,
+}
 
 impl Finding {
-    /// The grid picture alone, as SVG: the target and a margin of three
-    /// cells (grey) around it, pixel centres, the primitives as given
-    /// (snapped), and each cell coloured green (drawn and expected), red
-    /// (drawn and not expected, or drawn twice) or orange (expected and
-    /// missing).
+    /// The primitives, as drawn: triangles `t0`, `t1`, ... (snapped),
+    /// then segments `l0`, `l1`, ... (snapped; under the pixel-index
+    /// convention an end names a pixel and is drawn at its centre).
+    fn primitives(&self) -> Vec<Primitive> {
+        let centre = if self.property == Property::Line(LineConvention::PixelIndex) {
+            0.5
+        } else {
+            0.0
+        };
+        let triangles = self
+            .case
+            .snapped_triangles()
+            .into_iter()
+            .enumerate()
+            .map(|(i, t)| Primitive {
+                name: format!("t{i}"),
+                points: t.iter().map(|p| p.to_f64()).collect(),
+            });
+        let lines = self
+            .case
+            .snapped_lines()
+            .into_iter()
+            .enumerate()
+            .map(|(i, l)| Primitive {
+                name: format!("l{i}"),
+                points: l
+                    .iter()
+                    .map(|p| {
+                        let (x, y) = p.to_f64();
+                        (x + centre, y + centre)
+                    })
+                    .collect(),
+            });
+        triangles.chain(lines).collect()
+    }
+
+    /// The picture's legend: the cell colours, then a swatch per
+    /// primitive with its vertices.
+    fn legend(&self, primitives: &[Primitive]) -> Legend {
+        let labels: Vec<String> = primitives
+            .iter()
+            .map(|p| {
+                let vertices: Vec<String> = p
+                    .points
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &(x, y))| format!("v{k} ({}, {})", number(x), number(y)))
+                    .collect();
+                format!("{}: {}", p.name, vertices.join(", "))
+            })
+            .collect();
+        Legend::new(&[
+            Role::Correct,
+            Role::Extra,
+            Role::Missing,
+            Role::OffTarget,
+            Role::PixelCentre,
+        ])
+        .with_triangles(&labels)
+    }
+
+    /// The picture, as SVG: a caption, the target and a margin of three
+    /// cells around it, pixel indices on both axes, pixel centres, each
+    /// cell coloured correct (drawn and expected), extra (drawn and not
+    /// expected, or drawn twice) or missing (expected, not drawn), the
+    /// primitives clipped to the view with their labels, and the legend.
     pub fn to_svg(&self) -> String {
         let w = i64::from(self.case.width).min(MAX_SIDE);
         let h = i64::from(self.case.height).min(MAX_SIDE);
         let extra: BTreeSet<(i64, i64)> = self.extra.iter().map(|f| (f.x, f.y)).collect();
         let missing: BTreeSet<(i64, i64)> = self.missing.iter().map(|f| (f.x, f.y)).collect();
         let drawn: BTreeSet<(i64, i64)> = self.drawn.iter().map(|f| (f.x, f.y)).collect();
-        // The view: the target and a margin around it, the margin grey.
-        let m = MARGIN as f64 * CELL;
-        let (pw, ph) = (w as f64 * CELL, h as f64 * CELL);
-        let (vw, vh) = (pw + 2.0 * m, ph + 2.0 * m);
+        let view = View {
+            x0: -MARGIN as f64,
+            y0: -MARGIN as f64,
+            x1: (w + MARGIN) as f64,
+            y1: (h + MARGIN) as f64,
+        };
+        let (columns, rows) = (w + 2 * MARGIN, h + 2 * MARGIN);
+        let s = (GRID_SIZE / columns.max(rows) as f64)
+            .clamp(12.0, 40.0)
+            .floor();
+        let (gw, gh) = (columns as f64 * s, rows as f64 * s);
+        // Room for the row numbers left, the column numbers above.
+        let digits = [-MARGIN, w + MARGIN - 1, h + MARGIN - 1]
+            .map(|v| v.to_string().len())
+            .into_iter()
+            .max()
+            .unwrap_or(1) as f64;
+        let left = 10.0 + 7.0 * digits;
+        let caption = format!("Counterexample: {} ({})", self.property, self.kind());
+        let top = 26.0 + 18.0;
+        let primitives = self.primitives();
+        let legend = self.legend(&primitives);
+        // Wide enough for the longest swatch (a triangle's vertices), as
+        // the legend measures text: about 0.56 em a character.
+        let longest = legend
+            .entries
+            .iter()
+            .map(|e| 32.0 + e.label.chars().count() as f64 * 13.0 * 0.56)
+            .fold(0.0, f64::max);
+        let legend_width = (left + gw).max(420.0).max(longest + 8.0) - 8.0;
+        let (legend, legend_height) = legend.to_svg(4.0, top + gh + 10.0, legend_width);
+        let width = (left + gw + 8.0)
+            .max(legend_width + 8.0)
+            .max(caption.chars().count() as f64 * 8.4 + 12.0);
+        let height = top + gh + 12.0 + legend_height;
         let mut svg = format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{vw}\" height=\"{vh}\" viewBox=\"{0} {0} {vw} {vh}\">\n<rect x=\"{0}\" y=\"{0}\" width=\"{vw}\" height=\"{vh}\" fill=\"#e8e8e8\"/>\n<rect width=\"{pw}\" height=\"{ph}\" fill=\"white\"/>\n",
-            -m
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"DejaVu Sans, sans-serif\">\n<title>{0}</title>\n<path d=\"M0 0H{width}V{height}H0Z\" fill=\"white\"/>\n<text class=\"caption\" x=\"4\" y=\"18\" font-size=\"15\">{0}</text>\n",
+            escape(&caption)
         );
-        for y in 0..h {
-            for x in 0..w {
-                let fill = if extra.contains(&(x, y)) {
-                    EXTRA
+        // Pixel indices: every one while they fit, else every 2nd, 5th, ...
+        let step = [1i64, 2, 5, 10, 20]
+            .into_iter()
+            .find(|&k| k as f64 * s >= 7.0 * digits + 4.0)
+            .unwrap_or(20);
+        let _ = write!(svg, "<g class=\"axes\" font-size=\"11\" fill=\"#444\">");
+        let origin = (left + MARGIN as f64 * s, top + MARGIN as f64 * s);
+        for x in (-MARGIN..w + MARGIN).filter(|x| x.rem_euclid(step) == 0) {
+            let _ = write!(
+                svg,
+                "<text class=\"column\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">{x}</text>",
+                origin.0 + (x as f64 + 0.5) * s,
+                top - 5.0
+            );
+        }
+        for y in (-MARGIN..h + MARGIN).filter(|y| y.rem_euclid(step) == 0) {
+            let _ = write!(
+                svg,
+                "<text class=\"row\" x=\"{}\" y=\"{}\" text-anchor=\"end\">{y}</text>",
+                left - 4.0,
+                origin.1 + (y as f64 + 0.5) * s + 4.0
+            );
+        }
+        svg.push_str("</g>\n");
+        let _ = writeln!(
+            svg,
+            "<g class=\"grid\" transform=\"translate({} {})\">",
+            origin.0, origin.1
+        );
+        let _ = writeln!(
+            svg,
+            "<rect x=\"{}\" y=\"{}\" width=\"{gw}\" height=\"{gh}\" fill=\"{}\"/>\n<rect width=\"{}\" height=\"{}\" fill=\"{}\"/>",
+            view.x0 * s,
+            view.y0 * s,
+            Role::OffTarget.hex(),
+            w as f64 * s,
+            h as f64 * s,
+            Role::Untested.hex()
+        );
+        for y in -MARGIN..h + MARGIN {
+            for x in -MARGIN..w + MARGIN {
+                let role = if extra.contains(&(x, y)) {
+                    Role::Extra
                 } else if missing.contains(&(x, y)) {
-                    MISSING
+                    Role::Missing
                 } else if drawn.contains(&(x, y)) {
-                    CORRECT
+                    Role::Correct
                 } else {
                     continue;
                 };
                 let _ = writeln!(
                     svg,
-                    "<rect class=\"cell\" data-x=\"{x}\" data-y=\"{y}\" x=\"{}\" y=\"{}\" width=\"{CELL}\" height=\"{CELL}\" fill=\"{fill}\"/>",
-                    x as f64 * CELL,
-                    y as f64 * CELL
+                    "<rect class=\"cell\" data-x=\"{x}\" data-y=\"{y}\" data-role=\"{}\" x=\"{}\" y=\"{}\" width=\"{s}\" height=\"{s}\" fill=\"{}\"/>",
+                    role.key(),
+                    x as f64 * s,
+                    y as f64 * s,
+                    role.hex()
                 );
             }
         }
         for k in -MARGIN..=w + MARGIN {
             let _ = writeln!(
                 svg,
-                "<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"#ccc\"/>",
-                k as f64 * CELL,
-                -m,
-                ph + m
+                "<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"#9a9a9a\"/>",
+                k as f64 * s,
+                view.y0 * s,
+                view.y1 * s
             );
         }
         for k in -MARGIN..=h + MARGIN {
             let _ = writeln!(
                 svg,
-                "<line x1=\"{1}\" y1=\"{0}\" x2=\"{2}\" y2=\"{0}\" stroke=\"#ccc\"/>",
-                k as f64 * CELL,
-                -m,
-                pw + m
+                "<line x1=\"{1}\" y1=\"{0}\" x2=\"{2}\" y2=\"{0}\" stroke=\"#9a9a9a\"/>",
+                k as f64 * s,
+                view.x0 * s,
+                view.x1 * s
             );
         }
         let _ = writeln!(
             svg,
-            "<rect width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#333\" stroke-width=\"2\"/>"
+            "<rect class=\"target\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\" stroke-width=\"2\"/>",
+            w as f64 * s,
+            h as f64 * s
         );
         for y in -MARGIN..h + MARGIN {
             for x in -MARGIN..w + MARGIN {
                 let _ = writeln!(
                     svg,
-                    "<circle cx=\"{}\" cy=\"{}\" r=\"1.5\" fill=\"#555\"/>",
-                    (x as f64 + 0.5) * CELL,
-                    (y as f64 + 0.5) * CELL
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"1.8\" fill=\"{}\"/>",
+                    (x as f64 + 0.5) * s,
+                    (y as f64 + 0.5) * s,
+                    Role::PixelCentre.hex()
                 );
             }
         }
-        let to_px = |p: crate::raster::fixed::FixedPoint| {
-            let (x, y) = p.to_f64();
-            format!("{:.2},{:.2}", x * CELL, y * CELL)
+        let to_svg = |(x, y): P| format!("{:.2},{:.2}", x * s, y * s);
+        let mut labels = String::new();
+        let label = |out: &mut String, (x, y): P, text: &str, colour: &str, class: &str| {
+            // Kept inside the view (bold DejaVu Sans at 14 px: about 9 px
+            // a character), on a white halo.
+            let half = text.chars().count() as f64 * 4.5 + 2.0;
+            let (lo, hi) = (view.x0 * s + half, view.x1 * s - half);
+            let x = if lo <= hi {
+                x.clamp(lo, hi)
+            } else {
+                (lo + hi) / 2.0
+            };
+            let y = y.clamp(view.y0 * s + 14.0, view.y1 * s - 4.0);
+            let _ = writeln!(
+                out,
+                "<text class=\"{class}\" x=\"{x:.1}\" y=\"{y:.1}\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">{text}</text>"
+            );
         };
-        for t in self.case.snapped_triangles() {
-            let _ = writeln!(
-                svg,
-                "<polygon points=\"{} {} {}\" fill=\"none\" stroke=\"#1d4ed8\" stroke-width=\"1.5\"/>",
-                to_px(t[0]),
-                to_px(t[1]),
-                to_px(t[2])
+        for (i, p) in primitives.iter().enumerate() {
+            let colour = hex(triangle_colour(i));
+            // The edges clipped one by one (the view's border is no edge).
+            let n = p.points.len();
+            let edges: Vec<(P, P)> = (0..if n == 3 { 3 } else { 1 })
+                .filter_map(|k| view.clip_segment(p.points[k], p.points[(k + 1) % n]))
+                .collect();
+            if !edges.is_empty() {
+                let d: String = edges
+                    .iter()
+                    .map(|&(a, b)| format!("M{} L{} ", to_svg(a), to_svg(b)))
+                    .collect();
+                let _ = writeln!(
+                    svg,
+                    "<path class=\"primitive\" data-id=\"{i}\" d=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"2.5\" stroke-linecap=\"round\"/>",
+                    d.trim_end()
+                );
+            }
+            let seen = if n == 3 {
+                view.clip(&p.points)
+            } else {
+                edges.iter().flat_map(|&(a, b)| [a, b]).collect()
+            };
+            // The name at the middle of what is seen; each vertex's away
+            // from it, so the labels of triangles sharing a vertex part.
+            let middle = centroid(&seen)
+                .unwrap_or_else(|| view.clamp(centroid(&p.points).unwrap_or_default()));
+            label(
+                &mut labels,
+                (middle.0 * s, middle.1 * s + 5.0),
+                &p.name,
+                &colour,
+                "primitive-label",
             );
+            // A vertex off the view is named where the way to it from the
+            // middle leaves the view; vertices far off in one direction
+            // share one label.
+            let mut off: Vec<(P, Vec<String>)> = Vec::new();
+            for (k, &v) in p.points.iter().enumerate() {
+                if !view.contains(v) {
+                    let at = view.clip_segment(middle, v).map_or(middle, |(_, b)| b);
+                    match off
+                        .iter_mut()
+                        .find(|(q, _)| (q.0 - at.0).hypot(q.1 - at.1) * s < 24.0)
+                    {
+                        Some((_, names)) => names.push(format!("v{k}")),
+                        None => off.push((at, vec![format!("v{k}")])),
+                    }
+                    continue;
+                }
+                let _ = writeln!(
+                    svg,
+                    "<circle class=\"vertex\" cx=\"{:.2}\" cy=\"{:.2}\" r=\"4\" fill=\"{colour}\"/>",
+                    v.0 * s,
+                    v.1 * s
+                );
+                let (dx, dy) = (v.0 - middle.0, v.1 - middle.1);
+                let len = dx.hypot(dy).max(1e-9);
+                label(
+                    &mut labels,
+                    (v.0 * s + dx / len * 14.0, v.1 * s + dy / len * 14.0 + 5.0),
+                    &format!("v{k}"),
+                    &colour,
+                    "vertex-label",
+                );
+            }
+            for (at, names) in off {
+                // Beside the edge that leads there, not over it.
+                let (dx, dy) = (at.0 - middle.0, at.1 - middle.1);
+                let len = dx.hypot(dy).max(1e-9);
+                let (px, py) = if dx.abs() > 1e-9 {
+                    (-dy / len * dx.signum(), dx.abs() / len)
+                } else {
+                    (1.0, 0.0)
+                };
+                label(
+                    &mut labels,
+                    (at.0 * s + px * 16.0, at.1 * s + py * 16.0 + 5.0),
+                    &format!("{} (off view)", names.join(", ")),
+                    &colour,
+                    "vertex-label",
+                );
+            }
         }
-        // Every vertex and end point, so a triangle of zero area shows.
-        let ends = self.case.snapped_triangles().into_iter().flatten();
-        for p in ends.chain(self.case.snapped_lines().into_iter().flatten()) {
-            let (x, y) = p.to_f64();
-            let _ = writeln!(
-                svg,
-                "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"3.5\" fill=\"#1d4ed8\"/>",
-                x * CELL,
-                y * CELL
-            );
-        }
-        for l in self.case.snapped_lines() {
-            let (a, b) = (to_px(l[0]), to_px(l[1]));
-            let (a, b) = (
-                a.split_once(',').unwrap_or_default(),
-                b.split_once(',').unwrap_or_default(),
-            );
-            let _ = writeln!(
-                svg,
-                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#1d4ed8\" stroke-width=\"1.5\"/>",
-                a.0, a.1, b.0, b.1
-            );
-        }
+        svg.push_str(&labels);
+        svg.push_str("</g>\n");
+        svg.push_str(&legend);
         svg.push_str("</svg>\n");
         svg
     }
@@ -155,8 +485,9 @@ impl Finding {
         out
     }
 
-    /// The page: a legend, the problems, the diagnosis, the grid picture
-    /// ([`Finding::to_svg`]) and the counterexample file.
+    /// The page: the problems, the diagnosis, the picture
+    /// ([`Finding::to_svg`], its legend in it) and the counterexample
+    /// file.
     pub fn to_html(&self) -> String {
         let svg = self.to_svg();
         let problems: String = self
@@ -173,12 +504,11 @@ impl Finding {
         format!(
             r#"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>rasterlab check: counterexample</title>
-<style>body{{font-family:sans-serif;margin:2em;max-width:80em}} .key span{{display:inline-block;width:1em;height:1em;margin:0 .3em 0 1em;vertical-align:middle}} pre{{background:#f4f4f4;padding:1em;white-space:pre-wrap}}</style>
+<style>body{{font-family:sans-serif;margin:2em;max-width:80em}} pre{{background:#f4f4f4;padding:1em;white-space:pre-wrap}}</style>
 </head><body>
 <h1>Counterexample: {property}</h1>
 {provenance}
 <p>Target {w0}x{h0}, {n} primitive(s). {drawn} fragment(s) drawn, {expected} expected. Failure kind: <b>{kind}</b>.</p>
-<p class="key"><span style="background:{CORRECT}"></span>drawn and expected <span style="background:{EXTRA}"></span>drawn, not expected (or twice) <span style="background:{MISSING}"></span>expected, missing</p>
 <ul id="problems">{problems}</ul>
 {diagnosis}
 {svg}

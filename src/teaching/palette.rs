@@ -14,6 +14,7 @@
 //! | vermillion | drawn once too often; an extra pixel in an answer; a pixel that differs from the reference |
 //! | reddish purple | drawn two or more times too often; a partially covered block |
 //! | grey | a fragment hidden by the depth test; a block outside the triangle |
+//! | light grey | a pixel off the target, shown around it |
 //! | blue | a block inside the triangle |
 //! | black | the true geometry: edges, vertices, the ideal line |
 //! | dark grey | a pixel centre, where the sample is taken |
@@ -59,6 +60,8 @@ const YELLOW: [u8; 3] = [240, 228, 66];
 const GREY: [u8; 3] = [153, 153, 153];
 /// Dark grey: the dots of pixel centres.
 const DARK_GREY: [u8; 3] = [51, 51, 51];
+/// The grey faded towards white: the background off the target.
+const LIGHT_GREY: [u8; 3] = [224, 224, 224];
 /// Black.
 const BLACK: [u8; 3] = [0, 0, 0];
 /// White: a pixel no one looked at.
@@ -105,11 +108,14 @@ pub enum Role {
     Differs,
     /// A pixel centre: the point where the pixel's sample is taken.
     PixelCentre,
+    /// A pixel off the target, shown around it (a counterexample's
+    /// margin).
+    OffTarget,
 }
 
 impl Role {
     /// Every role, in legend order.
-    pub const ALL: [Role; 18] = [
+    pub const ALL: [Role; 19] = [
         Role::Untested,
         Role::Drawn,
         Role::TestedOutside,
@@ -128,6 +134,7 @@ impl Role {
         Role::BlockPartial,
         Role::Differs,
         Role::PixelCentre,
+        Role::OffTarget,
     ];
 
     /// The role's colour.
@@ -145,6 +152,7 @@ impl Role {
             Role::BlockInside => BLUE,
             Role::Geometry => BLACK,
             Role::PixelCentre => DARK_GREY,
+            Role::OffTarget => LIGHT_GREY,
         }
     }
 
@@ -174,6 +182,7 @@ impl Role {
             Role::BlockPartial => "block-partial",
             Role::Differs => "differs",
             Role::PixelCentre => "pixel-centre",
+            Role::OffTarget => "off-target",
         }
     }
 
@@ -198,6 +207,7 @@ impl Role {
             Role::BlockPartial => "block partly covered (P)",
             Role::Differs => "differs from the reference",
             Role::PixelCentre => "pixel centre (the sample point)",
+            Role::OffTarget => "off the target",
         }
     }
 }
