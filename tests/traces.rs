@@ -222,6 +222,43 @@ mod newer_traces {
             .collect()
     }
 
+    /// The diamond trace records the back-end's walk: its candidates in
+    /// the order of travel (here right to left and bottom to top), as many
+    /// as the back-end counts, its drawn pixels in the order drawn.
+    #[test]
+    fn the_diamond_trace_is_the_walk_in_its_order() {
+        use rasterlab::teaching::trace::of_line;
+        for ends in [
+            [7.0, 3.0, 0.0, 0.0],
+            [2.0, 9.0, 4.0, 1.0],
+            [0.0, 0.0, 7.0, 3.0],
+        ] {
+            let ends = LineEnds::pixels(ends).unwrap();
+            let backend = line_backend("diamond").unwrap();
+            let trace = of_line(backend, &ends).unwrap();
+            let drawn: Vec<(i64, i64)> = trace
+                .rows
+                .iter()
+                .filter(|r| r.cells[1].ends_with(": drawn"))
+                .map(|r| (r.about[0][0], r.about[0][1]))
+                .collect();
+            assert_eq!(drawn, line(&ends, "diamond"), "{ends:?}");
+            let mut list = FragmentList::default();
+            let line = LineSetup {
+                id: 0,
+                from: ends.from,
+                to: ends.to,
+            };
+            let work = backend.rasterize(
+                &[line],
+                &LineOptions::DEFAULT,
+                PixelRect::of_target(64, 64),
+                &mut list,
+            );
+            assert_eq!(trace.rows.len() as u64, work.samples_tested, "{ends:?}");
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(200))]
         /// The incremental trace lists exactly the pixels the back-end tests

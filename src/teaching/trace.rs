@@ -18,8 +18,9 @@
 //! * [`tiled_trace`]: every 8 x 8 block of the box and its class from the
 //!   corner test (trivial reject, trivial accept, partial);
 //! * [`wu_trace`]: each column's two pixels and their weights;
-//! * [`diamond_trace`]: the candidate pixels around the line and whether
-//!   the segment leaves each one's diamond;
+//! * [`diamond_trace`]: the candidate pixels around the line the
+//!   back-end's walk tests, in its order, and whether the segment leaves
+//!   each one's diamond;
 //! * [`depth_buffer_trace`]: the rasterization slides' depth buffer, printed as the
 //!   slides' matrix after each triangle.
 //!
@@ -921,11 +922,12 @@ pub fn diamond_trace(ends: &LineEnds) -> Result<String> {
     diamond(ends).map(|t| t.to_text())
 }
 
-/// The diamond-exit rule: for each column (row, for steep lines) the three
-/// candidate pixels around the line, and whether the segment leaves each
-/// pixel's diamond (then the pixel is drawn).
+/// The diamond-exit rule, recorded from the back-end's walk
+/// ([`Diamond::walk`]): for each column (row, for steep lines) in the order
+/// of travel, the three candidate pixels around the line, and whether the
+/// segment leaves each pixel's diamond (then the pixel is drawn).
 pub fn diamond(ends: &LineEnds) -> Result<Trace> {
-    use crate::raster::line::diamond::exits_diamond;
+    use crate::raster::line::{diamond::Diamond, LineSetup};
     let (a, b) = (ends.from, ends.to);
     let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
     let x_major = dx.abs() >= dy.abs();
@@ -934,41 +936,29 @@ pub fn diamond(ends: &LineEnds) -> Result<Trace> {
         ends.describe(),
         if x_major { "x" } else { "y" }
     ));
-    let (a_major, b_major, a_minor, b_minor) = if x_major {
-        (a.x.raw(), b.x.raw(), a.y.raw(), b.y.raw())
-    } else {
-        (a.y.raw(), b.y.raw(), a.x.raw(), b.x.raw())
-    };
-    let first = (a_major.min(b_major) - HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) - 1;
-    let last = (a_major.max(b_major) + HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) + 1;
-    check_trace_length(3 * (last - first + 1) as u64, "candidate lines")?;
+    // The walk visits at most the major extent's columns and two more on
+    // each side, three candidates each.
+    let columns = dx.abs().max(dy.abs()) / SUBPIXEL_SCALE + 5;
+    check_trace_length(3 * columns as u64, "candidate lines")?;
     out.columns = vec![Column::right("pixel", 12, 0), Column::left("verdict", 0, 2)];
-    let mut drawn = 0;
-    for i in first..=last {
-        let centre = i * SUBPIXEL_SCALE + HALF_PIXEL;
-        let d = b_major - a_major;
-        let minor = if d == 0 {
-            a_minor
+    let line = LineSetup {
+        id: 0,
+        from: a,
+        to: b,
+    };
+    let drawn = Diamond::walk(&line, |px, py, exits| {
+        let verdict = if exits {
+            "exits its diamond: drawn"
         } else {
-            a_minor + ((centre - a_major) as i128 * (b_minor - a_minor) as i128 / d as i128) as i64
+            "does not exit its diamond"
         };
-        let k = minor.div_euclid(SUBPIXEL_SCALE);
-        for row in [k - 1, k, k + 1] {
-            let (px, py) = if x_major { (i, row) } else { (row, i) };
-            let exits = exits_diamond(a, b, px, py);
-            drawn += usize::from(exits);
-            let verdict = if exits {
-                "exits its diamond: drawn"
-            } else {
-                "does not exit its diamond"
-            };
-            out.rows.push(TraceRow::at_pixel(
-                vec![format!("{px},{py}"), verdict.to_string()],
-                px,
-                py,
-            ));
-        }
-    }
+        out.rows.push(TraceRow::at_pixel(
+            vec![format!("{px},{py}"), verdict.to_string()],
+            px,
+            py,
+        ));
+    })
+    .len();
     out.footer.push(format!("{drawn} pixels drawn"));
     Ok(out)
 }

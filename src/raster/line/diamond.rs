@@ -170,8 +170,21 @@ pub fn exits_diamond(from: FixedPoint, to: FixedPoint, px: i64, py: i64) -> bool
 }
 
 impl Diamond {
-    /// The pixels of one segment, in the order of travel.
+    /// The pixels of one segment, in the order of travel, and how many
+    /// candidates were tested.
     pub fn pixels(line: &LineSetup) -> (Vec<(i64, i64)>, u64) {
+        let mut tested = 0;
+        let pixels = Self::walk(line, |_, _, _| tested += 1);
+        (pixels, tested)
+    }
+
+    /// The walk of one segment: each column's (row's, for a y-major
+    /// segment) three candidate pixels around the line, in the order of
+    /// travel, each reported to `observe` with the test's answer (`true`:
+    /// the segment leaves its diamond, the pixel is drawn); returns the
+    /// pixels drawn. The trace records this walk; drawing passes a closure
+    /// that only counts.
+    pub fn walk(line: &LineSetup, mut observe: impl FnMut(i64, i64, bool)) -> Vec<(i64, i64)> {
         let (a, b) = (line.from, line.to);
         let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
         let x_major = dx.abs() >= dy.abs();
@@ -193,7 +206,6 @@ impl Diamond {
             (first..=last).rev().collect()
         };
         let mut pixels = Vec::new();
-        let mut tested = 0;
         for i in columns {
             // The line's minor coordinate at this column's centre: with
             // |slope| <= 1, any diamond of this column the segment passes
@@ -212,14 +224,15 @@ impl Diamond {
                 rows.reverse();
             }
             for k in rows {
-                tested += 1;
                 let (px, py) = if x_major { (i, k) } else { (k, i) };
-                if exits_diamond(a, b, px, py) {
+                let exits = exits_diamond(a, b, px, py);
+                observe(px, py, exits);
+                if exits {
                     pixels.push((px, py));
                 }
             }
         }
-        (pixels, tested)
+        pixels
     }
 }
 
