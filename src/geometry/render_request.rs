@@ -475,8 +475,8 @@ impl fmt::Display for RenderReport {
                 )?;
                 writeln!(
                     f,
-                    "pipeline: {} rejected, {} clipped, {} culled, {} degenerate, {} with no pixel centre, {} rasterized",
-                    g.rejected, g.clipped, g.culled, g.degenerate, g.empty_bounds, g.triangles
+                    "pipeline: {} rejected, {} clipped, {} culled, {} degenerate, {} with no pixel centre, {} small and covering none, {} rasterized",
+                    g.rejected, g.clipped, g.culled, g.degenerate, g.empty_bounds, g.no_sample, g.triangles
                 )?;
                 writeln!(
                     f,
