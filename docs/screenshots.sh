@@ -58,4 +58,4 @@ mkdir "$tmp/student"
 ln -s "$PWD/examples" "$tmp/student/examples"
 (cd "$tmp/student" && PATH="$(dirname "$bin"):$PATH" rasterlab check --rule watertight \
     --exec "python3 examples/student/rasterizer.py {input} {width} {height}" >/dev/null || true)
-shot 1280x900 docs/check-report.png "file://$tmp/student/check-output/report.html"
+shot 1280x1000 docs/check-report.png "file://$tmp/student/check-output/report.html"
