@@ -73,7 +73,7 @@
 mod names;
 
 pub mod check;
-pub mod error;
+mod error;
 pub mod geometry;
 pub mod lab;
 pub mod measure;

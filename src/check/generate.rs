@@ -26,7 +26,7 @@
 //! zero-length.
 //!
 //! A [`Case`] is written and read as the text `rasterlab fragments` reads,
-//! with a first line `# size WxH` (see [`super::case`]).
+//! with a first line `# size WxH` (see [`super::Case`]).
 
 use super::case::{snap, Case, Point};
 use super::judge::{LineConvention, Property};

@@ -26,7 +26,7 @@
 //!   [`judge`]);
 //! * [`Property::Line`]: lines drawn by the midpoint rule or the diamond
 //!   exit rule exactly, within Vulkan's tolerance of the diamond rule, or
-//!   by integer Bresenham between pixel-index endpoints ([`pixel_index`]).
+//!   by integer Bresenham between pixel-index endpoints (`pixel_index.rs`).
 //!
 //! [`run`] is the whole check as the `rasterlab check` command runs it:
 //! a [`CheckRequest`] in, a [`CheckReport`] out (text through `Display`,
@@ -35,7 +35,7 @@
 //! rasterizer follows (the rule table of [`RuleChoice::Any`]).
 //!
 //! Always: a fragment outside the target, or one pixel listed twice for
-//! one primitive, is a failure. A failing case is [`shrink`]ed (primitives
+//! one primitive, is a failure. A failing case is shrunk (primitives
 //! dropped, vertices moved toward the pixel grid and toward each other,
 //! the target cut down) to a small counterexample failing the same way
 //! (the same [`FailureKind`]), which
@@ -52,16 +52,16 @@
 //! assert!(matches!(verdict, Verdict::Pass { cases: 50 }));
 //! ```
 
-pub mod case;
+mod case;
 pub mod generate;
 pub mod judge;
-pub mod pixel_index;
+mod pixel_index;
 pub mod program;
 mod report;
 mod run;
-pub mod shrink;
+mod shrink;
 
-pub use case::Case;
+pub use case::{Case, Point};
 pub use judge::{FailureKind, Finding, LineConvention, Property, Provenance};
 pub use program::Program;
 pub use run::{

@@ -14,7 +14,7 @@
 //! up to the median total.
 //!
 //! ```
-//! use rasterlab::geometry::frame_times::FrameTimes;
+//! use rasterlab::geometry::FrameTimes;
 //! use std::time::Duration;
 //!
 //! let ms = Duration::from_millis;

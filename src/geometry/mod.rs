@@ -6,7 +6,7 @@
 //! * [`render`]: a mesh rendered end to end (camera, shading, wireframe);
 //! * [`render_request`]: one `rasterlab render` as a value (input,
 //!   choices, output file), run on the fast path into a report;
-//! * [`frame_times`]: a frame's time in parts that add up to it;
+//! * [`FrameTimes`]: a frame's time in parts that add up to it;
 //! * [`mesh`]: PLY and OBJ meshes;
 //! * [`polygon`]: simple polygons with holes and their spade triangulation;
 //! * [`input`]: the text inputs of the command line (triangle soups,
@@ -14,7 +14,7 @@
 //! * [`scene`]: small 2D scenes of screen-space triangles;
 //! * [`listing`]: the fragments a back-end emits for a text file's shapes.
 
-pub mod frame_times;
+mod frame_times;
 pub mod input;
 pub mod listing;
 pub mod mesh;
@@ -23,3 +23,5 @@ pub mod polygon;
 pub mod render;
 pub mod render_request;
 pub mod scene;
+
+pub use frame_times::FrameTimes;

@@ -18,8 +18,8 @@
 use crate::error::{Error, Result};
 use crate::geometry::frame_times::FrameTimes;
 use crate::geometry::mesh::Mesh;
-use crate::geometry::pipeline::camera::Camera;
 use crate::geometry::pipeline::vertex::{MeshVertex, Transform};
+use crate::geometry::pipeline::Camera;
 use crate::geometry::pipeline::{
     self, Geometry, GeometryInParts, GeometryStats, PipelineOptions, Viewport,
 };

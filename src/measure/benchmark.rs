@@ -7,7 +7,7 @@
 //! maximum beside it (the machine is shared and noisy: the spread says how
 //! far a figure can be trusted, and two back-ends whose spreads overlap
 //! are not ranked), and the CPU time its threads got per run with the time
-//! they waited for a core ([`crate::measure::cpu`]). From the median: a
+//! they waited for a core ([`crate::measure::CpuUse`]). From the median: a
 //! throughput in the workload's own unit (pixels for the fills, triangle
 //! sizes and slivers, triangles for meshes, lines for lines), and the ratio
 //! to the **fastest** back-end on that workload, the baseline of both the

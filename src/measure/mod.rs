@@ -4,21 +4,25 @@
 //! * [`workload`]: named, repeatable inputs (large fills, many small
 //!   triangles, meshes, line sets) prepared once and drawn many times;
 //! * [`benchmark`]: the table, JSON and chart of `rasterlab bench`;
-//! * [`timing`]: a warm-up, timed runs, their minimum, median and maximum;
+//! * [`Timing`] and [`time_runs`]: a warm-up, timed runs, their minimum, median and maximum;
 //! * [`rounds`]: rasterlab and its peers timed in interleaved rounds, and
 //!   the ratio table of `cargo bench --bench side_by_side`;
-//! * [`cpu`]: the CPU time each thread got, and the time it waited for a
+//! * [`CpuUse`]: the CPU time each thread got, and the time it waited for a
 //!   core, beside the wall time;
 //! * [`context`]: the commit, machine and load a run was measured on;
 //! * [`data`]: where the Stanford models that are not bundled are found,
 //!   and the skipped row when they are not;
-//! * [`table`]: plain-text tables with aligned columns.
+//! * [`Table`]: plain-text tables with aligned columns.
 
 pub mod benchmark;
 pub mod context;
-pub mod cpu;
+mod cpu;
 pub mod data;
 pub mod rounds;
-pub mod table;
-pub mod timing;
+mod table;
+mod timing;
 pub mod workload;
+
+pub use cpu::{CpuUse, ThreadTimes};
+pub use table::{significant, Table};
+pub use timing::{time_runs, Spread, Timing};

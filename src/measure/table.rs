@@ -3,7 +3,7 @@
 //! left, figures right.
 //!
 //! ```
-//! use rasterlab::measure::table::Table;
+//! use rasterlab::measure::Table;
 //! let mut table = Table::new(&["workload", "ms"]);
 //! table.row(vec!["dragon_vrip_res4".into(), "12.5".into()]);
 //! table.row(vec!["fill-1".into(), "1.25".into()]);

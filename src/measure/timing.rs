@@ -4,8 +4,8 @@
 //! meanwhile ([`crate::measure::cpu`]).
 //!
 //! ```
-//! use rasterlab::measure::table::significant;
-//! use rasterlab::measure::timing::time_runs;
+//! use rasterlab::measure::significant;
+//! use rasterlab::measure::time_runs;
 //! let (timing, answer) = time_runs(5, || (1..=100u64).sum::<u64>());
 //! assert_eq!(answer, 5050);
 //! assert_eq!(timing.spread.runs, 5);

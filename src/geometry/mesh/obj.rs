@@ -3,7 +3,7 @@
 //! Faces refer to positions, texture coordinates and normals through
 //! separate 1-based (or negative, relative) indices, `f 1/1/1 2/2/2 3/3/3`;
 //! each distinct `position/uv/normal` triple becomes one mesh vertex.
-//! Polygons are split into triangles ([`super::face`]: a fan when convex,
+//! Polygons are split into triangles (`face.rs`: a fan when convex,
 //! a constrained Delaunay triangulation when concave); groups, objects, materials and smoothing
 //! statements are ignored.
 //!

@@ -30,7 +30,7 @@
 //! or band by band).
 
 pub mod assembly;
-pub mod camera;
+mod camera;
 pub mod clip;
 pub mod vertex;
 
@@ -42,6 +42,7 @@ mod process;
 mod setup;
 mod viewport;
 
+pub use camera::Camera;
 pub use draw::{draw, draw_binned, draw_clearing};
 pub use geometry::Geometry;
 pub use options::{CullMode, FrontFace, PipelineOptions};
