@@ -87,6 +87,7 @@ pub use geometry::pipeline::{Geometry, PipelineOptions, Viewport};
 pub use geometry::polygon::Polygon;
 pub use geometry::render::{MeshRenderer, RenderSettings};
 pub use geometry::scene::Scene2D;
+pub use measure::render_request::{RenderInput, RenderReport, RenderRequest};
 pub use raster::backend::{
     backend, line_backend, line_backends, triangle_backend, triangle_backends, Backend,
 };

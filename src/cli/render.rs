@@ -1,17 +1,17 @@
 //! `rasterlab render`: a mesh, a triangle soup, a line set or a built-in
 //! scene drawn to a PNG file, with the time per frame
-//! ([`rasterlab::geometry::render_request`]).
+//! ([`rasterlab::measure::render_request`]).
 
 use super::args::Size;
 use super::print::progress_bar;
 use clap::Args;
 use rasterlab::geometry::pipeline::{CullMode, FrontFace};
 use rasterlab::geometry::render::Shading;
-use rasterlab::geometry::render_request::{MeshOverrides, RenderInput, RenderRequest};
+use rasterlab::measure::render_request::MeshOverrides;
 use rasterlab::raster::shader::Filter;
 use rasterlab::raster::stage::Interpolation;
 use rasterlab::raster::target::DepthState;
-use rasterlab::{Error, FillRule, Result};
+use rasterlab::{Error, FillRule, RenderInput, RenderRequest, Result};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]

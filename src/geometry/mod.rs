@@ -4,8 +4,6 @@
 //!   shader, assembly, clipping, perspective divide, viewport, culling,
 //!   set-up), and drawing its result, on one thread or band by band;
 //! * [`render`]: a mesh rendered end to end (camera, shading, wireframe);
-//! * [`render_request`]: one `rasterlab render` as a value (input,
-//!   choices, output file), run on the fast path into a report;
 //! * [`FrameTimes`]: a frame's time in parts that add up to it;
 //! * [`mesh`]: PLY and OBJ meshes;
 //! * [`polygon`]: simple polygons with holes and their spade triangulation;
@@ -21,7 +19,7 @@ pub mod mesh;
 pub mod pipeline;
 pub mod polygon;
 pub mod render;
-pub mod render_request;
 pub mod scene;
 
+pub(crate) use frame_times::milliseconds;
 pub use frame_times::FrameTimes;

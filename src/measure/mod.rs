@@ -3,6 +3,9 @@
 //!
 //! * [`workload`]: named, repeatable inputs (large fills, many small
 //!   triangles, meshes, line sets) prepared once and drawn many times;
+//! * [`render_request`]: one `rasterlab render` as a value (input,
+//!   choices, output file), run on the fast path frame after frame into
+//!   a report with the time per frame;
 //! * [`benchmark`]: the table, JSON and chart of `rasterlab bench`;
 //! * [`Timing`] and [`time_runs`]: a warm-up, timed runs, their minimum, median and maximum;
 //! * [`rounds`]: rasterlab and its peers timed in interleaved rounds, and
@@ -18,6 +21,7 @@ pub mod benchmark;
 pub mod context;
 mod cpu;
 pub mod data;
+pub mod render_request;
 pub mod rounds;
 mod table;
 mod timing;

@@ -10,7 +10,7 @@
 //! an application pays.
 //!
 //! ```
-//! use rasterlab::geometry::render_request::{RenderInput, RenderReport, RenderRequest};
+//! use rasterlab::{RenderInput, RenderReport, RenderRequest};
 //!
 //! let out = std::env::temp_dir().join("rasterlab-render-request-example.png");
 //! let mut request = RenderRequest::new(RenderInput::Scene("pinwheel".into()), &out);
@@ -23,12 +23,12 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::geometry::frame_times::{milliseconds, FrameTimes};
 use crate::geometry::input::{read_shapes, Shapes};
 use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::{CullMode, FrontFace, GeometryStats};
 use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::geometry::scene::Scene2D;
+use crate::geometry::{milliseconds, FrameTimes};
 use crate::measure::workload::LineWorkload;
 use crate::raster::backend::{
     backend, default_line_backend, default_triangle_backend, line_backend, Backend,
