@@ -923,7 +923,7 @@ pub fn diamond_trace(ends: &LineEnds) -> Result<String> {
 }
 
 /// The diamond-exit rule, recorded from the back-end's walk
-/// ([`Diamond::walk`]): for each column (row, for steep lines) in the order
+/// ([`Diamond::walk`](crate::raster::line::diamond::Diamond::walk)): for each column (row, for steep lines) in the order
 /// of travel, the three candidate pixels around the line, and whether the
 /// segment leaves each pixel's diamond (then the pixel is drawn).
 pub fn diamond(ends: &LineEnds) -> Result<Trace> {
