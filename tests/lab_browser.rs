@@ -533,6 +533,11 @@ fn the_depth_view_shows_kept_and_hidden_fragments_not_double_draws() {
         dev.eval("document.querySelectorAll('#grid .double, #grid .gap').length"),
         json!(0)
     );
+    assert_eq!(
+        dev.eval("document.getElementById('overlay').disabled"),
+        json!(true),
+        "the heat map cannot be switched on in the depth view"
+    );
     let keys = legend(dev);
     assert!(keys.iter().any(|k| k == Role::Hidden.key()), "{keys:?}");
     assert!(keys.iter().any(|k| k == "triangle-0") && keys.iter().any(|k| k == "triangle-1"));
