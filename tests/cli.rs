@@ -193,6 +193,33 @@ fn render_draws_a_bundled_mesh() {
     assert_eq!((image.width(), image.height()), (80, 60));
 }
 
+/// `render` culls back faces unless told otherwise, as its help says; a
+/// bare `RenderSettings::default()` culls none, and the command must not
+/// inherit that.
+#[test]
+fn render_culls_back_faces_by_default() {
+    let dragon = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/dragon_vrip_res4.ply.gz"
+    );
+    let out_png =
+        std::env::temp_dir().join(format!("rasterlab-cli-cull-{}.png", std::process::id()));
+    let culled = |extra: &[&str]| -> String {
+        let mut args = vec!["render", dragon, "--size", "320x240", "--azimuth", "30"];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", out_png.to_str().unwrap()]);
+        let text = success_stdout(rasterlab(&args));
+        let line = text.lines().find(|l| l.starts_with("pipeline:")).unwrap();
+        line.split(", ")
+            .find(|p| p.ends_with("culled"))
+            .unwrap()
+            .to_string()
+    };
+    assert_eq!(culled(&[]), "5962 culled");
+    assert_eq!(culled(&["--cull", "back"]), "5962 culled");
+    assert_eq!(culled(&["--cull", "none"]), "0 culled");
+}
+
 /// Malformed meshes: the error names the file and the line, exit code 2,
 /// no panic.
 #[test]

@@ -25,7 +25,7 @@
 use crate::error::{Error, Result};
 use crate::geometry::input::{read_shapes, Shapes};
 use crate::geometry::mesh::Mesh;
-use crate::geometry::pipeline::{CullMode, FrontFace, GeometryStats};
+use crate::geometry::pipeline::{CullMode, FrontFace, GeometryStats, PipelineOptions};
 use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::geometry::scene::Scene2D;
 use crate::geometry::{milliseconds, FrameTimes};
@@ -48,6 +48,11 @@ use std::time::{Duration, Instant};
 /// The largest `scale`: each pixel drawn as a cell of at most 64 x 64.
 pub const MAX_SCALE: u32 = 64;
 
+/// The culling `render` applies when none is given: back faces, hidden
+/// behind the front ones on the closed meshes it draws. (A bare
+/// [`RenderSettings::default`] culls nothing, which draws any mesh.)
+pub const RENDER_CULL: CullMode = CullMode::Back;
+
 /// What a render draws.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum RenderInput {
@@ -69,7 +74,7 @@ pub struct MeshOverrides {
     pub filter: Option<Filter>,
     /// Perspective-correct or linear varyings.
     pub interpolation: Option<Interpolation>,
-    /// Back-face culling.
+    /// Back-face culling (`render`'s default: [`RENDER_CULL`]).
     pub cull: Option<CullMode>,
     /// The winding of front faces on screen.
     pub front_face: Option<FrontFace>,
@@ -218,13 +223,17 @@ impl RenderRequest {
         let load_time = start.elapsed();
         let defaults = RenderSettings::default();
         let (width, height) = self.size.unwrap_or((defaults.width, defaults.height));
-        let mut settings = self.mesh.apply(RenderSettings {
+        let settings = self.mesh.apply(RenderSettings {
             width,
             height,
             depth: self.depth,
+            pipeline: PipelineOptions {
+                rule: self.rule,
+                cull: RENDER_CULL,
+                ..defaults.pipeline
+            },
             ..defaults
         })?;
-        settings.pipeline.rule = self.rule;
         let renderer = MeshRenderer::new(&mesh, settings)?;
         if !self.force {
             let triangles = mesh.triangles.len() as u64 * u64::from(self.frames);
