@@ -456,6 +456,64 @@ fn a_double_draw_names_as_extra_the_fragment_the_rule_does_not_give() {
     }
 }
 
+/// A double draw is placed where the centre really is: on the vertex or
+/// the edge both triangles share, or on an edge of each. The README's
+/// student case (the centre on the vertex both triangles share) was said
+/// to lie "on the shared edge (0.5, 0.5)-(-9, 9)", an edge of triangle 0
+/// only.
+#[test]
+fn a_double_draw_names_the_vertex_or_edge_the_triangles_really_share() {
+    let judge = |triangles| {
+        let case = case_of(1, 1, triangles);
+        rasterlab::check::judge::judge(Property::Watertight, &case, &[frag(0, 0, 0), frag(0, 0, 1)])
+            .unwrap()
+            .diagnosis
+            .unwrap()
+    };
+    let on_vertex = judge(vec![
+        [(0.25, -0.25), (0.5, 0.5), (-9.0, 9.0)],
+        [(0.25, -0.25), (12.0, -34.0), (0.5, 0.5)],
+    ]);
+    assert!(
+        on_vertex.contains("on the vertex (0.5, 0.5) both triangles share"),
+        "{on_vertex}"
+    );
+    assert!(!on_vertex.contains("(-9, 9)"), "{on_vertex}");
+    // Its report page said "0 expected": watertightness has no one answer.
+    let case = case_of(
+        1,
+        1,
+        vec![
+            [(0.25, -0.25), (0.5, 0.5), (-9.0, 9.0)],
+            [(0.25, -0.25), (12.0, -34.0), (0.5, 0.5)],
+        ],
+    );
+    let page = rasterlab::check::judge::judge(
+        Property::Watertight,
+        &case,
+        &[frag(0, 0, 0), frag(0, 0, 1)],
+    )
+    .unwrap()
+    .to_html();
+    assert!(page.contains("no single answer expected"), "{page}");
+    assert!(!page.contains("0 expected"), "{page}");
+    let on_edge = judge(vec![
+        [(0.5, 0.5), (9.0, -2.5), (9.0, -2.0)],
+        [(0.5, 0.5), (9.0, -2.0), (8.0, 9.0)],
+    ]);
+    assert!(on_edge.contains("on the vertex (0.5, 0.5)"), "{on_edge}");
+    // The centre inside a shared edge, between its ends.
+    let mid_edge = judge(vec![
+        [(0.0, 0.0), (1.0, 1.0), (0.0, 1.0)],
+        [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0)],
+    ]);
+    assert!(
+        mid_edge.contains("on the shared edge (1, 1)-(0, 0)")
+            || mid_edge.contains("on the shared edge (0, 0)-(1, 1)"),
+        "{mid_edge}"
+    );
+}
+
 /// A subject as a boxed closure.
 type DrawFn = dyn FnMut(&Case) -> Result<Vec<Fragment>, SubjectError>;
 

@@ -813,8 +813,8 @@ fn diagnose(finding: &Finding) -> Option<String> {
         _ => FillRule::TopLeft,
     };
     match on_edge.as_slice() {
-        [(a, ta, ka), (b, tb, _), ..] if doubled || gap => {
-            let (from, to) = (ta.vertices[(ka + 1) % 3], ta.vertices[(ka + 2) % 3]);
+        [(a, ta, _), (b, tb, _), ..] if doubled || gap => {
+            let place = shared_place(point, ta, tb, *a, *b);
             let owns = |t: &TriangleSetup| {
                 TriangleSetup::new(t.id, t.vertices, rule).is_some_and(|s| s.covers(point))
             };
@@ -831,12 +831,10 @@ fn diagnose(finding: &Finding) -> Option<String> {
                 String::new()
             };
             Some(format!(
-                "{} at pixel ({}, {}) on the shared edge {}-{}: {}; under {} only triangle {owner}{why} does{}",
+                "{} at pixel ({}, {}) {place}: {}; under {} only triangle {owner}{why} does{}",
                 if doubled { "double draw" } else { "gap" },
                 pixel.x,
                 pixel.y,
-                px(from),
-                px(to),
                 if doubled {
                     format!("both triangles {a} and {b} own it")
                 } else {
@@ -866,6 +864,49 @@ fn diagnose(finding: &Finding) -> Option<String> {
             ))
         }
         _ => off_edge(finding, pixel, &snapped),
+    }
+}
+
+/// Where a centre lying on an edge of both triangles `a` and `b` is: on a
+/// vertex they share, on an edge they share (the same two vertices), or
+/// on an edge of each that they do not share.
+fn shared_place(
+    point: FixedPoint,
+    ta: &TriangleSetup,
+    tb: &TriangleSetup,
+    a: usize,
+    b: usize,
+) -> String {
+    if ta.vertices.contains(&point) && tb.vertices.contains(&point) {
+        return format!("on the vertex {} both triangles share", px(point));
+    }
+    // The edges of a triangle through the centre, as their two ends.
+    let through = |t: &TriangleSetup| -> Vec<(FixedPoint, FixedPoint)> {
+        let e = t.edge_values(point);
+        (0..3)
+            .filter(|&k| e[k] == 0)
+            .map(|k| (t.vertices[(k + 1) % 3], t.vertices[(k + 2) % 3]))
+            .collect()
+    };
+    let (edges_a, edges_b) = (through(ta), through(tb));
+    let same = |(p, q): (FixedPoint, FixedPoint), (r, s): (FixedPoint, FixedPoint)| {
+        (p, q) == (r, s) || (p, q) == (s, r)
+    };
+    if let Some(&(from, to)) = edges_a
+        .iter()
+        .find(|&&ea| edges_b.iter().any(|&eb| same(ea, eb)))
+    {
+        return format!("on the shared edge {}-{}", px(from), px(to));
+    }
+    match (edges_a.first(), edges_b.first()) {
+        (Some(&(p, q)), Some(&(r, s))) => format!(
+            "on edge {}-{} of triangle {a} and edge {}-{} of triangle {b}",
+            px(p),
+            px(q),
+            px(r),
+            px(s)
+        ),
+        _ => "on an edge of each triangle".to_string(),
     }
 }
 

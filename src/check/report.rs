@@ -508,7 +508,7 @@ impl Finding {
 </head><body>
 <h1>Counterexample: {property}</h1>
 {provenance}
-<p>Target {w0}x{h0}, {n} primitive(s). {drawn} fragment(s) drawn, {expected} expected. Failure kind: <b>{kind}</b>.</p>
+<p>Target {w0}x{h0}, {n} primitive(s). {drawn} fragment(s) drawn, {expected}. Failure kind: <b>{kind}</b>.</p>
 <ul id="problems">{problems}</ul>
 {diagnosis}
 {svg}
@@ -523,7 +523,15 @@ impl Finding {
             h0 = self.case.height,
             n = self.case.len(),
             drawn = self.drawn.len(),
-            expected = self.expected.len(),
+            expected = match self.property {
+                Property::Exact(_) | Property::Line(_) => {
+                    format!("{} expected", self.expected.len())
+                }
+                // Any consistent tie rule passes: there is no one answer.
+                Property::Watertight | Property::CrackFree => {
+                    "no single answer expected (any consistent tie rule passes)".to_string()
+                }
+            },
             text = escape(&self.counterexample_text()),
         )
     }
