@@ -480,7 +480,7 @@ fn run_inner(request: &CheckRequest, custom: Custom<'_>) -> Result<CheckReport> 
     let seconds = request.timeout.as_secs_f64();
     if !(seconds > 0.0 && seconds <= 3600.0) {
         return Err(Error::InvalidArgument(format!(
-            "--timeout must be between 0 and 3600 seconds, not {seconds}"
+            "--timeout must be more than 0 and at most 3600 seconds, not {seconds}"
         )));
     }
     let given = match &request.case_file {

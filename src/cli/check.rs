@@ -78,7 +78,7 @@ pub fn run(args: &CheckArgs) -> Result<()> {
     };
     if !(args.timeout > 0.0 && args.timeout <= 3600.0) {
         return Err(Error::InvalidArgument(format!(
-            "--timeout must be between 0 and 3600 seconds, not {}",
+            "--timeout must be more than 0 and at most 3600 seconds, not {}",
             args.timeout
         )));
     }
