@@ -354,18 +354,21 @@ impl CheckReport {
     }
 
     /// The verdict as a result, for a program's exit: `Ok` on a pass; on
-    /// a fail, [`Error::Mismatch`] with the first failing case's problem
+    /// a fail, [`Error::Mismatch`] with the shrunk case's first problem
     /// (exit status 1); on a broken subject, [`Error::InvalidArgument`]
     /// with what went wrong, whether it fails so on every input, and the
     /// file holding the shrunk input that triggers it (exit status 2).
     pub fn outcome(&self) -> Result<()> {
         match self.verdict {
             VerdictWord::Pass => Ok(()),
+            // The shrunk case's problem, which the report has just shown.
             VerdictWord::Fail => Err(Error::Mismatch(format!(
                 "the check failed: {}",
-                self.failing_cases
-                    .first()
-                    .map_or("no rule is followed", |f| f.problem.as_str())
+                self.counterexample
+                    .as_ref()
+                    .and_then(|c| c.problems.first())
+                    .or(self.failing_cases.first().map(|f| &f.problem))
+                    .map_or("no rule is followed", String::as_str)
             ))),
             VerdictWord::Broken => Err(Error::InvalidArgument(self.error.as_ref().map_or_else(
                 || "the subject is broken".to_string(),
