@@ -615,21 +615,7 @@ fn regression_edge_to_a_point_at_infinity_passes_a_hair_above_a_pixel_centre() {
         Vec4::new(0.66660595, -1.158189, 0.0, 2.9193134),
         Vec4::new(0.0, -0.72356486, 0.0, 2.8196368),
     ];
-    let shader = |v: &Vec4| ClipVertex {
-        position: *v,
-        varyings: Varyings::default(),
-    };
-    let geometry = process_triangles(
-        &tri,
-        &[[0, 1, 2]],
-        &shader,
-        Viewport {
-            width: 24,
-            height: 16,
-        },
-        &PipelineOptions::default(),
-    )
-    .unwrap();
+    let geometry = properties::clip_space_geometry(&tri, 24, 16);
     assert_eq!((geometry.stats.clipped, geometry.stats.triangles), (1, 2));
     let mut target = RenderTarget::new(24, 16).unwrap();
     draw(

@@ -6,7 +6,7 @@
 use glam::Vec4;
 use proptest::prelude::*;
 use rasterlab::geometry::pipeline::clip::ClipVertex;
-use rasterlab::geometry::pipeline::{draw, process_triangles, PipelineOptions, Viewport};
+use rasterlab::geometry::pipeline::{draw, process_triangles, Geometry, PipelineOptions, Viewport};
 use rasterlab::raster::backend::triangle_backends;
 use rasterlab::raster::fragment::FragmentList;
 use rasterlab::raster::primitive::Varyings;
@@ -17,6 +17,23 @@ use rasterlab::raster::target::{DepthState, RenderTarget};
 /// A triangle in clip space, as `(x, y, z, w)` per vertex.
 pub type ClipTriangle = [(f32, f32, f32, f32); 3];
 
+/// One clip-space triangle through the pipeline (positions as given, no
+/// varyings, default options) onto a `width` x `height` viewport.
+pub fn clip_space_geometry(tri: &[Vec4; 3], width: u32, height: u32) -> Geometry {
+    let shader = |v: &Vec4| ClipVertex {
+        position: *v,
+        varyings: Varyings::default(),
+    };
+    process_triangles(
+        tri,
+        &[[0, 1, 2]],
+        &shader,
+        Viewport { width, height },
+        &PipelineOptions::default(),
+    )
+    .unwrap()
+}
+
 /// A triangle anywhere in clip space (across the near plane, behind the
 /// camera, huge, with w near zero) is no error, every fragment lies where
 /// the clip-space triangle really is inside the frustum, and every pixel
@@ -24,21 +41,7 @@ pub type ClipTriangle = [(f32, f32, f32, f32); 3];
 pub fn clipping_draws_exactly_the_visible_part(t: ClipTriangle) -> Result<(), TestCaseError> {
     let (w, h) = (24u32, 16u32);
     let tri = t.map(|(x, y, z, w)| Vec4::new(x, y, z, w));
-    let shader = |v: &Vec4| ClipVertex {
-        position: *v,
-        varyings: Varyings::default(),
-    };
-    let geometry = process_triangles(
-        &tri,
-        &[[0, 1, 2]],
-        &shader,
-        Viewport {
-            width: w,
-            height: h,
-        },
-        &PipelineOptions::default(),
-    )
-    .unwrap();
+    let geometry = clip_space_geometry(&tri, w, h);
     let mut list = FragmentList::default();
     triangle_backends()[2].rasterize(
         &geometry.setups,
@@ -101,21 +104,7 @@ pub fn clipping_draws_exactly_the_visible_part(t: ClipTriangle) -> Result<(), Te
 /// is drawn stays on the target with depths in range.
 pub fn extreme_coordinates_never_fail(t: ClipTriangle) -> Result<(), TestCaseError> {
     let tri = t.map(|(x, y, z, w)| Vec4::new(x, y, z, w));
-    let shader = |v: &Vec4| ClipVertex {
-        position: *v,
-        varyings: Varyings::default(),
-    };
-    let geometry = process_triangles(
-        &tri,
-        &[[0, 1, 2]],
-        &shader,
-        Viewport {
-            width: 24,
-            height: 16,
-        },
-        &PipelineOptions::default(),
-    )
-    .unwrap();
+    let geometry = clip_space_geometry(&tri, 24, 16);
     let mut target = RenderTarget::new(24, 16).unwrap();
     for b in triangle_backends() {
         draw(
