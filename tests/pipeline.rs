@@ -630,6 +630,26 @@ fn regression_edge_to_a_point_at_infinity_passes_a_hair_above_a_pixel_centre() {
     assert_eq!(target.coverage[target.index(9, 11)], 0);
 }
 
+/// Shrunk from `clipping_draws_exactly_the_visible_part`: one vertex
+/// behind the camera (w = -416,380), two in front with x and y below
+/// 10^-6. Every point of the triangle in front has w below 3 x 10^-7, under
+/// `W_MIN`, so nothing is visible and nothing is drawn; the test's f64
+/// oracle, solving a system whose entries span twelve orders of
+/// magnitude, once found a point at w = 0.17 inside it, and now abstains
+/// where its solution does not project back to the pixel.
+#[test]
+fn regression_a_triangle_whose_visible_part_is_below_w_min_draws_nothing() {
+    let t = [
+        (0.0, 0.0, 0.0, -416380.22),
+        (0.0, 4.3147924e-7, 0.0, 34757.68),
+        (8.0172055e-7, 0.0, 0.0, 107224.08),
+    ];
+    let tri = t.map(|(x, y, z, w)| Vec4::new(x, y, z, w));
+    let geometry = properties::clip_space_geometry(&tri, 24, 16);
+    assert_eq!((geometry.stats.clipped, geometry.stats.triangles), (1, 0));
+    properties::clipping_draws_exactly_the_visible_part(t).unwrap();
+}
+
 /// A frame's parts add up to its time: the mesh renderer's geometry and
 /// raster times, the clear folded into the raster, and the rest; a 2D
 /// scene drawn frame by frame on the same path ends in the buffers of a

@@ -122,7 +122,8 @@ pub fn extreme_coordinates_never_fail(t: ClipTriangle) -> Result<(), TestCaseErr
 
 /// Solves for the clip-space barycentrics of the point of the triangle that
 /// projects to `ndc`, and says whether it is in the triangle and in the
-/// frustum; `None` when the pixel is too close to a border to decide.
+/// frustum; `None` when the pixel is too close to a border to decide, or
+/// when f64 cannot solve for the point accurately enough to say.
 fn oracle(t: &[Vec4; 3], ndc: (f64, f64)) -> Option<bool> {
     let p = t.map(|v| v.as_dvec4());
     // sum b_i (x_i - nx w_i) = 0, sum b_i (y_i - ny w_i) = 0, sum b_i = 1.
@@ -138,6 +139,13 @@ fn oracle(t: &[Vec4; 3], ndc: (f64, f64)) -> Option<bool> {
     }
     let b = m.inverse() * glam::DVec3::new(0., 0., 1.);
     let q = p[0] * b.x + p[1] * b.y + p[2] * b.z;
+    // An ill-conditioned system (w of 10^5 beside x of 10^-7) loses the
+    // answer to cancellation even in f64: the point found must really
+    // project to `ndc`, or the oracle cannot decide.
+    let off = (q.x - ndc.0 * q.w).abs().max((q.y - ndc.1 * q.w).abs());
+    if !(off <= 1e-6 * q.w.abs()) {
+        return None;
+    }
     // Inside the triangle, beyond the w >= W_MIN plane, between near and far.
     let w_min = f64::from(rasterlab::geometry::pipeline::clip::W_MIN);
     let margins = [
