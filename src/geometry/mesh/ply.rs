@@ -100,7 +100,7 @@ pub fn read<R: BufRead>(source: R, path: &Path) -> Result<Mesh> {
     let parse_error = |e: ply_rs_bw::parser::ParseError, ascii: bool| Error::Parse {
         path: path.to_path_buf(),
         line: if ascii { e.line() } else { None },
-        message: strip_line_prefix(&e.to_string()),
+        message: header_message(&strip_line_prefix(&e.to_string())),
     };
     let mut reader = Reader::new(source);
     let header = Parser::<PlyVertex>::new()
@@ -214,6 +214,28 @@ fn strip_line_prefix(message: &str) -> String {
         .and_then(|m| m.split_once(": "))
         .map_or(message, |(_, m)| m);
     rest.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// A parser message made readable: `ply-rs-bw` follows some messages with
+/// its parser's debug value (" Error: ParseError { .. }"), which is cut,
+/// and says of a file that is not PLY at all only what it expected.
+fn header_message(message: &str) -> String {
+    let message = message
+        .split_once(" Error: ParseError")
+        .map_or(message, |(m, _)| m);
+    if let Some(first) = message
+        .strip_prefix("Expected magic number 'ply'. String: '")
+        .and_then(|m| m.strip_suffix('\''))
+    {
+        return format!(
+            "not a PLY file: its first line is `{}`, not `ply`",
+            first.trim()
+        );
+    }
+    if message.contains("did not contain valid UTF-8") {
+        return "not a PLY file: its header is not text (a binary PLY's header is text too)".into();
+    }
+    message.to_string()
 }
 
 /// A scalar property as `f64`, whatever its stored type.
@@ -393,6 +415,27 @@ mod tests {
             Some(3)
         );
         assert!(matches!(line_of("not a ply file\n").0, Some(1)));
+    }
+
+    #[test]
+    fn a_file_that_is_not_ply_says_so_without_the_parsers_internals() {
+        assert_eq!(
+            line_of("hello world\nmore\n"),
+            (
+                Some(1),
+                "not a PLY file: its first line is `hello world`, not `ply`".into()
+            )
+        );
+        let (line, message) = line_of("plyx\n");
+        assert_eq!(line, Some(1));
+        assert!(!message.contains("ParseError"), "{message}");
+        match read(&b"\xff\xfe\x00binary"[..], Path::new("t.ply")) {
+            Err(Error::Parse { message, .. }) => assert!(
+                message.starts_with("not a PLY file: its header is not text"),
+                "{message}"
+            ),
+            other => panic!("expected a parse error, got {other:?}"),
+        }
     }
 
     /// Each element type read from lines cut at every byte: the same
