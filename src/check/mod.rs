@@ -150,6 +150,54 @@ impl fmt::Display for SubjectError {
 }
 
 /// A rasterizer under test: draws a case, returns its fragments.
+///
+/// Any closure or function from a [`Case`] to fragments is one, so a
+/// rasterizer of one's own is checked in a `#[test]` like this one, which
+/// draws every pixel centre inside *or on* an edge, in `f64`. Its mistake,
+/// a centre on an edge drawn whatever the edge (the top-left rule draws it
+/// only on a top or left edge, so that two triangles sharing the edge do
+/// not both draw it), is found and shrunk, here to one triangle on a 1x1
+/// target:
+///
+/// ```
+/// use rasterlab::check::{check, Case, CheckOptions, FailureKind, Fragment, Property};
+/// use rasterlab::check::{SubjectError, Verdict};
+/// use rasterlab::raster::edge::FillRule;
+///
+/// fn my_rasterizer(case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+///     let edge = |a: (f64, f64), b: (f64, f64), p: (f64, f64)| {
+///         (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0)
+///     };
+///     let mut fragments = Vec::new();
+///     for (id, t) in case.triangles.iter().enumerate() {
+///         let area = edge(t[0], t[1], t[2]);
+///         if area == 0.0 {
+///             continue;
+///         }
+///         for y in 0..i64::from(case.height) {
+///             for x in 0..i64::from(case.width) {
+///                 let p = (x as f64 + 0.5, y as f64 + 0.5);
+///                 if (0..3).all(|i| edge(t[i], t[(i + 1) % 3], p) * area.signum() >= 0.0) {
+///                     fragments.push(Fragment { x, y, id: id as u32 });
+///                 }
+///             }
+///         }
+///     }
+///     Ok(fragments)
+/// }
+///
+/// let options = CheckOptions {
+///     cases: 100,
+///     ..CheckOptions::new(Property::Exact(FillRule::TopLeft))
+/// };
+/// match check(&options, &mut my_rasterizer).unwrap() {
+///     Verdict::Fail { finding, .. } => {
+///         println!("{}\n{}", finding.problems[0], finding.ascii_grid());
+///         assert_eq!(finding.kind(), FailureKind::Tie);
+///     }
+///     Verdict::Pass { .. } => panic!("a shared edge drawn twice went unseen"),
+/// }
+/// ```
 pub trait Subject {
     /// The fragments drawn for `case`, in any order.
     fn draw(&mut self, case: &Case) -> Result<Vec<Fragment>, SubjectError>;
