@@ -73,6 +73,15 @@ pub fn check_file(path: &Path, extensions: &[&str]) -> Result<()> {
 /// Creates `dir` (and its parents) if needed and checks that it accepts a
 /// new file, before any work.
 pub fn check_dir(dir: &Path) -> Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(Error::Write {
+            path: dir.to_path_buf(),
+            message: "it is a file, and the output is a folder of several files: \
+                      name a folder (new or existing)"
+                .into(),
+            closed: false,
+        });
+    }
     std::fs::create_dir_all(dir).map_err(|e| Error::write(dir, &e))?;
     probe_dir(dir)
 }
@@ -191,6 +200,14 @@ mod tests {
         check_file(&dir.join("X.PNG"), &["png"]).unwrap();
         assert!(check_file(&dir.join("x.jpg"), &["png"]).is_err());
         assert!(check_file(&dir, &["png"]).is_err());
+        // A file where a folder is asked for says so.
+        let file = dir.join("a-file");
+        std::fs::write(&file, b"").unwrap();
+        match check_dir(&file) {
+            Err(Error::Write { message, .. }) => assert!(message.contains("name a folder")),
+            other => panic!("expected a write error, got {other:?}"),
+        }
+        std::fs::remove_file(&file).unwrap();
         assert_eq!(
             std::fs::read_dir(&dir).unwrap().count(),
             0,
