@@ -30,6 +30,11 @@ fn snap(x: f32, y: f32) -> FixedPoint {
     FixedPoint::snap(x, y).unwrap()
 }
 
+/// A point from its raw 1/256-pixel coordinates.
+fn raw(x: i64, y: i64) -> FixedPoint {
+    FixedPoint::from_raw(x, y).unwrap()
+}
+
 fn seg(a: FixedPoint, b: FixedPoint) -> LineSetup {
     LineSetup {
         id: 0,
@@ -105,50 +110,7 @@ proptest! {
 
     #[test]
     fn aliased_lines_have_the_properties_their_options_promise(a in endpoint(), b in endpoint(), opt in options()) {
-        let line = seg(a, b);
-        let frame = OctantFrame::new(a, b);
-        let steps = (frame.i1 - frame.i0) as usize;
-        for (name, pixels_of) in aliased() {
-            let px = pixels_of(&line, &opt);
-            // Endpoints present or absent as the convention says.
-            // (The endpoint columns are the endpoints' pixels; the row is the
-            // one nearest the line at the column centre, which is the
-            // endpoint's own pixel when the endpoint is a pixel centre.)
-            let full = pixels_of(&line, &LineOptions { endpoints: Endpoints::Inclusive, ..opt });
-            let major = |p: (i64, i64)| if frame.swap { p.1 } else { p.0 };
-            prop_assert_eq!(full.first().map(|&p| major(p)), Some(major(end_pixel(a))), "{} start", name);
-            prop_assert_eq!(full.last().map(|&p| major(p)), Some(major(end_pixel(b))), "{} end", name);
-            let centred = |p: FixedPoint| p.x.raw() % 256 == 128 && p.y.raw() % 256 == 128;
-            if centred(a) && centred(b) {
-                prop_assert_eq!(full.first().copied(), Some(end_pixel(a)), "{} start pixel", name);
-                prop_assert_eq!(full.last().copied(), Some(end_pixel(b)), "{} end pixel", name);
-            }
-            if opt.endpoints == Endpoints::HalfOpen {
-                prop_assert_eq!(&px[..], &full[..full.len() - 1], "{} half-open drops the end", name);
-            }
-            // Runs: 8-connected steps, or 4-connected steps.
-            for w in full.windows(2) {
-                let (dx, dy) = ((w[1].0 - w[0].0).abs(), (w[1].1 - w[0].1).abs());
-                match opt.connectivity {
-                    Connectivity::Eight => prop_assert!(dx.max(dy) == 1, "{} not 8-connected: {:?}", name, w),
-                    Connectivity::Four => prop_assert!(dx + dy == 1, "{} not 4-connected: {:?}", name, w),
-                }
-            }
-            // Pixel count: one per major step (plus a corner per minor step).
-            let minor_steps = full.windows(2).filter(|w| if frame.swap { w[0].0 != w[1].0 } else { w[0].1 != w[1].1 }).count();
-            let expected = match opt.connectivity {
-                Connectivity::Eight => steps + 1,
-                Connectivity::Four => steps + 1 + minor_steps,
-            };
-            prop_assert_eq!(full.len(), expected, "{} pixel count", name);
-            // Every column's pixel is the nearest to the ideal line (half a pixel),
-            // give or take float error for dda.
-            if opt.connectivity == Connectivity::Eight && a != b {
-                for &p in &full {
-                    prop_assert!(minor_distance(&line, p) <= 0.5 + 1e-9, "{} {:?} too far", name, p);
-                }
-            }
-        }
+        options_are_kept(a, b, opt)?;
     }
 
     /// Octant symmetry of the textbook (direction-dependent) algorithms. The
@@ -156,24 +118,7 @@ proptest! {
     /// mirror changes, so at ties it is direction-free but not mirror-free.
     #[test]
     fn reflecting_the_input_reflects_the_output(a in endpoint(), b in endpoint(), opt in options()) {
-        let opt = LineOptions { symmetric: false, ..opt };
-        // Mirror about x = 20 (pixel i -> 39 - i) and about y = 20.
-        let mx = |p: FixedPoint| FixedPoint::from_raw(40 * 256 - p.x.raw(), p.y.raw()).unwrap();
-        let my = |p: FixedPoint| FixedPoint::from_raw(p.x.raw(), 40 * 256 - p.y.raw()).unwrap();
-        for (name, pixels_of) in [("direct", Direct::pixels as PixelsOf), ("bresenham", Bresenham::pixels)] {
-            let base = pixels_of(&seg(a, b), &opt);
-            let x_mirrored: Pixels = base.iter().map(|&(x, y)| (39 - x, y)).collect();
-            let y_mirrored: Pixels = base.iter().map(|&(x, y)| (x, 39 - y)).collect();
-            prop_assert_eq!(pixels_of(&seg(mx(a), mx(b)), &opt), x_mirrored, "{} x mirror", name);
-            prop_assert_eq!(pixels_of(&seg(my(a), my(b)), &opt), y_mirrored, "{} y mirror", name);
-            // Transposing x and y (not for exact diagonals, which are x-major both ways).
-            let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
-            if dx.abs() != dy.abs() {
-                let t = |p: FixedPoint| FixedPoint { x: p.y, y: p.x };
-                let transposed: Pixels = base.iter().map(|&(x, y)| (y, x)).collect();
-                prop_assert_eq!(pixels_of(&seg(t(a), t(b)), &opt), transposed, "{} transpose", name);
-            }
-        }
+        reflections_are_kept(a, b, opt)?;
     }
 
     #[test]
@@ -206,27 +151,7 @@ proptest! {
         points in proptest::collection::vec(centre_endpoint(), 3..8),
         symmetric in any::<bool>(),
     ) {
-        // A repeated point is a zero-length segment, which half-open draws as nothing.
-        let mut points = points;
-        points.dedup();
-        prop_assume!(points.len() >= 3);
-        let opt = LineOptions { endpoints: Endpoints::HalfOpen, symmetric, ..LineOptions::DEFAULT };
-        for (name, pixels_of) in aliased() {
-            let segments: Vec<Pixels> = points.windows(2).map(|w| pixels_of(&seg(w[0], w[1]), &opt)).collect();
-            for (k, w) in points.windows(2).enumerate() {
-                let shared = end_pixel(w[1]);
-                // The shared vertex is drawn by the next segment, not by this one.
-                prop_assert!(w[0] == w[1] || !segments[k].contains(&shared), "{} draws its end vertex", name);
-                if k + 1 < segments.len() {
-                    prop_assert_eq!(segments[k + 1].first().copied(), Some(shared), "{} next segment starts at the vertex", name);
-                }
-            }
-            // No gaps: the concatenation is 8-connected.
-            let all: Pixels = segments.concat();
-            for w in all.windows(2) {
-                prop_assert!((w[1].0 - w[0].0).abs() <= 1 && (w[1].1 - w[0].1).abs() <= 1, "{} gap at {:?}", name, w);
-            }
-        }
+        half_open_polyline_holds(points, symmetric)?;
     }
 
     #[test]
@@ -245,26 +170,7 @@ proptest! {
     /// endpoints' columns, the diamond rule only diamonds the segment passes.
     #[test]
     fn aliased_backends_are_within_vulkans_tolerance_of_diamond(a in centre_endpoint(), b in centre_endpoint(), symmetric in any::<bool>()) {
-        let (reference, _) = Diamond::pixels(&seg(a, b));
-        let x_major = (b.x.raw() - a.x.raw()).abs() >= (b.y.raw() - a.y.raw()).abs();
-        let major = |p: &(i64, i64)| if x_major { p.0 } else { p.1 };
-        let per_major = |px: &Pixels| {
-            let mut seen = BTreeSet::new();
-            px.iter().all(|p| seen.insert(major(p)))
-        };
-        prop_assert!(per_major(&reference), "diamond draws two pixels in one column/row");
-        let opt = LineOptions { endpoints: Endpoints::HalfOpen, symmetric, ..LineOptions::DEFAULT };
-        for (name, pixels_of) in aliased() {
-            let px = pixels_of(&seg(a, b), &opt);
-            prop_assert!((px.len() as i64 - reference.len() as i64).abs() <= 1, "{}: {} vs {} fragments", name, px.len(), reference.len());
-            prop_assert!(per_major(&px), "{} draws two pixels in one column/row", name);
-            for p in &px {
-                prop_assert!(
-                    reference.iter().any(|r| (r.0 - p.0).abs() <= 1 && (r.1 - p.1).abs() <= 1) || reference.is_empty(),
-                    "{}: {:?} is not within one pixel of a diamond fragment", name, p
-                );
-            }
-        }
+        within_vulkans_tolerance(a, b, symmetric)?;
     }
 
     #[test]
@@ -582,23 +488,7 @@ proptest! {
         lines in proptest::collection::vec((endpoint(), endpoint()), 1..14),
         (w, h) in (1u32..48, 1u32..48),
     ) {
-        let lines: Vec<LineSetup> = lines
-            .into_iter()
-            .enumerate()
-            .map(|(i, (a, b))| LineSetup { id: i as u32, ..seg(a, b) })
-            .collect();
-        let work = LineWorkload::new("random", lines);
-        let mut expected = RenderTarget::new(w, h).unwrap();
-        work.run(&Bresenham, &mut expected);
-        let mut fast = RenderTarget::new(w, h).unwrap();
-        let written = work.run_fast(&mut fast);
-        prop_assert!(fast == expected);
-        let counted: u64 = expected.coverage.iter().map(|&c| u64::from(c)).sum();
-        prop_assert_eq!(written, counted);
-        // Into a target that does not count: the same colours.
-        let mut uncounted = RenderTarget::without_coverage(w, h).unwrap();
-        prop_assert_eq!(work.run_fast(&mut uncounted), written);
-        prop_assert!(uncounted.color == expected.color);
+        fast_path_matches(lines, (w, h))?;
     }
 }
 
@@ -614,4 +504,361 @@ fn fast_path_clips_lines_crossing_the_guard_band() {
     let written = work.run_fast(&mut fast);
     assert_eq!(written, 64);
     assert!(fast == expected);
+}
+
+// The properties as functions of their input: the property tests above
+// call them on generated input, the named regression tests below on the
+// cases they once shrank to.
+
+/// Endpoints, connectivity, pixel count and distance to the ideal line as
+/// `opt` promises, for the three aliased algorithms.
+fn options_are_kept(a: FixedPoint, b: FixedPoint, opt: LineOptions) -> Result<(), TestCaseError> {
+    let line = seg(a, b);
+    let frame = OctantFrame::new(a, b);
+    let steps = (frame.i1 - frame.i0) as usize;
+    for (name, pixels_of) in aliased() {
+        let px = pixels_of(&line, &opt);
+        // Endpoints present or absent as the convention says.
+        // (The endpoint columns are the endpoints' pixels; the row is the
+        // one nearest the line at the column centre, which is the
+        // endpoint's own pixel when the endpoint is a pixel centre.)
+        let full = pixels_of(
+            &line,
+            &LineOptions {
+                endpoints: Endpoints::Inclusive,
+                ..opt
+            },
+        );
+        let major = |p: (i64, i64)| if frame.swap { p.1 } else { p.0 };
+        prop_assert_eq!(
+            full.first().map(|&p| major(p)),
+            Some(major(end_pixel(a))),
+            "{} start",
+            name
+        );
+        prop_assert_eq!(
+            full.last().map(|&p| major(p)),
+            Some(major(end_pixel(b))),
+            "{} end",
+            name
+        );
+        let centred = |p: FixedPoint| p.x.raw() % 256 == 128 && p.y.raw() % 256 == 128;
+        if centred(a) && centred(b) {
+            prop_assert_eq!(
+                full.first().copied(),
+                Some(end_pixel(a)),
+                "{} start pixel",
+                name
+            );
+            prop_assert_eq!(
+                full.last().copied(),
+                Some(end_pixel(b)),
+                "{} end pixel",
+                name
+            );
+        }
+        if opt.endpoints == Endpoints::HalfOpen {
+            prop_assert_eq!(
+                &px[..],
+                &full[..full.len() - 1],
+                "{} half-open drops the end",
+                name
+            );
+        }
+        // Runs: 8-connected steps, or 4-connected steps.
+        for w in full.windows(2) {
+            let (dx, dy) = ((w[1].0 - w[0].0).abs(), (w[1].1 - w[0].1).abs());
+            match opt.connectivity {
+                Connectivity::Eight => {
+                    prop_assert!(dx.max(dy) == 1, "{} not 8-connected: {:?}", name, w)
+                }
+                Connectivity::Four => {
+                    prop_assert!(dx + dy == 1, "{} not 4-connected: {:?}", name, w)
+                }
+            }
+        }
+        // Pixel count: one per major step (plus a corner per minor step).
+        let minor_steps = full
+            .windows(2)
+            .filter(|w| {
+                if frame.swap {
+                    w[0].0 != w[1].0
+                } else {
+                    w[0].1 != w[1].1
+                }
+            })
+            .count();
+        let expected = match opt.connectivity {
+            Connectivity::Eight => steps + 1,
+            Connectivity::Four => steps + 1 + minor_steps,
+        };
+        prop_assert_eq!(full.len(), expected, "{} pixel count", name);
+        // Every column's pixel is the nearest to the ideal line (half a pixel),
+        // give or take float error for dda.
+        if opt.connectivity == Connectivity::Eight && a != b {
+            for &p in &full {
+                prop_assert!(
+                    minor_distance(&line, p) <= 0.5 + 1e-9,
+                    "{} {:?} too far",
+                    name,
+                    p
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Mirroring and transposing the input mirrors and transposes the output
+/// of the textbook (direction-dependent) algorithms.
+fn reflections_are_kept(
+    a: FixedPoint,
+    b: FixedPoint,
+    opt: LineOptions,
+) -> Result<(), TestCaseError> {
+    let opt = LineOptions {
+        symmetric: false,
+        ..opt
+    };
+    // Mirror about x = 20 (pixel i -> 39 - i) and about y = 20.
+    let mx = |p: FixedPoint| FixedPoint::from_raw(40 * 256 - p.x.raw(), p.y.raw()).unwrap();
+    let my = |p: FixedPoint| FixedPoint::from_raw(p.x.raw(), 40 * 256 - p.y.raw()).unwrap();
+    for (name, pixels_of) in [
+        ("direct", Direct::pixels as PixelsOf),
+        ("bresenham", Bresenham::pixels),
+    ] {
+        let base = pixels_of(&seg(a, b), &opt);
+        let x_mirrored: Pixels = base.iter().map(|&(x, y)| (39 - x, y)).collect();
+        let y_mirrored: Pixels = base.iter().map(|&(x, y)| (x, 39 - y)).collect();
+        prop_assert_eq!(
+            pixels_of(&seg(mx(a), mx(b)), &opt),
+            x_mirrored,
+            "{} x mirror",
+            name
+        );
+        prop_assert_eq!(
+            pixels_of(&seg(my(a), my(b)), &opt),
+            y_mirrored,
+            "{} y mirror",
+            name
+        );
+        // Transposing x and y (not for exact diagonals, which are x-major both ways).
+        let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
+        if dx.abs() != dy.abs() {
+            let t = |p: FixedPoint| FixedPoint { x: p.y, y: p.x };
+            let transposed: Pixels = base.iter().map(|&(x, y)| (y, x)).collect();
+            prop_assert_eq!(
+                pixels_of(&seg(t(a), t(b)), &opt),
+                transposed,
+                "{} transpose",
+                name
+            );
+        }
+    }
+    Ok(())
+}
+
+/// A half-open polyline draws each shared vertex once (by the segment
+/// leaving it) and leaves no gap.
+fn half_open_polyline_holds(points: Vec<FixedPoint>, symmetric: bool) -> Result<(), TestCaseError> {
+    // A repeated point is a zero-length segment, which half-open draws as nothing.
+    let mut points = points;
+    points.dedup();
+    prop_assume!(points.len() >= 3);
+    let opt = LineOptions {
+        endpoints: Endpoints::HalfOpen,
+        symmetric,
+        ..LineOptions::DEFAULT
+    };
+    for (name, pixels_of) in aliased() {
+        let segments: Vec<Pixels> = points
+            .windows(2)
+            .map(|w| pixels_of(&seg(w[0], w[1]), &opt))
+            .collect();
+        for (k, w) in points.windows(2).enumerate() {
+            let shared = end_pixel(w[1]);
+            // The shared vertex is drawn by the next segment, not by this one.
+            prop_assert!(
+                w[0] == w[1] || !segments[k].contains(&shared),
+                "{} draws its end vertex",
+                name
+            );
+            if k + 1 < segments.len() {
+                prop_assert_eq!(
+                    segments[k + 1].first().copied(),
+                    Some(shared),
+                    "{} next segment starts at the vertex",
+                    name
+                );
+            }
+        }
+        // No gaps: the concatenation is 8-connected.
+        let all: Pixels = segments.concat();
+        for w in all.windows(2) {
+            prop_assert!(
+                (w[1].0 - w[0].0).abs() <= 1 && (w[1].1 - w[0].1).abs() <= 1,
+                "{} gap at {:?}",
+                name,
+                w
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The aliased algorithms draw within one pixel of the diamond rule's
+/// fragments, one per major step, with at most one fragment more or less.
+fn within_vulkans_tolerance(
+    a: FixedPoint,
+    b: FixedPoint,
+    symmetric: bool,
+) -> Result<(), TestCaseError> {
+    let (reference, _) = Diamond::pixels(&seg(a, b));
+    let x_major = (b.x.raw() - a.x.raw()).abs() >= (b.y.raw() - a.y.raw()).abs();
+    let major = |p: &(i64, i64)| if x_major { p.0 } else { p.1 };
+    let per_major = |px: &Pixels| {
+        let mut seen = BTreeSet::new();
+        px.iter().all(|p| seen.insert(major(p)))
+    };
+    prop_assert!(
+        per_major(&reference),
+        "diamond draws two pixels in one column/row"
+    );
+    let opt = LineOptions {
+        endpoints: Endpoints::HalfOpen,
+        symmetric,
+        ..LineOptions::DEFAULT
+    };
+    for (name, pixels_of) in aliased() {
+        let px = pixels_of(&seg(a, b), &opt);
+        prop_assert!(
+            (px.len() as i64 - reference.len() as i64).abs() <= 1,
+            "{}: {} vs {} fragments",
+            name,
+            px.len(),
+            reference.len()
+        );
+        prop_assert!(
+            per_major(&px),
+            "{} draws two pixels in one column/row",
+            name
+        );
+        for p in &px {
+            prop_assert!(
+                reference
+                    .iter()
+                    .any(|r| (r.0 - p.0).abs() <= 1 && (r.1 - p.1).abs() <= 1)
+                    || reference.is_empty(),
+                "{}: {:?} is not within one pixel of a diamond fragment",
+                name,
+                p
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The fast path writes the colours and coverage of `bresenham` through
+/// the stage, into counting and non-counting targets alike.
+fn fast_path_matches(
+    lines: Vec<(FixedPoint, FixedPoint)>,
+    (w, h): (u32, u32),
+) -> Result<(), TestCaseError> {
+    let lines: Vec<LineSetup> = lines
+        .into_iter()
+        .enumerate()
+        .map(|(i, (a, b))| LineSetup {
+            id: i as u32,
+            ..seg(a, b)
+        })
+        .collect();
+    let work = LineWorkload::new("random", lines);
+    let mut expected = RenderTarget::new(w, h).unwrap();
+    work.run(&Bresenham, &mut expected);
+    let mut fast = RenderTarget::new(w, h).unwrap();
+    let written = work.run_fast(&mut fast);
+    prop_assert!(fast == expected);
+    let counted: u64 = expected.coverage.iter().map(|&c| u64::from(c)).sum();
+    prop_assert_eq!(written, counted);
+    // Into a target that does not count: the same colours.
+    let mut uncounted = RenderTarget::without_coverage(w, h).unwrap();
+    prop_assert_eq!(work.run_fast(&mut uncounted), written);
+    prop_assert!(uncounted.color == expected.color);
+    Ok(())
+}
+
+/// Shrunk from `aliased_lines_have_the_properties_their_options_promise`:
+/// a steep line between off-centre endpoints, (1.07, 1.75) to
+/// (35.02, 58.07), 8-connected, both endpoints drawn.
+#[test]
+fn regression_a_steep_off_centre_line_keeps_its_promises() {
+    let (a, b) = (raw(274, 449), raw(8966, 14866));
+    let opt = LineOptions::DEFAULT;
+    assert_eq!(
+        (opt.connectivity, opt.endpoints, opt.symmetric),
+        (Connectivity::Eight, Endpoints::Inclusive, false)
+    );
+    options_are_kept(a, b, opt).unwrap();
+    reflections_are_kept(a, b, opt).unwrap();
+    assert_eq!(
+        Bresenham::pixels(&seg(a, b), &opt),
+        Direct::pixels(&seg(a, b), &opt)
+    );
+}
+
+/// Shrunk from `aliased_lines_have_the_properties_their_options_promise`:
+/// a shallow line drawn right to left, (29.5, -12.5) to (8.5, -7.5),
+/// 4-connected and symmetric (so drawn from its left end).
+#[test]
+fn regression_a_leftward_four_connected_symmetric_line_keeps_its_promises() {
+    let (a, b) = (raw(7552, -3200), raw(2176, -1920));
+    let opt = LineOptions {
+        connectivity: Connectivity::Four,
+        endpoints: Endpoints::Inclusive,
+        symmetric: true,
+    };
+    options_are_kept(a, b, opt).unwrap();
+    reflections_are_kept(a, b, opt).unwrap();
+    assert_eq!(
+        Bresenham::pixels(&seg(a, b), &opt),
+        Direct::pixels(&seg(a, b), &opt)
+    );
+}
+
+/// Shrunk from `aliased_backends_are_within_vulkans_tolerance_of_diamond`:
+/// a line from a pixel centre left of and above the origin, (-13.5, -13.5)
+/// to (26.5, 20.5).
+#[test]
+fn regression_a_line_from_negative_coordinates_is_within_vulkans_tolerance() {
+    within_vulkans_tolerance(raw(-3456, -3456), raw(6784, 5248), false).unwrap();
+}
+
+/// Shrunk from `half_open_polylines_draw_shared_vertices_once_without_gaps`:
+/// a polyline whose last point repeats, (0.5, 0.5), (-19.5, 20.5),
+/// (-19.5, 20.5). The repeated point is a zero-length segment, which a
+/// half-open segment draws as nothing; without it, the polyline's one
+/// segment leaves its end vertex to the next.
+#[test]
+fn regression_a_polyline_ending_in_a_repeated_point_draws_it_once() {
+    let (p, q) = (raw(128, 128), raw(-4992, 5248));
+    let half_open = LineOptions {
+        endpoints: Endpoints::HalfOpen,
+        ..LineOptions::DEFAULT
+    };
+    for (name, pixels_of) in aliased() {
+        assert_eq!(pixels_of(&seg(q, q), &half_open), vec![], "{name}");
+        let first = pixels_of(&seg(p, q), &half_open);
+        assert_eq!(first.first(), Some(&(0, 0)), "{name}");
+        assert!(!first.contains(&(-20, 20)), "{name} draws its end vertex");
+        assert_eq!(first.len(), 20, "{name}");
+    }
+    half_open_polyline_holds(vec![p, q, q, p], false).unwrap();
+}
+
+/// Shrunk from `fast_path_equals_bresenham_through_the_stage`: one line
+/// from (30.5, 17.5), right of a 5 x 42 target, to (4.17, 42.99), past its
+/// bottom-right corner: clipped on two sides.
+#[test]
+fn regression_a_line_crossing_a_narrow_target_takes_the_fast_path_exactly() {
+    fast_path_matches(vec![(raw(7808, 4480), raw(1067, 11006))], (5, 42)).unwrap();
 }
