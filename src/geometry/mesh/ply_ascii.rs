@@ -391,15 +391,11 @@ pub(super) fn read_element<R: BufRead>(
         kind,
         properties,
     };
-    // Reserved from the header's count, within reason: a header may claim
-    // any count, and nothing is allocated for data not yet read.
-    let expected = def.count.min(1 << 16);
+    // Reserved from the header's count (address space only, see
+    // `reserve`).
     match kind {
-        Kind::Vertex => payload.reserve_vertices(expected),
-        Kind::Face => {
-            payload.face_ends.reserve(expected);
-            payload.indices.reserve(3 * expected);
-        }
+        Kind::Vertex => payload.reserve_vertices(def.count),
+        Kind::Face => payload.reserve_faces(def.count),
         Kind::Other => {}
     }
     let io_error =

@@ -8,6 +8,22 @@ use crate::error::{Error, Result};
 use glam::{Vec2, Vec3, Vec4};
 use ply_rs_bw::ply::ElementDef;
 
+/// Elements reserved at most from a header's count.
+const MAX_RESERVED: usize = 1 << 24;
+
+/// Reserves room for `n` more elements (at most [`MAX_RESERVED`]), so
+/// that a column read from a file is written once, where it stays,
+/// instead of copied at every doubling into memory touched for the first
+/// time. Reserving takes address space, not memory: pages are only
+/// given when written, so a header claiming more elements than the file
+/// holds costs nothing. Where even the address space is refused, the
+/// column grows as it is read.
+fn reserve<T>(column: &mut Vec<T>, n: usize) {
+    if column.try_reserve_exact(n.min(MAX_RESERVED)).is_err() {
+        column.reserve(n.min(1 << 16));
+    }
+}
+
 /// A vertex property the mesh keeps, in the order of a vertex's columns.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(super) enum VertexColumn {
@@ -98,13 +114,19 @@ impl Payload {
 
     /// Room for `n` more vertices.
     pub(super) fn reserve_vertices(&mut self, n: usize) {
-        self.positions.reserve(n);
+        reserve(&mut self.positions, n);
         for c in [&mut self.normals, &mut self.colors].into_iter().flatten() {
-            c.reserve(n);
+            reserve(c, n);
         }
         if let Some(uvs) = &mut self.uvs {
-            uvs.reserve(n);
+            reserve(uvs, n);
         }
+    }
+
+    /// Room for `n` faces of three vertices.
+    pub(super) fn reserve_faces(&mut self, n: usize) {
+        reserve(&mut self.face_ends, n);
+        reserve(&mut self.indices, n.saturating_mul(3));
     }
 
     /// Appends a vertex from its columns (`VertexColumn` order).
