@@ -418,6 +418,20 @@ mod tests {
     }
 
     #[test]
+    fn a_file_ending_early_says_so_on_the_first_missing_line() {
+        // Header 9 lines, vertices 0 and 1 on lines 10 and 11: with or
+        // without a final line break, vertex 2 (line 12) is missing.
+        for payload in ["0 0 0\n1 0 0\n", "0 0 0\n1 0 0"] {
+            let (line, message) = line_of(&format!("{HEADER}{payload}"));
+            assert_eq!(line, Some(12), "{payload:?}");
+            assert!(
+                message.starts_with("unexpected end of file: the header declares 3 `vertex`"),
+                "{payload:?}: {message}"
+            );
+        }
+    }
+
+    #[test]
     fn a_file_that_is_not_ply_says_so_without_the_parsers_internals() {
         assert_eq!(
             line_of("hello world\nmore\n"),

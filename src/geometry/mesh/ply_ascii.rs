@@ -402,17 +402,20 @@ pub(super) fn read_element<R: BufRead>(
         |i: usize, e: std::io::Error| (first_line + i, format!("reading `{}` {i}: {e}", def.name));
     let mut copy = Vec::new();
     let mut vertex = [0f64; VertexColumn::COUNT];
+    let end_of_file = |i: usize| {
+        (
+            first_line + i,
+            format!(
+                "unexpected end of file: the header declares {} `{}` elements, the file ends after {i}",
+                def.count, def.name
+            ),
+        )
+    };
     let mut i = 0;
     while i < def.count {
         let buffer = reader.fill_buf().map_err(|e| io_error(i, e))?;
         if buffer.is_empty() {
-            return Err((
-                first_line + i,
-                format!(
-                    "unexpected end of file: the header declares {} `{}` elements, the file ends after {i}",
-                    def.count, def.name
-                ),
-            ));
+            return Err(end_of_file(i));
         }
         // The lines the buffer holds whole, read where they are.
         let mut used = 0;
@@ -438,6 +441,9 @@ pub(super) fn read_element<R: BufRead>(
             reader
                 .read_until(b'\n', &mut copy)
                 .map_err(|e| io_error(i, e))?;
+            if copy.is_empty() {
+                return Err(end_of_file(i));
+            }
             match plan.read_line(&copy, true, i, &mut vertex, payload) {
                 Ok(_) => i += 1,
                 Err(Stop::More) => unreachable!("a complete line is never cut"),
