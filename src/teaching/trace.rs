@@ -48,6 +48,7 @@ use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::fragment::FragmentList;
 use crate::raster::line::bresenham::Bresenham;
 use crate::raster::line::dda::Dda;
+use crate::raster::line::direct::Direct;
 use crate::raster::line::{LineRasterizer, LineWalk, OctantFrame};
 use crate::raster::shader::Flat;
 use crate::raster::target::{DepthState, DepthTest, RenderTarget};
@@ -639,7 +640,6 @@ pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
 fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> {
     let name = backend.name();
     let frame = OctantFrame::new(ends.from, ends.to);
-    let scale = SUBPIXEL_SCALE as f64;
     let du = frame.du() as f64;
     let m = if du > 0.0 {
         frame.dv() as f64 / du
@@ -671,13 +671,9 @@ fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> 
         Column::right("y", 6, 1),
         Column::right("pixel", 6, 1),
     ];
+    // The columns the back-end itself walks, as it walks them.
     let columns: Vec<(i64, f64, i64)> = match walk {
-        LineWalk::DirectEvaluation => (frame.i0..=frame.i1)
-            .map(|i| {
-                let exact = frame.scaled_v_at(i) as f64 / (du.max(1.0) * scale);
-                (i, exact, frame.nearest_row(i))
-            })
-            .collect(),
+        LineWalk::DirectEvaluation => Direct::columns(&frame),
         _ => Dda::columns(&frame),
     };
     for (i, exact, k) in columns {

@@ -17,12 +17,27 @@
 
 use super::{
     finish_pixels, walk_frame, AliasedLine, LineDescriptor, LineOptions, LineSetup, LineWalk,
+    OctantFrame,
 };
 use crate::raster::descriptor::{CostClass, Role};
+use crate::raster::fixed::SUBPIXEL_SCALE;
 
 /// Direct evaluation of `y = m x + b`, rounded, at every column.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Direct;
+
+impl Direct {
+    /// Each column of a frame as `(i, y, k)`: the exact `y` at the
+    /// column's centre (in pixels, shown to a reader as the slide's
+    /// `m (x - x0) + y0`) and the row it rounds to, which is decided on
+    /// the exact fraction, not on the `f64` shown.
+    pub fn columns(frame: &OctantFrame) -> Vec<(i64, f64, i64)> {
+        let scale = (frame.du().max(1) * SUBPIXEL_SCALE) as f64;
+        (frame.i0..=frame.i1)
+            .map(|i| (i, frame.scaled_v_at(i) as f64 / scale, frame.nearest_row(i)))
+            .collect()
+    }
+}
 
 impl AliasedLine for Direct {
     const DESCRIPTOR: LineDescriptor = LineDescriptor {
@@ -35,8 +50,9 @@ impl AliasedLine for Direct {
 
     fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
         let (frame, reversed) = walk_frame(line, options);
-        let rows: Vec<(i64, i64)> = (frame.i0..=frame.i1)
-            .map(|i| (i, frame.nearest_row(i)))
+        let rows: Vec<(i64, i64)> = Direct::columns(&frame)
+            .into_iter()
+            .map(|(i, _, k)| (i, k))
             .collect();
         finish_pixels(&frame, &rows, reversed, options)
     }
