@@ -216,24 +216,25 @@ fn strip_line_prefix(message: &str) -> String {
     rest.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
-/// A parser message made readable: `ply-rs-bw` follows some messages with
-/// its parser's debug value (" Error: ParseError { .. }"), which is cut,
-/// and says of a file that is not PLY at all only what it expected.
+/// A parser message made readable. `ply-rs-bw` follows some messages
+/// with its parser's debug value (" Error: ParseError { .. }"), which is
+/// cut; of a file whose first line is not `ply` it says only what it
+/// expected, or what it parsed that line as, so that message is
+/// rewritten to quote the line; a header that is not UTF-8 is said to be
+/// not text.
 fn header_message(message: &str) -> String {
     let message = message
         .split_once(" Error: ParseError")
         .map_or(message, |(m, _)| m);
-    if let Some(first) = message
-        .strip_prefix("Expected magic number 'ply'. String: '")
-        .and_then(|m| m.strip_suffix('\''))
-    {
-        return format!(
-            "not a PLY file: its first line is `{}`, not `ply`",
-            first.trim()
-        );
+    if message.starts_with("Expected magic number 'ply'") {
+        let first = message
+            .rsplit_once("String: '")
+            .map_or("", |(_, line)| line.trim_end_matches('\'').trim());
+        return format!("not a PLY file: its first line is `{first}`, not `ply`");
     }
     if message.contains("did not contain valid UTF-8") {
-        return "not a PLY file: its header is not text (a binary PLY's header is text too)".into();
+        return "the header is not text: a PLY file's header is ASCII text, a binary file's too"
+            .into();
     }
     message.to_string()
 }
@@ -440,14 +441,21 @@ mod tests {
                 "not a PLY file: its first line is `hello world`, not `ply`".into()
             )
         );
-        let (line, message) = line_of("plyx\n");
-        assert_eq!(line, Some(1));
-        assert!(!message.contains("ParseError"), "{message}");
+        for (text, first) in [
+            ("plyx\n", "plyx"),
+            ("format ascii 1.0\nend_header\n", "format ascii 1.0"),
+        ] {
+            let (line, message) = line_of(text);
+            assert_eq!(line, Some(1));
+            assert_eq!(
+                message,
+                format!("not a PLY file: its first line is `{first}`, not `ply`")
+            );
+        }
         match read(&b"\xff\xfe\x00binary"[..], Path::new("t.ply")) {
-            Err(Error::Parse { message, .. }) => assert!(
-                message.starts_with("not a PLY file: its header is not text"),
-                "{message}"
-            ),
+            Err(Error::Parse { message, .. }) => {
+                assert!(message.starts_with("the header is not text"), "{message}")
+            }
             other => panic!("expected a parse error, got {other:?}"),
         }
     }
