@@ -76,8 +76,8 @@ pub fn check_dir(dir: &Path) -> Result<()> {
     if dir.exists() && !dir.is_dir() {
         return Err(Error::Write {
             path: dir.to_path_buf(),
-            message: "it is a file, and the output is a folder of several files: \
-                      name a folder (new or existing)"
+            message: "it is a file, and this output is a directory of several files: \
+                      name a directory (new or existing)"
                 .into(),
             closed: false,
         });
@@ -204,7 +204,7 @@ mod tests {
         let file = dir.join("a-file");
         std::fs::write(&file, b"").unwrap();
         match check_dir(&file) {
-            Err(Error::Write { message, .. }) => assert!(message.contains("name a folder")),
+            Err(Error::Write { message, .. }) => assert!(message.contains("name a directory")),
             other => panic!("expected a write error, got {other:?}"),
         }
         std::fs::remove_file(&file).unwrap();
