@@ -27,14 +27,18 @@ use crate::raster::fixed::SUBPIXEL_SCALE;
 pub struct Direct;
 
 impl Direct {
-    /// Each column of a frame as `(i, y, k)`: the exact `y` at the
-    /// column's centre (in pixels, shown to a reader as the slide's
-    /// `m (x - x0) + y0`) and the row it rounds to, which is decided on
-    /// the exact fraction, not on the `f64` shown.
+    /// Each column of a frame as `(i, y, k)`: the slide's
+    /// `y = m (x - x0) + y0` at the column's centre, in pixels (an `f64`,
+    /// for display), and the row it rounds to, which is decided on the
+    /// exact fraction, not on the `f64`. A segment of zero length has
+    /// its start's `y`.
     pub fn columns(frame: &OctantFrame) -> Vec<(i64, f64, i64)> {
-        let scale = (frame.du().max(1) * SUBPIXEL_SCALE) as f64;
+        let y = |i: i64| match frame.du() {
+            0 => frame.v0 as f64 / SUBPIXEL_SCALE as f64,
+            du => frame.scaled_v_at(i) as f64 / (du * SUBPIXEL_SCALE) as f64,
+        };
         (frame.i0..=frame.i1)
-            .map(|i| (i, frame.scaled_v_at(i) as f64 / scale, frame.nearest_row(i)))
+            .map(|i| (i, y(i), frame.nearest_row(i)))
             .collect()
     }
 }
