@@ -834,12 +834,12 @@ fn regression_a_line_from_negative_coordinates_is_within_vulkans_tolerance() {
 }
 
 /// Shrunk from `half_open_polylines_draw_shared_vertices_once_without_gaps`:
-/// a polyline whose last point repeats, (0.5, 0.5), (-19.5, 20.5),
-/// (-19.5, 20.5). The repeated point is a zero-length segment, which a
-/// half-open segment draws as nothing; without it, the polyline's one
-/// segment leaves its end vertex to the next.
+/// a polyline whose last point repeats, p = (0.5, 0.5), q = (-19.5, 20.5),
+/// q. The repeated point is a zero-length segment, which a half-open
+/// segment draws as nothing, and p to q leaves q to the segment after
+/// it; (p, q, q, p), which the property reads as (p, q, p), holds.
 #[test]
-fn regression_a_polyline_ending_in_a_repeated_point_draws_it_once() {
+fn regression_a_repeated_point_is_a_zero_length_segment_drawing_nothing() {
     let (p, q) = (raw(128, 128), raw(-4992, 5248));
     let half_open = LineOptions {
         endpoints: Endpoints::HalfOpen,
@@ -856,9 +856,14 @@ fn regression_a_polyline_ending_in_a_repeated_point_draws_it_once() {
 }
 
 /// Shrunk from `fast_path_equals_bresenham_through_the_stage`: one line
-/// from (30.5, 17.5), right of a 5 x 42 target, to (4.17, 42.99), past its
-/// bottom-right corner: clipped on two sides.
+/// from (30.5, 17.5), right of a 5 x 42 target, to (4.17, 42.99), below
+/// it, passing diagonally outside the corner pixel (4, 41): clipped on
+/// both sides, it must leave no pixel, as `bresenham` leaves none.
 #[test]
 fn regression_a_line_crossing_a_narrow_target_takes_the_fast_path_exactly() {
-    fast_path_matches(vec![(raw(7808, 4480), raw(1067, 11006))], (5, 42)).unwrap();
+    let (a, b) = (raw(7808, 4480), raw(1067, 11006));
+    fast_path_matches(vec![(a, b)], (5, 42)).unwrap();
+    let mut target = RenderTarget::new(5, 42).unwrap();
+    let written = LineWorkload::new("corner", vec![seg(a, b)]).run_fast(&mut target);
+    assert_eq!(written, 0);
 }

@@ -632,11 +632,12 @@ fn regression_edge_to_a_point_at_infinity_passes_a_hair_above_a_pixel_centre() {
 
 /// Shrunk from `clipping_draws_exactly_the_visible_part`: one vertex
 /// behind the camera (w = -416,380), two in front with x and y below
-/// 10^-6. Every point of the triangle in front has w below 3 x 10^-7, under
-/// `W_MIN`, so nothing is visible and nothing is drawn; the test's f64
-/// oracle, solving a system whose entries span twelve orders of
-/// magnitude, once found a point at w = 0.17 inside it, and now abstains
-/// where its solution does not project back to the pixel.
+/// 10^-6. The part with w >= `W_MIN` covers no pixel centre (the
+/// triangle's point at any centre has w of at most 4.5 x 10^-6), so
+/// nothing is drawn; the test's f64 oracle, solving a system whose
+/// entries span twelve orders of magnitude, once found a point at
+/// w = 0.17 at pixel (20, 0), and now abstains where its solution does
+/// not project back to the pixel.
 #[test]
 fn regression_a_triangle_whose_visible_part_is_below_w_min_draws_nothing() {
     let t = [

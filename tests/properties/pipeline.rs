@@ -143,7 +143,7 @@ fn oracle(t: &[Vec4; 3], ndc: (f64, f64)) -> Option<bool> {
     // answer to cancellation even in f64: the point found must really
     // project to `ndc`, or the oracle cannot decide.
     let off = (q.x - ndc.0 * q.w).abs().max((q.y - ndc.1 * q.w).abs());
-    // (NaN, from a singular system, abstains too.)
+    // (NaN, from entries that overflow, abstains too.)
     if off.is_nan() || off > 1e-6 * q.w.abs() {
         return None;
     }
