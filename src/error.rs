@@ -30,7 +30,7 @@ pub enum Error {
     },
     /// A render target of zero or excessive size was requested.
     #[error(
-        "render target size {width}x{height} is invalid: both sides must be between 1 and {max}"
+        "target size {width}x{height} is invalid: both sides must be between 1 and {max} pixels"
     )]
     InvalidTargetSize {
         /// Requested width.

@@ -492,7 +492,7 @@ fn outputs_are_checked_first_and_never_left_half_written() {
         "0",
         "1",
     ]);
-    expect(&out, 2, "render target size 0x0 is invalid");
+    expect(&out, 2, "target size 0x0 is invalid");
     for command in ["bench", "compare"] {
         let mut args = vec![command, "--samples", "0"];
         if command == "compare" {
@@ -500,6 +500,43 @@ fn outputs_are_checked_first_and_never_left_half_written() {
         }
         expect(&rasterlab(&args), 2, "--samples must be between 1");
     }
+}
+
+/// `compare` with bad input does nothing: not even its output directory
+/// is left behind (exit 2: "nothing was done").
+#[test]
+fn compare_with_bad_input_leaves_no_output_directory() {
+    let dir = std::env::temp_dir().join(format!("rasterlab-compare-{}", std::process::id()));
+    let out = dir.join("report");
+    let out_arg = out.to_str().unwrap();
+    let missing = dir.join("missing.txt");
+    for args in [
+        vec!["compare", missing.to_str().unwrap(), "--out", out_arg],
+        vec![
+            "compare",
+            "assets/polygon.txt",
+            "--size",
+            "0x0",
+            "--out",
+            out_arg,
+        ],
+    ] {
+        let run = rasterlab(&args);
+        assert_eq!(run.status.code(), Some(2), "{args:?}");
+        assert!(!out.exists(), "{args:?} left {}", out.display());
+    }
+    // Good input writes the report there.
+    let good = rasterlab(&[
+        "compare",
+        "assets/polygon.txt",
+        "--size",
+        "8x8",
+        "--out",
+        out_arg,
+    ]);
+    assert_eq!(good.status.code(), Some(0), "{}", stderr(&good));
+    assert!(out.join("index.html").is_file());
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The README's exit-code table, one row each: 0 done, 2 bad input or

@@ -69,9 +69,12 @@ pub fn default_size(input: &Path) -> (u32, u32) {
 /// Reads the input, runs every back-end on it, and writes the report.
 pub fn compare(request: &CompareRequest<'_>) -> Result<CompareSummary> {
     let (width, height) = (request.width, request.height);
+    crate::raster::target::RenderTarget::check_size(width, height)?;
     Report::check_memory(width, height)?;
-    crate::output::check_dir(request.out)?;
+    // The input first: bad input leaves nothing behind, not even the
+    // output directory, which is checked (and created) before the work.
     let input = load(request.input, width, height)?;
+    crate::output::check_dir(request.out)?;
     let report = Report::compare(&input, width, height, request.samples)?;
     let path = report.write(request.out)?;
     Ok(CompareSummary { report, path })
