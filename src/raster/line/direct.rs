@@ -27,19 +27,23 @@ use crate::raster::fixed::SUBPIXEL_SCALE;
 pub struct Direct;
 
 impl Direct {
-    /// Each column of a frame as `(i, y, k)`: the slide's
-    /// `y = m (x - x0) + y0` at the column's centre, in pixels (an `f64`,
-    /// for display), and the row it rounds to, which is decided on the
-    /// exact fraction, not on the `f64`. A segment of zero length has
+    /// The walk: each column `i` of a frame with the row `k` the slide's
+    /// `y = m (x - x0) + y0` rounds to there, decided on the exact
+    /// fraction.
+    fn rows(frame: &OctantFrame) -> impl Iterator<Item = (i64, i64)> + '_ {
+        (frame.i0..=frame.i1).map(|i| (i, frame.nearest_row(i)))
+    }
+
+    /// The walk as a trace shows it, `(i, y, k)`: each column the
+    /// back-end walks and its row, with `y` at the column's centre, in
+    /// pixels (an `f64`, for display only). A segment of zero length has
     /// its start's `y`.
     pub fn columns(frame: &OctantFrame) -> Vec<(i64, f64, i64)> {
         let y = |i: i64| match frame.du() {
             0 => frame.v0 as f64 / SUBPIXEL_SCALE as f64,
             du => frame.scaled_v_at(i) as f64 / (du * SUBPIXEL_SCALE) as f64,
         };
-        (frame.i0..=frame.i1)
-            .map(|i| (i, y(i), frame.nearest_row(i)))
-            .collect()
+        Direct::rows(frame).map(|(i, k)| (i, y(i), k)).collect()
     }
 }
 
@@ -54,10 +58,7 @@ impl AliasedLine for Direct {
 
     fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
         let (frame, reversed) = walk_frame(line, options);
-        let rows: Vec<(i64, i64)> = Direct::columns(&frame)
-            .into_iter()
-            .map(|(i, _, k)| (i, k))
-            .collect();
+        let rows: Vec<(i64, i64)> = Direct::rows(&frame).collect();
         finish_pixels(&frame, &rows, reversed, options)
     }
 }
