@@ -65,8 +65,8 @@ pub use case::{Case, Point};
 pub use judge::{FailureKind, Finding, LineConvention, Property, Provenance};
 pub use program::Program;
 pub use run::{
-    run, run_with, BrokenReport, CaseFailure, CheckReport, CheckRequest, Counterexample,
-    FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
+    run, run_with, timeout_from_seconds, BrokenReport, CaseFailure, CheckReport, CheckRequest,
+    Counterexample, FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
 };
 
 use crate::geometry::scene::setup_triangles;

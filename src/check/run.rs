@@ -437,6 +437,17 @@ type Factory<'a> = Box<dyn Fn() -> Box<dyn Subject + Send> + Sync + 'a>;
 
 type Custom<'a> = Option<(&'a str, &'a (dyn Fn() -> Box<dyn Subject + Send> + Sync))>;
 
+/// A program's time limit on one case from seconds, as `--timeout` gives
+/// it: more than 0 and at most an hour (NaN and infinities are refused).
+pub fn timeout_from_seconds(seconds: f64) -> Result<Duration> {
+    if !(seconds > 0.0 && seconds <= 3600.0) {
+        return Err(Error::InvalidArgument(format!(
+            "--timeout must be more than 0 and at most 3600 seconds, not {seconds}"
+        )));
+    }
+    Ok(Duration::from_secs_f64(seconds))
+}
+
 fn run_inner(request: &CheckRequest, custom: Custom<'_>) -> Result<CheckReport> {
     let chosen = match (&request.subject, custom) {
         (SubjectSpec::Backend(name), None) => Some(backend(name)?),
@@ -480,12 +491,7 @@ fn run_inner(request: &CheckRequest, custom: Custom<'_>) -> Result<CheckReport> 
             request.jobs
         )));
     }
-    let seconds = request.timeout.as_secs_f64();
-    if !(seconds > 0.0 && seconds <= 3600.0) {
-        return Err(Error::InvalidArgument(format!(
-            "--timeout must be more than 0 and at most 3600 seconds, not {seconds}"
-        )));
-    }
+    timeout_from_seconds(request.timeout.as_secs_f64())?;
     let given = match &request.case_file {
         Some(path) => {
             let text = std::fs::read_to_string(path).map_err(|e| Error::Io {

@@ -3,10 +3,11 @@
 //! [`rasterlab::check::run`].
 
 use clap::Args;
-use rasterlab::check::{self, CheckRequest, Kind, LineConvention, RuleChoice, SubjectSpec};
+use rasterlab::check::{
+    self, timeout_from_seconds, CheckRequest, Kind, LineConvention, RuleChoice, SubjectSpec,
+};
 use rasterlab::{Error, Result};
 use std::path::PathBuf;
-use std::time::Duration;
 
 #[derive(Args, Debug)]
 #[command(group(clap::ArgGroup::new("subject").required(true).args(["exec", "backend"])))]
@@ -76,19 +77,13 @@ pub fn run(args: &CheckArgs) -> Result<()> {
             ))
         }
     };
-    if !(args.timeout > 0.0 && args.timeout <= 3600.0) {
-        return Err(Error::InvalidArgument(format!(
-            "--timeout must be more than 0 and at most 3600 seconds, not {}",
-            args.timeout
-        )));
-    }
     let request = CheckRequest {
         kind: args.kind,
         rule: args.rule,
         convention: args.convention,
         cases: args.cases,
         seed: args.seed,
-        timeout: Duration::from_secs_f64(args.timeout),
+        timeout: timeout_from_seconds(args.timeout)?,
         jobs: args.jobs,
         keep_going: args.keep_going,
         case_file: args.case.clone(),
