@@ -143,7 +143,7 @@ proptest! {
 
     #[test]
     fn bresenham_equals_direct(a in endpoint(), b in endpoint(), opt in options()) {
-        prop_assert_eq!(Bresenham::pixels(&seg(a, b), &opt), Direct::pixels(&seg(a, b), &opt));
+        bresenham_is_direct(a, b, opt)?;
     }
 
     #[test]
@@ -511,6 +511,31 @@ fn fast_path_clips_lines_crossing_the_guard_band() {
 // cases they once shrank to.
 
 /// Endpoints, connectivity, pixel count and distance to the ideal line as
+/// The midpoint walk and the exact direct evaluation draw the same pixels.
+fn bresenham_is_direct(
+    a: FixedPoint,
+    b: FixedPoint,
+    opt: LineOptions,
+) -> Result<(), TestCaseError> {
+    prop_assert_eq!(
+        Bresenham::pixels(&seg(a, b), &opt),
+        Direct::pixels(&seg(a, b), &opt)
+    );
+    Ok(())
+}
+
+/// Every property of one segment drawn with `opt`: options kept,
+/// reflections, and Bresenham equal to direct.
+fn segment_properties_hold(
+    a: FixedPoint,
+    b: FixedPoint,
+    opt: LineOptions,
+) -> Result<(), TestCaseError> {
+    options_are_kept(a, b, opt)?;
+    reflections_are_kept(a, b, opt)?;
+    bresenham_is_direct(a, b, opt)
+}
+
 /// `opt` promises, for the three aliased algorithms.
 fn options_are_kept(a: FixedPoint, b: FixedPoint, opt: LineOptions) -> Result<(), TestCaseError> {
     let line = seg(a, b);
@@ -798,12 +823,7 @@ fn regression_a_steep_off_centre_line_keeps_its_promises() {
         (opt.connectivity, opt.endpoints, opt.symmetric),
         (Connectivity::Eight, Endpoints::Inclusive, false)
     );
-    options_are_kept(a, b, opt).unwrap();
-    reflections_are_kept(a, b, opt).unwrap();
-    assert_eq!(
-        Bresenham::pixels(&seg(a, b), &opt),
-        Direct::pixels(&seg(a, b), &opt)
-    );
+    segment_properties_hold(a, b, opt).unwrap();
 }
 
 /// Shrunk from `aliased_lines_have_the_properties_their_options_promise`:
@@ -817,12 +837,7 @@ fn regression_a_leftward_four_connected_symmetric_line_keeps_its_promises() {
         endpoints: Endpoints::Inclusive,
         symmetric: true,
     };
-    options_are_kept(a, b, opt).unwrap();
-    reflections_are_kept(a, b, opt).unwrap();
-    assert_eq!(
-        Bresenham::pixels(&seg(a, b), &opt),
-        Direct::pixels(&seg(a, b), &opt)
-    );
+    segment_properties_hold(a, b, opt).unwrap();
 }
 
 /// Shrunk from `aliased_backends_are_within_vulkans_tolerance_of_diamond`:
