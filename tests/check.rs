@@ -463,38 +463,24 @@ fn a_double_draw_names_as_extra_the_fragment_the_rule_does_not_give() {
 /// only.
 #[test]
 fn a_double_draw_names_the_vertex_or_edge_the_triangles_really_share() {
-    let judge = |triangles| {
+    let finding = |triangles| {
         let case = case_of(1, 1, triangles);
         rasterlab::check::judge::judge(Property::Watertight, &case, &[frag(0, 0, 0), frag(0, 0, 1)])
             .unwrap()
-            .diagnosis
-            .unwrap()
     };
-    let on_vertex = judge(vec![
+    let judge = |triangles| finding(triangles).diagnosis.unwrap();
+    let student = finding(vec![
         [(0.25, -0.25), (0.5, 0.5), (-9.0, 9.0)],
         [(0.25, -0.25), (12.0, -34.0), (0.5, 0.5)],
     ]);
+    let on_vertex = student.diagnosis.clone().unwrap();
     assert!(
         on_vertex.contains("on the vertex (0.5, 0.5) both triangles share"),
         "{on_vertex}"
     );
     assert!(!on_vertex.contains("(-9, 9)"), "{on_vertex}");
     // Its report page said "0 expected": watertightness has no one answer.
-    let case = case_of(
-        1,
-        1,
-        vec![
-            [(0.25, -0.25), (0.5, 0.5), (-9.0, 9.0)],
-            [(0.25, -0.25), (12.0, -34.0), (0.5, 0.5)],
-        ],
-    );
-    let page = rasterlab::check::judge::judge(
-        Property::Watertight,
-        &case,
-        &[frag(0, 0, 0), frag(0, 0, 1)],
-    )
-    .unwrap()
-    .to_html();
+    let page = student.to_html();
     assert!(page.contains("no single answer expected"), "{page}");
     assert!(!page.contains("0 expected"), "{page}");
     let on_edge = judge(vec![
