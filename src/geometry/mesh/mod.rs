@@ -22,6 +22,7 @@ mod inflate;
 pub mod obj;
 pub mod ply;
 mod ply_ascii;
+mod ply_blocks;
 mod ply_payload;
 
 use crate::error::{Error, Result};
@@ -82,7 +83,28 @@ impl Mesh {
     /// ```
     pub fn new(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Result<Mesh> {
         validate(&positions, &triangles)?;
-        let normals = compute_normals(&positions, &triangles);
+        Mesh::from_checked(positions, triangles, None)
+    }
+
+    /// A mesh from positions and triangles a loader has checked (finite
+    /// positions within [`MAX_COORDINATE`], indices in range), with the
+    /// file's normals made unit length or, without them, computed ones.
+    /// Errors only if there are no triangles.
+    fn from_checked(
+        positions: Vec<Vec3>,
+        triangles: Vec<[u32; 3]>,
+        normals: Option<Vec<Vec3>>,
+    ) -> Result<Mesh> {
+        if triangles.is_empty() {
+            return Err(Error::Empty("mesh (no triangles)".into()));
+        }
+        let normals = match normals {
+            Some(normals) => normals
+                .into_iter()
+                .map(|n| n.normalize_or(Vec3::Z))
+                .collect(),
+            None => compute_normals(&positions, &triangles),
+        };
         Ok(Mesh {
             positions,
             normals,

@@ -16,6 +16,7 @@
 //! line; what the values mean (finite coordinates, indices in range) is
 //! checked afterwards, by the caller.
 
+use super::ply_blocks::Parsing;
 use super::ply_payload::{Payload, VertexColumn};
 use ply_rs_bw::ply::{ElementDef, PropertyType, ScalarType};
 use std::io::BufRead;
@@ -239,10 +240,17 @@ impl<'a> Cursor<'a> {
 }
 
 /// How one element's lines are read: per property, where its values go.
-struct Plan<'a> {
+pub(super) struct Plan<'a> {
     name: &'a str,
     kind: Kind,
     properties: Vec<(Slot, &'a str, &'a PropertyType)>,
+    /// For a face element whose one property is its list of indices:
+    /// how its common lines are read without the general reader.
+    plain_face: Option<PlainFace>,
+    /// For a vertex element whose properties are all `float`: its
+    /// columns (`None` for a property skipped), read without the general
+    /// reader.
+    plain_vertex: Option<Vec<Option<VertexColumn>>>,
 }
 
 impl Plan<'_> {
@@ -259,6 +267,20 @@ impl Plan<'_> {
         vertex: &mut [f64; VertexColumn::COUNT],
         payload: &mut Payload,
     ) -> Result<usize, Stop> {
+        if let Some(read) = self
+            .plain_face
+            .and_then(|face| face.read(bytes, complete, payload))
+        {
+            return Ok(read);
+        }
+        if let Some(read) = self
+            .plain_vertex
+            .as_deref()
+            .and_then(|columns| read_plain_vertex(columns, bytes, complete, vertex))
+        {
+            payload.push_vertex(vertex);
+            return Ok(read);
+        }
         let mut line = Cursor {
             bytes,
             at: 0,
@@ -266,7 +288,7 @@ impl Plan<'_> {
             element: self.name,
             number,
         };
-        let (indices, had_error) = (payload.indices.len(), payload.face_error.is_some());
+        let had_error = payload.face_error.is_some();
         let read = self.read_values(&mut line, vertex, payload).and_then(|()| {
             match line.next_value()? {
                 None => Ok(()),
@@ -277,7 +299,7 @@ impl Plan<'_> {
             }
         });
         if let Err(stop) = read {
-            payload.indices.truncate(indices);
+            payload.pending.clear();
             if !had_error {
                 payload.face_error = None;
             }
@@ -285,7 +307,7 @@ impl Plan<'_> {
         }
         match self.kind {
             Kind::Vertex => payload.push_vertex(vertex),
-            Kind::Face => payload.face_ends.push(payload.indices.len()),
+            Kind::Face => payload.push_pending_face(),
             Kind::Other => {}
         }
         // Past the line break, if any.
@@ -317,11 +339,11 @@ impl Plan<'_> {
                 }
                 (Slot::Indices, PropertyType::List(count_type, t)) => {
                     let count = line.value(count_type, What::Length(name))? as usize;
-                    let start = payload.indices.len();
+                    let start = payload.pending.len();
                     for _ in 0..count {
                         let index = line.value(t, What::Value(name))?;
                         if (0.0..=f64::from(u32::MAX)).contains(&index) {
-                            payload.indices.push(index as u32);
+                            payload.pending.push(index as u32);
                         } else if payload.face_error.is_none() {
                             payload.face_error = Some((
                                 line.number,
@@ -329,8 +351,8 @@ impl Plan<'_> {
                             ));
                         }
                     }
-                    if payload.indices.len() != start + count {
-                        payload.indices.truncate(start);
+                    if payload.pending.len() != start + count {
+                        payload.pending.truncate(start);
                     }
                 }
                 (_, PropertyType::Scalar(t)) => {
@@ -352,70 +374,300 @@ impl Plan<'_> {
 /// says), the first of them at 1-based line `first_line`. An error is the
 /// line it is on and what is wrong.
 ///
-/// A line is read where the reader's buffer holds it; only a line cut by
-/// the end of the buffer is copied out, whole, and read from the copy.
+/// A large element is read in blocks of lines parsed on several threads
+/// when `parsing` says so (see [`super::ply_blocks`]); a small one, or
+/// any element on one thread, line by line on this thread. Both give the
+/// same payload and the same first error.
 pub(super) fn read_element<R: BufRead>(
     reader: &mut R,
     def: &ElementDef,
     kind: Kind,
     first_line: usize,
     payload: &mut Payload,
+    parsing: Parsing,
 ) -> Result<(), (usize, String)> {
-    let properties: Vec<(Slot, &str, &PropertyType)> = def
-        .properties
-        .values()
-        .map(|p| {
-            let slot = match (kind, &p.data_type) {
-                (Kind::Vertex, PropertyType::Scalar(_)) => {
-                    VertexColumn::of(&p.name).map_or(Slot::Skip, Slot::Vertex)
-                }
-                (Kind::Face, PropertyType::List(..))
-                    if p.name == "vertex_indices" || p.name == "vertex_index" =>
-                {
-                    Slot::Indices
-                }
-                _ => Slot::Skip,
-            };
-            (slot, p.name.as_str(), &p.data_type)
-        })
-        .collect();
-    if kind == Kind::Face {
-        if let Some((_, name, _)) = properties.iter().find(|(slot, name, _)| {
-            *slot == Slot::Skip && (*name == "vertex_indices" || *name == "vertex_index")
-        }) {
-            payload.face_error = Some((0, format!("`{name}` must be a list of integers")));
-        }
-    }
-    let plan = Plan {
-        name: &def.name,
-        kind,
-        properties,
-    };
+    let plan = Plan::new(def, kind, payload);
     // Reserved from the header's count (address space only, see
     // `reserve`).
-    match kind {
-        Kind::Vertex => payload.reserve_vertices(def.count),
-        Kind::Face => payload.reserve_faces(def.count),
-        Kind::Other => {}
+    plan.reserve(payload, def.count);
+    if parsing.in_blocks(def.count) {
+        super::ply_blocks::read(reader, &plan, def, first_line, payload, parsing)
+    } else {
+        read_in_place(reader, &plan, def, first_line, payload)
     }
-    let io_error =
-        |i: usize, e: std::io::Error| (first_line + i, format!("reading `{}` {i}: {e}", def.name));
+}
+
+impl<'a> Plan<'a> {
+    /// The plan for element `def`, read as `kind`. A face element whose
+    /// indices are not a list of integers gets its error recorded in
+    /// `payload` (for its first face).
+    fn new(def: &'a ElementDef, kind: Kind, payload: &mut Payload) -> Plan<'a> {
+        let properties: Vec<(Slot, &str, &PropertyType)> = def
+            .properties
+            .values()
+            .map(|p| {
+                let slot = match (kind, &p.data_type) {
+                    (Kind::Vertex, PropertyType::Scalar(_)) => {
+                        VertexColumn::of(&p.name).map_or(Slot::Skip, Slot::Vertex)
+                    }
+                    (Kind::Face, PropertyType::List(..))
+                        if p.name == "vertex_indices" || p.name == "vertex_index" =>
+                    {
+                        Slot::Indices
+                    }
+                    _ => Slot::Skip,
+                };
+                (slot, p.name.as_str(), &p.data_type)
+            })
+            .collect();
+        if kind == Kind::Face {
+            if let Some((_, name, _)) = properties.iter().find(|(slot, name, _)| {
+                *slot == Slot::Skip && (*name == "vertex_indices" || *name == "vertex_index")
+            }) {
+                payload.face_error = Some((0, format!("`{name}` must be a list of integers")));
+            }
+        }
+        let plain_face = match properties.as_slice() {
+            [(Slot::Indices, _, PropertyType::List(count, index))] => PlainFace::new(count, index),
+            _ => None,
+        };
+        let plain_vertex = (kind == Kind::Vertex)
+            .then(|| {
+                properties
+                    .iter()
+                    .map(|&(slot, _, data_type)| match (slot, data_type) {
+                        (Slot::Vertex(c), PropertyType::Scalar(ScalarType::Float)) => Some(Some(c)),
+                        (Slot::Skip, PropertyType::Scalar(ScalarType::Float)) => Some(None),
+                        _ => None,
+                    })
+                    .collect::<Option<Vec<_>>>()
+            })
+            .flatten();
+        Plan {
+            name: &def.name,
+            kind,
+            properties,
+            plain_face,
+            plain_vertex,
+        }
+    }
+
+    /// Room in `payload` for `lines` more lines of this element.
+    pub(super) fn reserve(&self, payload: &mut Payload, lines: usize) {
+        match self.kind {
+            Kind::Vertex => payload.reserve_vertices(lines),
+            Kind::Face => payload.reserve_faces(lines),
+            Kind::Other => {}
+        }
+    }
+
+    /// Reads `lines` whole lines from the start of `bytes` (each ends with
+    /// a line break, but the last may end with `bytes`), the first of them
+    /// element `first`, into `payload`. An error is the element it is in
+    /// and what is wrong.
+    pub(super) fn read_lines(
+        &self,
+        bytes: &[u8],
+        lines: usize,
+        first: usize,
+        payload: &mut Payload,
+    ) -> Result<(), (usize, String)> {
+        let mut vertex = [0f64; VertexColumn::COUNT];
+        let mut at = 0;
+        for i in first..first + lines {
+            match self.read_line(&bytes[at..], true, i, &mut vertex, payload) {
+                Ok(n) => at += n,
+                Err(Stop::More) => unreachable!("a complete line is never cut"),
+                Err(Stop::Wrong(m)) => return Err((i, m)),
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The error of a file that ends after `read` of the `def.count` lines
+/// of element `def`.
+pub(super) fn end_of_file(def: &ElementDef, first_line: usize, read: usize) -> (usize, String) {
+    (
+        first_line + read,
+        format!(
+            "unexpected end of file: the header declares {} `{}` elements, the file ends after {read}",
+            def.count, def.name
+        ),
+    )
+}
+
+/// The error of a read that failed after `read` lines of element `def`.
+pub(super) fn read_error(
+    def: &ElementDef,
+    first_line: usize,
+    read: usize,
+    e: std::io::Error,
+) -> (usize, String) {
+    (
+        first_line + read,
+        format!("reading `{}` {read}: {e}", def.name),
+    )
+}
+
+/// The common line of a face element whose one property is its list of
+/// vertex indices, both its length and its indices of integer types:
+/// plain decimal digits, no sign, separated by spaces or tabs, each in
+/// its type's range (and the indices in `u32`'s), and nothing else on the
+/// line. Most of a large mesh's lines are such faces, and this reads them
+/// without the general reader's dispatch per value; any other line (a
+/// sign, a value out of range, anything wrong) is left to the general
+/// reader, which reads it the same way or says what is wrong with it.
+#[derive(Copy, Clone, Debug)]
+struct PlainFace {
+    /// The largest length the length's type holds.
+    most_vertices: u64,
+    /// The largest index both the index type and `u32` hold.
+    largest_index: u64,
+}
+
+impl PlainFace {
+    /// The plain reading of a list of `index` values whose length is a
+    /// `count`; `None` unless both are integer types.
+    fn new(count: &ScalarType, index: &ScalarType) -> Option<PlainFace> {
+        let (_, most_vertices) = integer_range(count)?;
+        let (_, largest_index) = integer_range(index)?;
+        Some(PlainFace {
+            most_vertices: most_vertices as u64,
+            largest_index: (largest_index as u64).min(u64::from(u32::MAX)),
+        })
+    }
+
+    /// Reads the face at the start of `bytes` into `payload` and returns
+    /// the bytes read, its line break included; `None`, with the payload
+    /// as it was, if the line is not plain (or, unless `complete`, not
+    /// whole in `bytes`).
+    #[inline(always)]
+    fn read(&self, bytes: &[u8], complete: bool, payload: &mut Payload) -> Option<usize> {
+        let mut at = 0;
+        let count = plain_integer(bytes, &mut at, self.most_vertices)?;
+        if count == 3 {
+            let mut triangle = [0; 3];
+            for index in &mut triangle {
+                *index = plain_integer(bytes, &mut at, self.largest_index)? as u32;
+            }
+            let end = line_end(bytes, at, complete)?;
+            payload.push_triangle(triangle);
+            return Some(end);
+        }
+        payload.pending.clear();
+        for _ in 0..count {
+            let Some(index) = plain_integer(bytes, &mut at, self.largest_index) else {
+                payload.pending.clear();
+                return None;
+            };
+            payload.pending.push(index as u32);
+        }
+        let Some(end) = line_end(bytes, at, complete) else {
+            payload.pending.clear();
+            return None;
+        };
+        payload.push_pending_face();
+        Some(end)
+    }
+}
+
+/// Reads the vertex at the start of `bytes`, all its properties `float`,
+/// into `vertex` (`columns` says where each goes) and returns the bytes
+/// read, its line break included: the general reader's work without its
+/// dispatch per value. `None` if a value is not a number followed by a
+/// space, a tab or the line's end, if more follows the last (or, unless
+/// `complete`, if the line is not whole in `bytes`): the general reader
+/// then reads the line, or says what is wrong with it.
+#[inline(always)]
+fn read_plain_vertex(
+    columns: &[Option<VertexColumn>],
+    bytes: &[u8],
+    complete: bool,
+    vertex: &mut [f64; VertexColumn::COUNT],
+) -> Option<usize> {
+    let mut at = 0;
+    for &column in columns {
+        while bytes.get(at).copied().is_some_and(is_space) {
+            at += 1;
+        }
+        let (value, n) = fast_float2::parse_partial::<f32, _>(&bytes[at..]).ok()?;
+        at += n;
+        let ends = match bytes.get(at) {
+            Some(&b) => is_space(b) || b == b'\n' || b == b'\r',
+            None => true,
+        };
+        if n == 0 || !ends {
+            return None;
+        }
+        if let Some(column) = column {
+            vertex[column as usize] = f64::from(value);
+        }
+    }
+    line_end(bytes, at, complete)
+}
+
+/// Past the line break at `bytes[at..]`, after spaces or tabs: the end
+/// of a line whose values are all read; `None` if something else is
+/// there, or if the bytes end there and they are not `complete`.
+#[inline(always)]
+fn line_end(bytes: &[u8], mut at: usize, complete: bool) -> Option<usize> {
+    while bytes.get(at).copied().is_some_and(is_space) {
+        at += 1;
+    }
+    match (bytes.get(at), bytes.get(at + 1)) {
+        (Some(b'\n'), _) => Some(at + 1),
+        (Some(b'\r'), Some(b'\n')) => Some(at + 2),
+        (None, _) if complete => Some(at),
+        _ => None,
+    }
+}
+
+/// The value of the plain decimal digits at `bytes[*at..]`, after spaces
+/// or tabs, if there are at most ten, they make at most `most`, and a
+/// space, a tab, a line break or the end of `bytes` follows them; `*at`
+/// moves past them.
+#[inline(always)]
+fn plain_integer(bytes: &[u8], at: &mut usize, most: u64) -> Option<u64> {
+    while bytes.get(*at).copied().is_some_and(is_space) {
+        *at += 1;
+    }
+    let start = *at;
+    let mut value = 0u64;
+    while let Some(&digit) = bytes.get(*at) {
+        if !digit.is_ascii_digit() || *at - start == 10 {
+            break;
+        }
+        value = value * 10 + u64::from(digit - b'0');
+        *at += 1;
+    }
+    let ends = match bytes.get(*at) {
+        Some(&b) => is_space(b) || b == b'\n' || b == b'\r',
+        None => true,
+    };
+    (*at > start && ends && value <= most).then_some(value)
+}
+
+/// Reads the element line by line on this thread.
+///
+/// A line is read where the reader's buffer holds it; only a line cut by
+/// the end of the buffer is copied out, whole, and read from the copy.
+fn read_in_place<R: BufRead>(
+    reader: &mut R,
+    plan: &Plan<'_>,
+    def: &ElementDef,
+    first_line: usize,
+    payload: &mut Payload,
+) -> Result<(), (usize, String)> {
     let mut copy = Vec::new();
     let mut vertex = [0f64; VertexColumn::COUNT];
-    let end_of_file = |i: usize| {
-        (
-            first_line + i,
-            format!(
-                "unexpected end of file: the header declares {} `{}` elements, the file ends after {i}",
-                def.count, def.name
-            ),
-        )
-    };
     let mut i = 0;
     while i < def.count {
-        let buffer = reader.fill_buf().map_err(|e| io_error(i, e))?;
+        let buffer = reader
+            .fill_buf()
+            .map_err(|e| read_error(def, first_line, i, e))?;
         if buffer.is_empty() {
-            return Err(end_of_file(i));
+            return Err(end_of_file(def, first_line, i));
         }
         // The lines the buffer holds whole, read where they are.
         let mut used = 0;
@@ -440,15 +692,13 @@ pub(super) fn read_element<R: BufRead>(
             copy.clear();
             reader
                 .read_until(b'\n', &mut copy)
-                .map_err(|e| io_error(i, e))?;
+                .map_err(|e| read_error(def, first_line, i, e))?;
             if copy.is_empty() {
-                return Err(end_of_file(i));
+                return Err(end_of_file(def, first_line, i));
             }
-            match plan.read_line(&copy, true, i, &mut vertex, payload) {
-                Ok(_) => i += 1,
-                Err(Stop::More) => unreachable!("a complete line is never cut"),
-                Err(Stop::Wrong(m)) => return Err((first_line + i, m)),
-            }
+            plan.read_lines(&copy, 1, i, payload)
+                .map_err(|(i, m)| (first_line + i, m))?;
+            i += 1;
         }
     }
     Ok(())
@@ -457,6 +707,84 @@ pub(super) fn read_element<R: BufRead>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use ply_rs_bw::ply::{Addable, PropertyDef};
+    use proptest::prelude::*;
+
+    /// An element of the given properties.
+    fn element(name: &str, properties: &[(&str, PropertyType)]) -> ElementDef {
+        let mut def = ElementDef::new(name.to_string());
+        for (name, data_type) in properties {
+            def.properties
+                .add(PropertyDef::new(name.to_string(), data_type.clone()));
+        }
+        def
+    }
+
+    /// What reading `line` does: its result (the bytes read, or the
+    /// error, `None` for a line not whole yet) and the payload after it.
+    fn read(
+        plan: &Plan<'_>,
+        line: &[u8],
+        complete: bool,
+    ) -> (Option<Result<usize, String>>, Payload) {
+        let mut payload = Payload::default();
+        payload.clear_vertices(&element("vertex", &[]));
+        let mut vertex = [0f64; VertexColumn::COUNT];
+        let result = match plan.read_line(line, complete, 0, &mut vertex, &mut payload) {
+            Ok(n) => Some(Ok(n)),
+            Err(Stop::More) => None,
+            Err(Stop::Wrong(m)) => Some(Err(m)),
+        };
+        (result, payload)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4000))]
+
+        /// The plain readings of faces and vertices read every line as the
+        /// general reader does: the same values, the same bytes, the same
+        /// error, the same wait for a line not whole.
+        #[test]
+        fn plain_lines_read_as_the_general_reader_does(
+            tokens in prop::collection::vec(prop::sample::select(vec![
+                "3", "4", "2", "0", "17", "255", "256", "4294967295", "4294967296",
+                "2147483647", "2147483648", "-1", "+2", "007", "1.5", "-0.25e1", "x", "nan",
+                "inf", "1e40", "12345678901",
+            ]), 0..7),
+            separators in prop::collection::vec(prop::sample::select(vec![" ", "\t", "  "]), 7),
+            ending in prop::sample::select(vec!["\n", "\r\n", "", " \n", "\r", "\n3 0 1 2\n"]),
+            complete in any::<bool>(),
+            list in prop::sample::select(vec![
+                (ScalarType::UChar, ScalarType::Int),
+                (ScalarType::UChar, ScalarType::UInt),
+                (ScalarType::Int, ScalarType::UShort),
+            ]),
+        ) {
+            let mut line = String::new();
+            for (token, separator) in tokens.iter().zip(&separators) {
+                line += separator;
+                line += token;
+            }
+            line += ending;
+            let face = element("face", &[("vertex_indices", PropertyType::List(list.0, list.1))]);
+            let vertex = element("vertex", &[
+                ("x", PropertyType::Scalar(ScalarType::Float)),
+                ("confidence", PropertyType::Scalar(ScalarType::Float)),
+                ("y", PropertyType::Scalar(ScalarType::Float)),
+                ("z", PropertyType::Scalar(ScalarType::Float)),
+            ]);
+            for (def, kind) in [(&face, Kind::Face), (&vertex, Kind::Vertex)] {
+                let plain = Plan::new(def, kind, &mut Payload::default());
+                prop_assert!(plain.plain_face.is_some() || plain.plain_vertex.is_some());
+                let general = Plan { plain_face: None, plain_vertex: None, ..Plan::new(def, kind, &mut Payload::default()) };
+                // Compared as text: a NaN coordinate is not equal to itself.
+                prop_assert_eq!(
+                    format!("{:?}", read(&plain, line.as_bytes(), complete)),
+                    format!("{:?}", read(&general, line.as_bytes(), complete))
+                );
+            }
+        }
+    }
 
     #[test]
     fn values_parse_by_their_declared_type() {

@@ -73,8 +73,11 @@ impl VertexColumn {
 }
 
 /// What a PLY file's elements hold, whatever its encoding: the vertices'
-/// columns, and the faces' indices one after the other.
+/// columns, and the faces: each a triangle in one array, which becomes the
+/// mesh's as it is when every face is a triangle (the scans), and any
+/// other face's indices kept aside.
 #[derive(Default)]
+#[cfg_attr(test, derive(Debug))]
 pub(super) struct Payload {
     positions: Vec<Vec3>,
     /// Normals, colours and texture coordinates, when the vertex element
@@ -82,10 +85,14 @@ pub(super) struct Payload {
     normals: Option<Vec<Vec3>>,
     colors: Option<Vec<Vec3>>,
     uvs: Option<Vec<Vec2>>,
-    /// Every face's vertex indices, one face after the other.
-    pub(super) indices: Vec<u32>,
-    /// Where each face's indices end in `indices`.
-    pub(super) face_ends: Vec<usize>,
+    /// One entry per face: its indices if it is a triangle, zeros if not.
+    faces: Vec<[u32; 3]>,
+    /// The faces that are not triangles: the entry of each in `faces`, and
+    /// where its indices end in `other_indices`.
+    other_faces: Vec<(usize, usize)>,
+    other_indices: Vec<u32>,
+    /// The indices of the face being read.
+    pub(super) pending: Vec<u32>,
     /// The first face whose indices are unusable, and why.
     pub(super) face_error: Option<(usize, String)>,
 }
@@ -107,9 +114,7 @@ impl Payload {
 
     /// Empties the faces.
     pub(super) fn clear_faces(&mut self) {
-        self.indices.clear();
-        self.face_ends.clear();
-        self.face_error = None;
+        self.clear_face_columns();
     }
 
     /// Room for `n` more vertices.
@@ -125,8 +130,7 @@ impl Payload {
 
     /// Room for `n` faces of three vertices.
     pub(super) fn reserve_faces(&mut self, n: usize) {
-        reserve(&mut self.face_ends, n);
-        reserve(&mut self.indices, n.saturating_mul(3));
+        reserve(&mut self.faces, n);
     }
 
     /// Appends a vertex from its columns (`VertexColumn` order).
@@ -145,6 +149,103 @@ impl Payload {
         }
     }
 
+    /// An empty payload with the same vertex columns as this one: what
+    /// one block of lines is read into before [`Payload::append`] joins
+    /// it to the rest.
+    pub(super) fn empty_like(&self) -> Payload {
+        Payload {
+            positions: Vec::new(),
+            normals: self.normals.as_ref().map(|_| Vec::new()),
+            colors: self.colors.as_ref().map(|_| Vec::new()),
+            uvs: self.uvs.as_ref().map(|_| Vec::new()),
+            faces: Vec::new(),
+            other_faces: Vec::new(),
+            other_indices: Vec::new(),
+            pending: Vec::new(),
+            face_error: None,
+        }
+    }
+
+    /// Appends the elements `next` holds, read from the lines that follow
+    /// this payload's: its vertices after these, its faces after these
+    /// (the other faces' places moved past the faces here), and its unusable
+    /// face only if none came before.
+    pub(super) fn append(&mut self, next: &Payload) {
+        self.positions.extend_from_slice(&next.positions);
+        for (column, more) in [
+            (&mut self.normals, &next.normals),
+            (&mut self.colors, &next.colors),
+        ] {
+            if let (Some(column), Some(more)) = (column, more) {
+                column.extend_from_slice(more);
+            }
+        }
+        if let (Some(uvs), Some(more)) = (&mut self.uvs, &next.uvs) {
+            uvs.extend_from_slice(more);
+        }
+        let (faces, indices) = (self.faces.len(), self.other_indices.len());
+        self.other_faces.extend(
+            next.other_faces
+                .iter()
+                .map(|&(face, end)| (faces + face, indices + end)),
+        );
+        self.other_indices.extend_from_slice(&next.other_indices);
+        self.faces.extend_from_slice(&next.faces);
+        if self.face_error.is_none() {
+            self.face_error.clone_from(&next.face_error);
+        }
+    }
+
+    /// Empties every column, keeping their memory.
+    pub(super) fn clear(&mut self) {
+        self.positions.clear();
+        for column in [&mut self.normals, &mut self.colors].into_iter().flatten() {
+            column.clear();
+        }
+        if let Some(uvs) = &mut self.uvs {
+            uvs.clear();
+        }
+        self.clear_face_columns();
+    }
+
+    /// Empties the faces, keeping their memory.
+    fn clear_face_columns(&mut self) {
+        self.faces.clear();
+        self.other_faces.clear();
+        self.other_indices.clear();
+        self.pending.clear();
+        self.face_error = None;
+    }
+
+    /// Adds a triangle.
+    #[inline(always)]
+    pub(super) fn push_triangle(&mut self, triangle: [u32; 3]) {
+        self.faces.push(triangle);
+    }
+
+    /// Adds a face of any number of vertices (fewer than three is an
+    /// error, reported in file order with the others by
+    /// [`Payload::into_mesh`]).
+    pub(super) fn push_face(&mut self, indices: &[u32]) {
+        if let &[a, b, c] = indices {
+            self.faces.push([a, b, c]);
+        } else {
+            self.other_indices.extend_from_slice(indices);
+            self.other_faces
+                .push((self.faces.len(), self.other_indices.len()));
+            self.faces.push([0; 3]);
+        }
+    }
+
+    /// Adds the face whose indices are [`Payload::pending`], and empties
+    /// it.
+    pub(super) fn push_pending_face(&mut self) {
+        let pending = std::mem::take(&mut self.pending);
+        self.push_face(&pending);
+        self.pending = pending;
+        self.pending.clear();
+    }
+
     /// The mesh, once its positions and faces are checked; errors name
     /// the line of the vertex or face at fault (`located`).
     pub(super) fn into_mesh(
@@ -158,48 +259,66 @@ impl Payload {
                 .map_err(|m| located(vertex_line + i, format!("vertex {i}: {m}")))?;
         }
         let positions = self.positions;
-        let mut triangles = Vec::with_capacity(self.face_ends.len());
-        let mut start = 0;
-        for (i, &end) in self.face_ends.iter().enumerate() {
-            let line = face_line + i;
-            let face = &self.indices[start..end];
-            start = end;
-            if let Some((_, message)) = self.face_error.as_ref().filter(|(k, _)| *k == i) {
-                return Err(located(line, format!("face {i}: {message}")));
-            }
-            if face.len() < 3 {
-                return Err(located(
-                    line,
-                    format!(
-                        "face {i} has {} vertices; a face needs at least 3",
-                        face.len()
-                    ),
-                ));
-            }
-            if let Some(&bad) = face.iter().find(|&&k| k as usize >= positions.len()) {
-                return Err(located(
-                    line,
-                    format!(
-                        "face {i}: vertex index {bad} is out of range for {} vertices",
-                        positions.len()
-                    ),
-                ));
-            }
-            if let &[a, b, c] = face {
-                triangles.push([a, b, c]);
+        let out_of_range = |i: usize, bad: u32| {
+            located(
+                face_line + i,
+                format!(
+                    "face {i}: vertex index {bad} is out of range for {} vertices",
+                    positions.len()
+                ),
+            )
+        };
+        let triangles =
+            if self.other_faces.is_empty() && self.face_error.is_none() {
+                // Every face a triangle: the array is the mesh's, once its
+                // indices are checked.
+                let n = positions.len();
+                if let Some((i, bad)) = self.faces.iter().enumerate().find_map(|(i, face)| {
+                    face.iter().find(|&&k| k as usize >= n).map(|&bad| (i, bad))
+                }) {
+                    return Err(out_of_range(i, bad));
+                }
+                self.faces
             } else {
-                triangulate_face(&positions, face, &mut triangles)
-                    .map_err(|m| located(line, format!("face {i}: {m}")))?;
-            }
-        }
-        let mut mesh =
-            Mesh::new(positions, triangles).map_err(|e| located(face_line, e.to_string()))?;
-        if let Some(normals) = self.normals {
-            mesh.normals = normals
-                .into_iter()
-                .map(|n| n.normalize_or(Vec3::Z))
-                .collect();
-        }
+                let mut triangles = Vec::with_capacity(self.faces.len());
+                let mut others = self.other_faces.iter().peekable();
+                let mut start = 0;
+                for (i, triangle) in self.faces.iter().enumerate() {
+                    let line = face_line + i;
+                    let face = match others.next_if(|&&(face, _)| face == i) {
+                        Some(&(_, end)) => {
+                            let face = &self.other_indices[start..end];
+                            start = end;
+                            face
+                        }
+                        None => triangle.as_slice(),
+                    };
+                    if let Some((_, message)) = self.face_error.as_ref().filter(|(k, _)| *k == i) {
+                        return Err(located(line, format!("face {i}: {message}")));
+                    }
+                    if face.len() < 3 {
+                        return Err(located(
+                            line,
+                            format!(
+                                "face {i} has {} vertices; a face needs at least 3",
+                                face.len()
+                            ),
+                        ));
+                    }
+                    if let Some(&bad) = face.iter().find(|&&k| k as usize >= positions.len()) {
+                        return Err(out_of_range(i, bad));
+                    }
+                    if let &[a, b, c] = face {
+                        triangles.push([a, b, c]);
+                    } else {
+                        triangulate_face(&positions, face, &mut triangles)
+                            .map_err(|m| located(line, format!("face {i}: {m}")))?;
+                    }
+                }
+                triangles
+            };
+        let mut mesh = Mesh::from_checked(positions, triangles, self.normals)
+            .map_err(|e| located(face_line, e.to_string()))?;
         mesh.colors = self
             .colors
             .map(|c| c.into_iter().map(|c| Vec4::from((c, 1.0))).collect());
