@@ -652,7 +652,7 @@ fn plain_integer(bytes: &[u8], at: &mut usize, most: u64) -> Option<u64> {
 ///
 /// A line is read where the reader's buffer holds it; only a line cut by
 /// the end of the buffer is copied out, whole, and read from the copy.
-fn read_in_place<R: BufRead>(
+pub(super) fn read_in_place<R: BufRead>(
     reader: &mut R,
     plan: &Plan<'_>,
     def: &ElementDef,

@@ -20,7 +20,7 @@
 //! bad or endless file costs no more time or memory than the lines before
 //! its error.
 
-use super::ply_ascii::{end_of_file, read_error, Plan};
+use super::ply_ascii::{end_of_file, read_error, read_in_place, Plan};
 use super::ply_payload::Payload;
 use ply_rs_bw::ply::ElementDef;
 use std::collections::BTreeMap;
@@ -118,11 +118,9 @@ pub(super) fn read<R: BufRead>(
         }
         drop(parsed);
         if workers == 0 {
+            // No thread could be started: this one reads every line.
             drop(work);
-            return Err((
-                first_line,
-                "no thread could be started to read the file".into(),
-            ));
+            return read_in_place(reader, plan, def, first_line, payload);
         }
         let mut joined = Joined {
             template: payload.empty_like(),
