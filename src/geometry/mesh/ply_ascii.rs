@@ -15,6 +15,14 @@
 //! with too few or too many values is an error. Errors give the 1-based
 //! line; what the values mean (finite coordinates, indices in range) is
 //! checked afterwards, by the caller.
+//!
+//! Two kinds of line make up nearly all of a scanned mesh: a face whose one
+//! property is its list of integer indices, and a vertex whose properties
+//! are all floats. They have a plain reading each, without the general
+//! reader's dispatch per value ([`PlainFace`], [`read_plain_vertex`]);
+//! a line the plain reading does not take whole (a sign, a value out of
+//! range, anything wrong) goes to the general reader, which reads it the
+//! same way or names what is wrong with it.
 
 use super::ply_blocks::Parsing;
 use super::ply_payload::{Payload, VertexColumn};
@@ -593,11 +601,7 @@ fn read_plain_vertex(
         }
         let (value, n) = fast_float2::parse_partial::<f32, _>(&bytes[at..]).ok()?;
         at += n;
-        let ends = match bytes.get(at) {
-            Some(&b) => is_space(b) || b == b'\n' || b == b'\r',
-            None => true,
-        };
-        if n == 0 || !ends {
+        if n == 0 || !value_ends(bytes, at) {
             return None;
         }
         if let Some(column) = column {
@@ -641,11 +645,16 @@ fn plain_integer(bytes: &[u8], at: &mut usize, most: u64) -> Option<u64> {
         value = value * 10 + u64::from(digit - b'0');
         *at += 1;
     }
-    let ends = match bytes.get(*at) {
-        Some(&b) => is_space(b) || b == b'\n' || b == b'\r',
-        None => true,
-    };
-    (*at > start && ends && value <= most).then_some(value)
+    (*at > start && value_ends(bytes, *at) && value <= most).then_some(value)
+}
+
+/// Whether a value ending at `bytes[at]` is followed by a space, a tab, a
+/// line break or the end of `bytes`.
+#[inline(always)]
+fn value_ends(bytes: &[u8], at: usize) -> bool {
+    bytes
+        .get(at)
+        .is_none_or(|&b| is_space(b) || b == b'\n' || b == b'\r')
 }
 
 /// Reads the element line by line on this thread.
