@@ -543,3 +543,180 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod blocks {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The mesh, or the error's text, of `text` read as `parsing` says.
+    fn outcome(text: &[u8], parsing: Parsing) -> Result<crate::geometry::mesh::Mesh, String> {
+        read_parsing(text, Path::new("test.ply"), parsing).map_err(|e| e.to_string())
+    }
+
+    /// An ASCII PLY file: `vertices` vertices (with normals and byte
+    /// colours when `rich`), faces from `faces` (their indices taken
+    /// modulo one more than the vertices, so some are out of range), and
+    /// a last element `extra` of one integer per line.
+    fn ply_text(vertices: &[[f32; 3]], faces: &[Vec<u32>], rich: bool, extra: usize) -> String {
+        let mut text = format!(
+            "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n",
+            vertices.len()
+        );
+        if rich {
+            text += "property float nx\nproperty float ny\nproperty float nz\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n";
+        }
+        text += &format!(
+            "element face {}\nproperty list uchar int vertex_indices\nelement flags {extra}\nproperty int flag\nend_header\n",
+            faces.len()
+        );
+        for (i, v) in vertices.iter().enumerate() {
+            text += &format!("{} {} {}", v[0], v[1], v[2]);
+            if rich {
+                text += &format!(" 0 0 1 {} 7 255", i % 256);
+            }
+            text += "\n";
+        }
+        let modulus = vertices.len() as u32 + 1;
+        for face in faces {
+            text += &face.len().to_string();
+            for i in face {
+                text += &format!(" {}", i % modulus);
+            }
+            text += "\n";
+        }
+        for i in 0..extra {
+            text += &format!("{i}\n");
+        }
+        text
+    }
+
+    /// One change to a file's text: a line replaced, a line removed, the
+    /// text cut, line breaks made `\r\n`, the last line break dropped.
+    #[derive(Clone, Debug)]
+    enum Damage {
+        Replace(prop::sample::Index, &'static str),
+        Remove(prop::sample::Index),
+        Cut(prop::sample::Index),
+        CarriageReturns,
+        NoLastLineBreak,
+    }
+
+    fn damage() -> impl Strategy<Value = Damage> {
+        let line = prop::sample::select(vec![
+            "",
+            "x",
+            "1 2",
+            "1 2 3 4 5 6 7",
+            "3 0 1",
+            "-1 0 0",
+            "3 0 1 99999999999",
+            "nan 0 0",
+            "4 0 1 2 3",
+            "2 0 1",
+            "0.5 +1 -2e-3",
+            "3 0 1 2 x",
+            "1e40 0 0",
+        ]);
+        prop_oneof![
+            (any::<prop::sample::Index>(), line).prop_map(|(at, l)| Damage::Replace(at, l)),
+            any::<prop::sample::Index>().prop_map(Damage::Remove),
+            any::<prop::sample::Index>().prop_map(Damage::Cut),
+            Just(Damage::CarriageReturns),
+            Just(Damage::NoLastLineBreak),
+        ]
+    }
+
+    /// `text` with `damage` done to its payload (the header is kept).
+    fn damaged(text: &str, damage: &[Damage]) -> Vec<u8> {
+        let (header, payload) = text.split_at(text.find("end_header\n").unwrap() + 11);
+        let mut lines: Vec<String> = payload.lines().map(String::from).collect();
+        let (mut crlf, mut last_break, mut cut) = (false, true, None);
+        for d in damage {
+            match d {
+                Damage::Replace(at, l) if !lines.is_empty() => {
+                    let at = at.index(lines.len());
+                    lines[at] = l.to_string();
+                }
+                Damage::Remove(at) if !lines.is_empty() => {
+                    lines.remove(at.index(lines.len()));
+                }
+                Damage::Cut(at) => cut = Some(*at),
+                Damage::CarriageReturns => crlf = true,
+                Damage::NoLastLineBreak => last_break = false,
+                _ => {}
+            }
+        }
+        let mut payload = lines.join(if crlf { "\r\n" } else { "\n" });
+        if last_break && !lines.is_empty() {
+            payload += if crlf { "\r\n" } else { "\n" };
+        }
+        if let Some(at) = cut {
+            payload.truncate(at.index(payload.len() + 1));
+        }
+        [header.as_bytes(), payload.as_bytes()].concat()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(600))]
+
+        /// Blocks of any size, on two to four threads, read every file,
+        /// whole or damaged, into the same mesh or the same first error
+        /// as one thread reading line by line.
+        #[test]
+        fn blocks_read_as_one_thread_does(
+            vertices in prop::collection::vec(prop::array::uniform3(-1e3f32..1e3), 3..40),
+            faces in prop::collection::vec(prop::collection::vec(0u32..60, 3..6), 1..60),
+            rich in any::<bool>(),
+            extra in 0usize..20,
+            damage in prop::collection::vec(damage(), 0..3),
+            threads in 2usize..5,
+            block_bytes in prop_oneof![Just(1usize), 2usize..200],
+        ) {
+            let text = damaged(&ply_text(&vertices, &faces, rich, extra), &damage);
+            let alone = outcome(&text, Parsing::on(1));
+            let shared = outcome(&text, Parsing::blocks_of(threads, block_bytes));
+            prop_assert_eq!(shared, alone);
+        }
+    }
+
+    /// A mesh of 80,000 faces, large enough for the default blocks: the
+    /// same mesh on one, two and three threads, and the same error for a
+    /// bad line near its end.
+    #[test]
+    fn a_large_mesh_reads_the_same_on_any_number_of_threads() {
+        let n = 200;
+        let vertices: Vec<[f32; 3]> = (0..n * n)
+            .map(|i| [(i % n) as f32 * 0.1, (i / n) as f32 * 0.01, 0.5])
+            .collect();
+        let faces: Vec<Vec<u32>> = (0..n - 1)
+            .flat_map(|y| (0..n - 1).map(move |x| (y * n + x) as u32))
+            .flat_map(|k| {
+                [
+                    vec![k, k + 1, k + n as u32],
+                    vec![k + 1, k + n as u32 + 1, k + n as u32],
+                ]
+            })
+            .collect();
+        let text = ply_text(&vertices, &faces, false, 0);
+        assert!(Parsing::on(2).in_blocks(faces.len()));
+        let alone = outcome(text.as_bytes(), Parsing::on(1));
+        assert_eq!(alone.as_ref().map(|m| m.triangles.len()), Ok(faces.len()));
+        for threads in [2, 3] {
+            assert!(outcome(text.as_bytes(), Parsing::on(threads)) == alone);
+        }
+        let near_end = text[..text.len() - 200].rfind('\n').unwrap() + 1;
+        let line_end = near_end + text[near_end..].find('\n').unwrap();
+        let bad = [&text[..near_end], "3 0 1 x", &text[line_end..]]
+            .concat()
+            .into_bytes();
+        let alone = outcome(&bad, Parsing::on(1));
+        assert!(
+            alone
+                .as_ref()
+                .is_err_and(|e| e.contains("`x` is not a valid int")),
+            "{alone:?}"
+        );
+        assert_eq!(outcome(&bad, Parsing::on(3)), alone);
+    }
+}

@@ -24,7 +24,7 @@
 //! range, anything wrong) goes to the general reader, which reads it the
 //! same way or names what is wrong with it.
 
-use super::ply_blocks::Parsing;
+use super::ply_blocks::{self, Outcome, ParseLines, Parsing};
 use super::ply_payload::{Payload, VertexColumn};
 use ply_rs_bw::ply::{ElementDef, PropertyType, ScalarType};
 use std::io::BufRead;
@@ -248,7 +248,7 @@ impl<'a> Cursor<'a> {
 }
 
 /// How one element's lines are read: per property, where its values go.
-pub(super) struct Plan<'a> {
+struct Plan<'a> {
     name: &'a str,
     kind: Kind,
     properties: Vec<(Slot, &'a str, &'a PropertyType)>,
@@ -398,10 +398,29 @@ pub(super) fn read_element<R: BufRead>(
     // Reserved from the header's count (address space only, see
     // `reserve`).
     plan.reserve(payload, def.count);
-    if parsing.in_blocks(def.count) {
-        super::ply_blocks::read(reader, &plan, def, first_line, payload, parsing)
-    } else {
-        read_in_place(reader, &plan, def, first_line, payload)
+    if !parsing.in_blocks(def.count) {
+        return read_in_place(reader, &plan, def, first_line, payload);
+    }
+    match ply_blocks::read(reader, def.count, parsing, payload, &plan) {
+        Outcome::Complete => Ok(()),
+        Outcome::BadLine(i, message) => Err((first_line + i, message)),
+        Outcome::FileEnded(read) => Err(end_of_file(def, first_line, read)),
+        Outcome::Failed(read, e) => Err(read_error(def, first_line, read, e)),
+        // Nothing was read: this thread reads every line.
+        Outcome::NoThreads => read_in_place(reader, &plan, def, first_line, payload),
+    }
+}
+
+impl ParseLines for Plan<'_> {
+    fn parse(
+        &self,
+        bytes: &[u8],
+        lines: usize,
+        first: usize,
+        payload: &mut Payload,
+    ) -> Result<(), (usize, String)> {
+        self.reserve(payload, lines);
+        self.read_lines(bytes, lines, first, payload)
     }
 }
 
@@ -461,7 +480,7 @@ impl<'a> Plan<'a> {
     }
 
     /// Room in `payload` for `lines` more lines of this element.
-    pub(super) fn reserve(&self, payload: &mut Payload, lines: usize) {
+    fn reserve(&self, payload: &mut Payload, lines: usize) {
         match self.kind {
             Kind::Vertex => payload.reserve_vertices(lines),
             Kind::Face => payload.reserve_faces(lines),
@@ -473,7 +492,7 @@ impl<'a> Plan<'a> {
     /// a line break, but the last may end with `bytes`), the first of them
     /// element `first`, into `payload`. An error is the element it is in
     /// and what is wrong.
-    pub(super) fn read_lines(
+    fn read_lines(
         &self,
         bytes: &[u8],
         lines: usize,
@@ -495,7 +514,7 @@ impl<'a> Plan<'a> {
 
 /// The error of a file that ends after `read` of the `def.count` lines
 /// of element `def`.
-pub(super) fn end_of_file(def: &ElementDef, first_line: usize, read: usize) -> (usize, String) {
+fn end_of_file(def: &ElementDef, first_line: usize, read: usize) -> (usize, String) {
     (
         first_line + read,
         format!(
@@ -506,7 +525,7 @@ pub(super) fn end_of_file(def: &ElementDef, first_line: usize, read: usize) -> (
 }
 
 /// The error of a read that failed after `read` lines of element `def`.
-pub(super) fn read_error(
+fn read_error(
     def: &ElementDef,
     first_line: usize,
     read: usize,
@@ -661,7 +680,7 @@ fn value_ends(bytes: &[u8], at: usize) -> bool {
 ///
 /// A line is read where the reader's buffer holds it; only a line cut by
 /// the end of the buffer is copied out, whole, and read from the copy.
-pub(super) fn read_in_place<R: BufRead>(
+fn read_in_place<R: BufRead>(
     reader: &mut R,
     plan: &Plan<'_>,
     def: &ElementDef,

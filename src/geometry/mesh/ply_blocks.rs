@@ -8,8 +8,9 @@
 //! into blocks of whole lines (about [`BLOCK_BYTES`] each; counting line
 //! breaks is the only look it takes at them), numbers each block's first
 //! line, and hands the blocks to worker threads, which parse them
-//! into payloads of their own with the same [`Plan`] as the line-by-line
-//! reader. The payloads are appended in the blocks' order, so the result
+//! into payloads of their own as the line-by-line reader would (its
+//! plan, given as [`ParseLines`]). The payloads are appended in the
+//! blocks' order, so the result
 //! is the same as one thread's, whatever the threads' timing.
 //!
 //! The first error is the same too: a block stops at its first bad line,
@@ -20,9 +21,7 @@
 //! bad or endless file costs no more time or memory than the lines before
 //! its error.
 
-use super::ply_ascii::{end_of_file, read_error, read_in_place, Plan};
 use super::ply_payload::Payload;
-use ply_rs_bw::ply::ElementDef;
 use std::collections::BTreeMap;
 use std::io::BufRead;
 use std::sync::mpsc::{channel, sync_channel, Receiver};
@@ -56,6 +55,16 @@ impl Parsing {
             threads,
             block_bytes: BLOCK_BYTES,
             min_lines: MIN_LINES,
+        }
+    }
+
+    /// `threads` threads, blocks of about `block_bytes`, every element.
+    #[cfg(test)]
+    pub(super) fn blocks_of(threads: usize, block_bytes: usize) -> Parsing {
+        Parsing {
+            threads,
+            block_bytes,
+            min_lines: 0,
         }
     }
 
@@ -93,16 +102,44 @@ enum End {
     BadLine,
 }
 
-/// Reads the `def.count` lines of `def` into `payload` on the threads
-/// `parsing` gives; the result is the line-by-line reader's.
+/// How reading an element in blocks ended.
+pub(super) enum Outcome {
+    /// Every line was read into the payload.
+    Complete,
+    /// The first bad line: its element's number, and what is wrong.
+    BadLine(usize, String),
+    /// The file ended after this many lines.
+    FileEnded(usize),
+    /// Reading failed after this many lines.
+    Failed(usize, std::io::Error),
+    /// No thread could be started; nothing was read.
+    NoThreads,
+}
+
+/// Parses `lines` whole lines from the start of the bytes, the first of
+/// them element `first`, into the payload; an error is the element of
+/// the first bad line and what is wrong with it.
+pub(super) trait ParseLines: Sync {
+    fn parse(
+        &self,
+        bytes: &[u8],
+        lines: usize,
+        first: usize,
+        payload: &mut Payload,
+    ) -> Result<(), (usize, String)>;
+}
+
+/// Reads the next `count` lines of `reader` into `payload`, `lines`
+/// parsing each block on the threads `parsing` gives; the payload and
+/// the first error are those of parsing every line in order on one
+/// thread.
 pub(super) fn read<R: BufRead>(
     reader: &mut R,
-    plan: &Plan<'_>,
-    def: &ElementDef,
-    first_line: usize,
-    payload: &mut Payload,
+    count: usize,
     parsing: Parsing,
-) -> Result<(), (usize, String)> {
+    payload: &mut Payload,
+    lines: &impl ParseLines,
+) -> Outcome {
     let threads = parsing.threads;
     let (work, work_queue) = sync_channel::<Block>(threads);
     let work_queue = Mutex::new(work_queue);
@@ -113,14 +150,13 @@ pub(super) fn read<R: BufRead>(
             let (work_queue, parsed) = (&work_queue, parsed.clone());
             let spawned = std::thread::Builder::new()
                 .name("ply-parse".into())
-                .spawn_scoped(scope, move || parse_blocks(work_queue, plan, &parsed));
+                .spawn_scoped(scope, move || parse_blocks(work_queue, lines, &parsed));
             workers += usize::from(spawned.is_ok());
         }
         drop(parsed);
         if workers == 0 {
-            // No thread could be started: this one reads every line.
             drop(work);
-            return read_in_place(reader, plan, def, first_line, payload);
+            return Outcome::NoThreads;
         }
         let mut joined = Joined {
             template: payload.empty_like(),
@@ -132,7 +168,7 @@ pub(super) fn read<R: BufRead>(
         };
         let end = cut_blocks(
             reader,
-            def.count,
+            count,
             parsing.block_bytes,
             &mut joined,
             |block| work.send(block).is_ok(),
@@ -142,15 +178,11 @@ pub(super) fn read<R: BufRead>(
         for result in results {
             joined.take(result);
         }
-        let read = match end {
-            End::Complete | End::BadLine => None,
-            End::FileEnded(read) => Some(end_of_file(def, first_line, read)),
-            End::Failed(read, e) => Some(read_error(def, first_line, read, e)),
-        };
-        match (joined.error, read) {
-            (Some((i, m)), _) => Err((first_line + i, m)),
-            (None, Some(error)) => Err(error),
-            (None, None) => Ok(()),
+        match (joined.error, end) {
+            (Some((i, m)), _) => Outcome::BadLine(i, m),
+            (None, End::Complete | End::BadLine) => Outcome::Complete,
+            (None, End::FileEnded(read)) => Outcome::FileEnded(read),
+            (None, End::Failed(read, e)) => Outcome::Failed(read, e),
         }
     })
 }
@@ -158,7 +190,7 @@ pub(super) fn read<R: BufRead>(
 /// A worker: parses blocks until the queue closes.
 fn parse_blocks(
     work_queue: &Mutex<Receiver<Block>>,
-    plan: &Plan<'_>,
+    lines: &impl ParseLines,
     parsed: &std::sync::mpsc::Sender<Parsed>,
 ) {
     loop {
@@ -170,8 +202,7 @@ fn parse_blocks(
         else {
             return;
         };
-        plan.reserve(&mut block.payload, block.lines);
-        let result = plan.read_lines(&block.bytes, block.lines, block.first, &mut block.payload);
+        let result = lines.parse(&block.bytes, block.lines, block.first, &mut block.payload);
         if parsed.send((block, result)).is_err() {
             return;
         }
@@ -338,183 +369,4 @@ fn split_off_lines(bytes: Vec<u8>, line_end: usize, mut next: Vec<u8>) -> (Vec<u
     let mut bytes = bytes;
     bytes.truncate(line_end);
     (bytes, next)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::mesh::ply::read_parsing;
-    use proptest::prelude::*;
-    use std::path::Path;
-
-    /// The mesh, or the error's text, of `text` read as `parsing` says.
-    fn outcome(text: &[u8], parsing: Parsing) -> Result<crate::geometry::mesh::Mesh, String> {
-        read_parsing(text, Path::new("test.ply"), parsing).map_err(|e| e.to_string())
-    }
-
-    /// An ASCII PLY file: `vertices` vertices (with normals and byte
-    /// colours when `rich`), faces from `faces` (their indices taken
-    /// modulo one more than the vertices, so some are out of range), and
-    /// a last element `extra` of one integer per line.
-    fn ply_text(vertices: &[[f32; 3]], faces: &[Vec<u32>], rich: bool, extra: usize) -> String {
-        let mut text = format!(
-            "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n",
-            vertices.len()
-        );
-        if rich {
-            text += "property float nx\nproperty float ny\nproperty float nz\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n";
-        }
-        text += &format!(
-            "element face {}\nproperty list uchar int vertex_indices\nelement flags {extra}\nproperty int flag\nend_header\n",
-            faces.len()
-        );
-        for (i, v) in vertices.iter().enumerate() {
-            text += &format!("{} {} {}", v[0], v[1], v[2]);
-            if rich {
-                text += &format!(" 0 0 1 {} 7 255", i % 256);
-            }
-            text += "\n";
-        }
-        let modulus = vertices.len() as u32 + 1;
-        for face in faces {
-            text += &face.len().to_string();
-            for i in face {
-                text += &format!(" {}", i % modulus);
-            }
-            text += "\n";
-        }
-        for i in 0..extra {
-            text += &format!("{i}\n");
-        }
-        text
-    }
-
-    /// One change to a file's text: a line replaced, a line removed, the
-    /// text cut, line breaks made `\r\n`, the last line break dropped.
-    #[derive(Clone, Debug)]
-    enum Damage {
-        Replace(prop::sample::Index, &'static str),
-        Remove(prop::sample::Index),
-        Cut(prop::sample::Index),
-        CarriageReturns,
-        NoLastLineBreak,
-    }
-
-    fn damage() -> impl Strategy<Value = Damage> {
-        let line = prop::sample::select(vec![
-            "",
-            "x",
-            "1 2",
-            "1 2 3 4 5 6 7",
-            "3 0 1",
-            "-1 0 0",
-            "3 0 1 99999999999",
-            "nan 0 0",
-            "4 0 1 2 3",
-            "2 0 1",
-            "0.5 +1 -2e-3",
-            "3 0 1 2 x",
-            "1e40 0 0",
-        ]);
-        prop_oneof![
-            (any::<prop::sample::Index>(), line).prop_map(|(at, l)| Damage::Replace(at, l)),
-            any::<prop::sample::Index>().prop_map(Damage::Remove),
-            any::<prop::sample::Index>().prop_map(Damage::Cut),
-            Just(Damage::CarriageReturns),
-            Just(Damage::NoLastLineBreak),
-        ]
-    }
-
-    /// `text` with `damage` done to its payload (the header is kept).
-    fn damaged(text: &str, damage: &[Damage]) -> Vec<u8> {
-        let (header, payload) = text.split_at(text.find("end_header\n").unwrap() + 11);
-        let mut lines: Vec<String> = payload.lines().map(String::from).collect();
-        let (mut crlf, mut last_break, mut cut) = (false, true, None);
-        for d in damage {
-            match d {
-                Damage::Replace(at, l) if !lines.is_empty() => {
-                    let at = at.index(lines.len());
-                    lines[at] = l.to_string();
-                }
-                Damage::Remove(at) if !lines.is_empty() => {
-                    lines.remove(at.index(lines.len()));
-                }
-                Damage::Cut(at) => cut = Some(*at),
-                Damage::CarriageReturns => crlf = true,
-                Damage::NoLastLineBreak => last_break = false,
-                _ => {}
-            }
-        }
-        let mut payload = lines.join(if crlf { "\r\n" } else { "\n" });
-        if last_break && !lines.is_empty() {
-            payload += if crlf { "\r\n" } else { "\n" };
-        }
-        if let Some(at) = cut {
-            payload.truncate(at.index(payload.len() + 1));
-        }
-        [header.as_bytes(), payload.as_bytes()].concat()
-    }
-
-    proptest! {
-        #![proptest_config(ProptestConfig::with_cases(600))]
-
-        /// Blocks of any size, on two to four threads, read every file,
-        /// whole or damaged, into the same mesh or the same first error
-        /// as one thread reading line by line.
-        #[test]
-        fn blocks_read_as_one_thread_does(
-            vertices in prop::collection::vec(prop::array::uniform3(-1e3f32..1e3), 3..40),
-            faces in prop::collection::vec(prop::collection::vec(0u32..60, 3..6), 1..60),
-            rich in any::<bool>(),
-            extra in 0usize..20,
-            damage in prop::collection::vec(damage(), 0..3),
-            threads in 2usize..5,
-            block_bytes in prop_oneof![Just(1usize), 2usize..200],
-        ) {
-            let text = damaged(&ply_text(&vertices, &faces, rich, extra), &damage);
-            let alone = outcome(&text, Parsing::on(1));
-            let shared = outcome(&text, Parsing { threads, block_bytes, min_lines: 0 });
-            prop_assert_eq!(shared, alone);
-        }
-    }
-
-    /// A mesh of 80,000 faces, large enough for the default blocks: the
-    /// same mesh on one, two and three threads, and the same error for a
-    /// bad line near its end.
-    #[test]
-    fn a_large_mesh_reads_the_same_on_any_number_of_threads() {
-        let n = 200;
-        let vertices: Vec<[f32; 3]> = (0..n * n)
-            .map(|i| [(i % n) as f32 * 0.1, (i / n) as f32 * 0.01, 0.5])
-            .collect();
-        let faces: Vec<Vec<u32>> = (0..n - 1)
-            .flat_map(|y| (0..n - 1).map(move |x| (y * n + x) as u32))
-            .flat_map(|k| {
-                [
-                    vec![k, k + 1, k + n as u32],
-                    vec![k + 1, k + n as u32 + 1, k + n as u32],
-                ]
-            })
-            .collect();
-        let text = ply_text(&vertices, &faces, false, 0);
-        assert!(Parsing::on(2).in_blocks(faces.len()));
-        let alone = outcome(text.as_bytes(), Parsing::on(1));
-        assert_eq!(alone.as_ref().map(|m| m.triangles.len()), Ok(faces.len()));
-        for threads in [2, 3] {
-            assert!(outcome(text.as_bytes(), Parsing::on(threads)) == alone);
-        }
-        let near_end = text[..text.len() - 200].rfind('\n').unwrap() + 1;
-        let line_end = near_end + text[near_end..].find('\n').unwrap();
-        let bad = [&text[..near_end], "3 0 1 x", &text[line_end..]]
-            .concat()
-            .into_bytes();
-        let alone = outcome(&bad, Parsing::on(1));
-        assert!(
-            alone
-                .as_ref()
-                .is_err_and(|e| e.contains("`x` is not a valid int")),
-            "{alone:?}"
-        );
-        assert_eq!(outcome(&bad, Parsing::on(3)), alone);
-    }
 }
