@@ -50,14 +50,20 @@ impl Inflated {
                 loop {
                     let mut chunk = empty_rx.try_recv().unwrap_or_default();
                     chunk.resize(CHUNK, 0);
-                    let result = fill(&mut decoder, &mut chunk).map(|n| {
-                        chunk.truncate(n);
-                        chunk
-                    });
-                    let last = !matches!(&result, Ok(c) if !c.is_empty());
+                    let (n, error) = fill(&mut decoder, &mut chunk);
+                    chunk.truncate(n);
+                    // The bytes inflated before an error go first, so the
+                    // reader reaches the error where the stream broke.
+                    let last = n == 0 || error.is_some();
+                    let mut sent = n == 0 || full_tx.send(Ok(chunk)).is_ok();
+                    if let Some(e) = error {
+                        sent = sent && full_tx.send(Err(damaged(e))).is_ok();
+                    } else if n == 0 {
+                        sent = full_tx.send(Ok(Vec::new())).is_ok();
+                    }
                     // The reader has gone (it stopped at an error of its
                     // own): nothing more to do.
-                    if full_tx.send(result).is_err() || last {
+                    if !sent || last {
                         return;
                     }
                 }
@@ -73,18 +79,27 @@ impl Inflated {
 }
 
 /// Reads from `source` until `buffer` is full or the stream ends; the
-/// bytes read.
-fn fill(source: &mut impl Read, buffer: &mut [u8]) -> io::Result<usize> {
+/// bytes read, and the error that stopped it early, if one did.
+fn fill(source: &mut impl Read, buffer: &mut [u8]) -> (usize, Option<io::Error>) {
     let mut n = 0;
     while n < buffer.len() {
         match source.read(&mut buffer[n..]) {
             Ok(0) => break,
             Ok(k) => n += k,
             Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
-            Err(e) => return Err(e),
+            Err(e) => return (n, Some(e)),
         }
     }
-    Ok(n)
+    (n, None)
+}
+
+/// The decoder's error, saying what it means for the file: its
+/// compressed data ends early or is damaged.
+fn damaged(e: io::Error) -> io::Error {
+    io::Error::new(
+        e.kind(),
+        format!("the gzip data is cut short or damaged ({e})"),
+    )
 }
 
 impl BufRead for Inflated {
@@ -145,5 +160,40 @@ mod tests {
         let mut inflated = Inflated::spawn(io::Cursor::new(bad)).unwrap();
         let err = inflated.read_to_end(&mut Vec::new()).unwrap_err();
         assert!(err.to_string().contains("checksum"), "{err}");
+    }
+
+    /// A stream cut short gives every byte inflated before the cut, as
+    /// inflating in place does, then an error that says so.
+    #[test]
+    fn a_stream_cut_short_gives_what_came_before_the_cut() {
+        let text: Vec<u8> = (0..3 * CHUNK)
+            .map(|i| b"0123456789 \n"[i * 7 % 12])
+            .collect();
+        let packed = gzip(&text);
+        for cut in [packed.len() / 3, packed.len() - 20] {
+            let cut_short = &packed[..cut];
+            let mut in_place = flate2::bufread::MultiGzDecoder::new(cut_short);
+            let mut expected = vec![0; text.len()];
+            let (n, _) = fill(&mut in_place, &mut expected);
+            let mut inflated = Inflated::spawn(io::Cursor::new(cut_short.to_vec())).unwrap();
+            let mut out = Vec::new();
+            let err = loop {
+                match inflated.fill_buf() {
+                    Ok([]) => panic!("the stream ended without an error"),
+                    Ok(bytes) => {
+                        let k = bytes.len();
+                        out.extend_from_slice(bytes);
+                        inflated.consume(k);
+                    }
+                    Err(e) => break e,
+                }
+            };
+            assert!(
+                n > 0 && out == expected[..n],
+                "cut at {cut}: {} of {n} bytes",
+                out.len()
+            );
+            assert!(err.to_string().contains("cut short"), "{err}");
+        }
     }
 }
