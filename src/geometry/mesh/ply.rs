@@ -239,8 +239,8 @@ fn strip_line_prefix(message: &str) -> String {
 /// with its parser's debug value (" Error: ParseError { .. }"), which is
 /// cut; of a file whose first line is not `ply` it says only what it
 /// expected, or what it parsed that line as, so that message is
-/// rewritten to quote the line; a header that is not UTF-8 is said to be
-/// not text.
+/// rewritten to quote the line; an empty file is said to be empty, and a
+/// header that is not UTF-8 not text.
 fn header_message(message: &str) -> String {
     let message = message
         .split_once(" Error: ParseError")
@@ -250,6 +250,9 @@ fn header_message(message: &str) -> String {
             .rsplit_once("String: '")
             .map_or("", |(_, line)| line.trim_end_matches('\'').trim());
         return format!("not a PLY file: its first line is `{first}`, not `ply`");
+    }
+    if message.starts_with("Unexpected end of file while reading magic number") {
+        return "not a PLY file: it is empty (a PLY file starts with the line `ply`)".into();
     }
     if message.contains("did not contain valid UTF-8") {
         return "the header is not text: a PLY file's header is ASCII text, a binary file's too"
@@ -471,6 +474,13 @@ mod tests {
                 format!("not a PLY file: its first line is `{first}`, not `ply`")
             );
         }
+        assert_eq!(
+            line_of(""),
+            (
+                None,
+                "not a PLY file: it is empty (a PLY file starts with the line `ply`)".into()
+            )
+        );
         match read(&b"\xff\xfe\x00binary"[..], Path::new("t.ply")) {
             Err(Error::Parse { message, .. }) => {
                 assert!(message.starts_with("the header is not text"), "{message}")
