@@ -413,7 +413,7 @@ fn errors_name_the_real_cause() {
     expect(
         &out,
         2,
-        "huge.ply:11: vertex 1: coordinate 100000000000000000000 is beyond",
+        "huge.ply:11: `vertex` 1: coordinate 100000000000000000000 is beyond",
     );
     let out = rasterlab(&[
         "render",

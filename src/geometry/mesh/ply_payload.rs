@@ -256,14 +256,14 @@ impl Payload {
     ) -> Result<Mesh> {
         for (i, &p) in self.positions.iter().enumerate() {
             super::check_position(p)
-                .map_err(|m| located(vertex_line + i, format!("vertex {i}: {m}")))?;
+                .map_err(|m| located(vertex_line + i, format!("`vertex` {i}: {m}")))?;
         }
         let positions = self.positions;
         let out_of_range = |i: usize, bad: u32| {
             located(
                 face_line + i,
                 format!(
-                    "face {i}: vertex index {bad} is out of range for {} vertices",
+                    "`face` {i}: vertex index {bad} is out of range for {} vertices",
                     positions.len()
                 ),
             )
@@ -294,13 +294,13 @@ impl Payload {
                         None => triangle.as_slice(),
                     };
                     if let Some((_, message)) = self.face_error.as_ref().filter(|(k, _)| *k == i) {
-                        return Err(located(line, format!("face {i}: {message}")));
+                        return Err(located(line, format!("`face` {i}: {message}")));
                     }
                     if face.len() < 3 {
                         return Err(located(
                             line,
                             format!(
-                                "face {i} has {} vertices; a face needs at least 3",
+                                "`face` {i} has {} vertices; a face needs at least 3",
                                 face.len()
                             ),
                         ));
@@ -312,7 +312,7 @@ impl Payload {
                         triangles.push([a, b, c]);
                     } else {
                         triangulate_face(&positions, face, &mut triangles)
-                            .map_err(|m| located(line, format!("face {i}: {m}")))?;
+                            .map_err(|m| located(line, format!("`face` {i}: {m}")))?;
                     }
                 }
                 triangles
