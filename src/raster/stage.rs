@@ -331,11 +331,16 @@ impl SpanRows<'_> {
     /// pixel against the plane (evaluated exactly as [`DepthPlane::at`]
     /// does) and writes `color` (and the depth when `WRITE`) where `passes`.
     ///
-    /// The loop has no branch: every pixel's colour (and depth) is stored,
-    /// the old value where the test fails, so the compiler can run it on
-    /// vectors. The column offset is counted in `i32`, whose conversion to
-    /// `f32` gives the same value as [`DepthPlane::in_row`]'s `i64` one:
-    /// both are the same integer, which the guard band keeps below 2^17.
+    /// Eight pixels at a time: where all eight pass (inside a covered
+    /// area, the common case), their colours and depths are stored whole.
+    /// Elsewhere each pixel's colour (and depth) is stored without a
+    /// branch, the old value where the test fails ([`select_pixel`]), so
+    /// the compiler can run it on vectors; but a store that keeps some old
+    /// values becomes a masked store, which some CPUs run many times
+    /// slower than a plain one. The column offset is counted in `i32`,
+    /// whose conversion to `f32` gives the same value as
+    /// [`DepthPlane::in_row`]'s `i64` one: both are the same integer,
+    /// which the guard band keeps below 2^17.
     #[inline(always)]
     fn fill_writing<const WRITE: bool>(
         mut self,
@@ -348,10 +353,8 @@ impl SpanRows<'_> {
         self.count_coverage();
         let first = (i64::from(x0) - plane.origin_x) as i32;
         let color = u32::from_ne_bytes(color);
-        // Eight pixels at a time: where all eight pass (inside a covered
-        // area, the common case), the colour is stored whole; a store that
-        // keeps some old colours becomes a masked store, which some CPUs
-        // run many times slower than a plain one.
+        // All ones where the test passes, as a vector compare gives.
+        let mask = |z: f32, d: f32| u32::from(passes(z, d)).wrapping_neg();
         let mut depths = self.depth.chunks_exact_mut(LANES);
         let mut colors = self.color.chunks_exact_mut(LANES);
         let mut offset = first;
@@ -360,7 +363,7 @@ impl SpanRows<'_> {
             let mut passed = [0u32; LANES];
             for (k, ((z, pass), d)) in z.iter_mut().zip(&mut passed).zip(&*d).enumerate() {
                 *z = plane.in_row_at_offset(row, (offset + k as i32) as f32);
-                *pass = u32::from(passes(*z, *d)).wrapping_neg();
+                *pass = mask(*z, *d);
             }
             if passed.iter().all(|&p| p != 0) {
                 c.fill(color.to_ne_bytes());
@@ -369,11 +372,7 @@ impl SpanRows<'_> {
                 }
             } else {
                 for ((d, c), (&z, &pass)) in d.iter_mut().zip(c).zip(z.iter().zip(&passed)) {
-                    let keep = u32::from_ne_bytes(*c) & !pass;
-                    *c = (color & pass | keep).to_ne_bytes();
-                    if WRITE {
-                        *d = f32::from_bits(z.to_bits() & pass | d.to_bits() & !pass);
-                    }
+                    select_pixel::<WRITE>(d, c, z, pass, color);
                 }
             }
             offset += LANES as i32;
@@ -384,14 +383,21 @@ impl SpanRows<'_> {
             .zip(colors.into_remainder());
         for (i, (d, c)) in rest.enumerate() {
             let z = plane.in_row_at_offset(row, (offset + i as i32) as f32);
-            // All ones where the test passes, as a vector compare gives.
-            let pass = u32::from(passes(z, *d)).wrapping_neg();
-            let keep = u32::from_ne_bytes(*c) & !pass;
-            *c = (color & pass | keep).to_ne_bytes();
-            if WRITE {
-                *d = f32::from_bits(z.to_bits() & pass | d.to_bits() & !pass);
-            }
+            let pass = mask(z, *d);
+            select_pixel::<WRITE>(d, c, z, pass, color);
         }
+    }
+}
+
+/// Stores `color` (and the depth `z` when `WRITE`) into one pixel where
+/// `pass` is all ones, and its old values where it is zero, without a
+/// branch.
+#[inline(always)]
+fn select_pixel<const WRITE: bool>(d: &mut f32, c: &mut [u8; 4], z: f32, pass: u32, color: u32) {
+    let keep = u32::from_ne_bytes(*c) & !pass;
+    *c = (color & pass | keep).to_ne_bytes();
+    if WRITE {
+        *d = f32::from_bits(z.to_bits() & pass | d.to_bits() & !pass);
     }
 }
 
