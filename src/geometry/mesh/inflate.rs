@@ -53,17 +53,18 @@ impl Inflated {
                     let (n, error) = fill(&mut decoder, &mut chunk);
                     chunk.truncate(n);
                     // The bytes inflated before an error go first, so the
-                    // reader reaches the error where the stream broke.
+                    // reader reaches the error where the stream broke; an
+                    // empty chunk is the end of the stream. A failed send
+                    // means the reader has gone (it stopped at an error
+                    // of its own): nothing more to do.
                     let last = n == 0 || error.is_some();
-                    let mut sent = n == 0 || full_tx.send(Ok(chunk)).is_ok();
-                    if let Some(e) = error {
-                        sent = sent && full_tx.send(Err(damaged(e))).is_ok();
-                    } else if n == 0 {
-                        sent = full_tx.send(Ok(Vec::new())).is_ok();
+                    if (n > 0 || error.is_none()) && full_tx.send(Ok(chunk)).is_err() {
+                        return;
                     }
-                    // The reader has gone (it stopped at an error of its
-                    // own): nothing more to do.
-                    if !sent || last {
+                    if let Some(e) = error {
+                        let _ = full_tx.send(Err(damaged(e)));
+                    }
+                    if last {
                         return;
                     }
                 }
