@@ -411,7 +411,13 @@ pub(super) fn read_element<R: BufRead>(
     }
 }
 
+/// The plan parses a block of whole lines for [`ply_blocks`], and the
+/// line [`read_in_place`] copies out of a cut buffer.
 impl ParseLines for Plan<'_> {
+    /// Reads `lines` whole lines from the start of `bytes` (each ends with
+    /// a line break, but the last may end with `bytes`), the first of them
+    /// element `first`, into `payload`. An error is the element it is in
+    /// and what is wrong.
     fn parse(
         &self,
         bytes: &[u8],
@@ -419,8 +425,16 @@ impl ParseLines for Plan<'_> {
         first: usize,
         payload: &mut Payload,
     ) -> Result<(), (usize, String)> {
-        self.reserve(payload, lines);
-        self.read_lines(bytes, lines, first, payload)
+        let mut vertex = [0f64; VertexColumn::COUNT];
+        let mut at = 0;
+        for i in first..first + lines {
+            match self.read_line(&bytes[at..], true, i, &mut vertex, payload) {
+                Ok(n) => at += n,
+                Err(Stop::More) => unreachable!("a complete line is never cut"),
+                Err(Stop::Wrong(m)) => return Err((i, m)),
+            }
+        }
+        Ok(())
     }
 }
 
@@ -486,29 +500,6 @@ impl<'a> Plan<'a> {
             Kind::Face => payload.reserve_faces(lines),
             Kind::Other => {}
         }
-    }
-
-    /// Reads `lines` whole lines from the start of `bytes` (each ends with
-    /// a line break, but the last may end with `bytes`), the first of them
-    /// element `first`, into `payload`. An error is the element it is in
-    /// and what is wrong.
-    fn read_lines(
-        &self,
-        bytes: &[u8],
-        lines: usize,
-        first: usize,
-        payload: &mut Payload,
-    ) -> Result<(), (usize, String)> {
-        let mut vertex = [0f64; VertexColumn::COUNT];
-        let mut at = 0;
-        for i in first..first + lines {
-            match self.read_line(&bytes[at..], true, i, &mut vertex, payload) {
-                Ok(n) => at += n,
-                Err(Stop::More) => unreachable!("a complete line is never cut"),
-                Err(Stop::Wrong(m)) => return Err((i, m)),
-            }
-        }
-        Ok(())
     }
 }
 
@@ -724,7 +715,7 @@ fn read_in_place<R: BufRead>(
             if copy.is_empty() {
                 return Err(end_of_file(def, first_line, i));
             }
-            plan.read_lines(&copy, 1, i, payload)
+            plan.parse(&copy, 1, i, payload)
                 .map_err(|(i, m)| (first_line + i, m))?;
             i += 1;
         }
