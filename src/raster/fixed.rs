@@ -101,6 +101,12 @@ impl Fixed {
         Ok(Fixed(raw as i32))
     }
 
+    /// A coordinate of `raw` units that a snap computed elsewhere (eight
+    /// at a time) found within the guard band, as [`Fixed::snap_f64`] does.
+    pub(crate) const fn from_snapped(raw: i32) -> Fixed {
+        Fixed(raw)
+    }
+
     /// The sample point (centre) of pixel column or row `i`.
     pub const fn pixel_centre(i: i32) -> Fixed {
         Fixed(i * SUBPIXEL_SCALE as i32 + HALF_PIXEL as i32)

@@ -111,6 +111,12 @@ impl ClipVolume {
         }
     }
 
+    /// The guard-band factors `g`: the guard planes keep `|x| <= g[0] w`
+    /// and `|y| <= g[1] w`.
+    pub(crate) fn guard(&self) -> [f32; 2] {
+        [self.planes[3].w, self.planes[5].w]
+    }
+
     /// Signed distance-like value of `p` to plane `plane`, in `f64` so no
     /// finite `f32` input overflows.
     #[inline]

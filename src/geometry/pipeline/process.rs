@@ -4,17 +4,19 @@
 //! the result, ids included, does not depend on the number of threads.
 
 use super::bands::{chunk_len, Bands};
-use super::clip::{ClipVertex, ClipVolume};
+use super::clip::{ClipVertex, ClipVolume, W_MIN};
 use super::geometry::{Geometry, GeometryInParts, Scratch};
 use super::setup::{
     AssemblyInput, GeometryStats, Part, ScreenPoint, MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNKS_PER_THREAD,
 };
-use super::vertex::VertexShader;
+use super::vertex::{MeshVertex, Transform, VertexShader};
 use super::viewport::to_screen_vertex;
 use super::{PipelineOptions, Viewport};
 use crate::error::{Error, Result};
-use crate::raster::primitive::{ShadedLine, ShadedVertex};
-use crate::raster::vector;
+use crate::raster::fixed::{Fixed, FixedPoint};
+use crate::raster::primitive::{ShadedLine, ShadedVertex, Varyings};
+use crate::raster::vector::{self, transform};
+use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 /// Out-code bit for a vertex the pipeline refuses (the seven clip planes
@@ -91,7 +93,12 @@ impl<V, S: VertexShader<V>> vector::Kernel for ShadeVertices<'_, V, S> {
     type Output = u8;
 
     #[inline(always)]
-    fn run(self) -> u8 {
+    fn run(mut self) -> u8 {
+        if let Some((transform, mesh)) = self.shader.as_transform(self.input) {
+            if let Some(outcodes) = shade_in_lanes(transform, mesh, &mut self) {
+                return outcodes;
+            }
+        }
         let mut outcodes = 0;
         let vertices = self.screen.iter_mut().zip(self.shaded).zip(self.input);
         for ((s, v), vertex) in vertices {
@@ -101,6 +108,79 @@ impl<V, S: VertexShader<V>> vector::Kernel for ShadeVertices<'_, V, S> {
         }
         outcodes
     }
+}
+
+/// [`ShadeVertices`] for the model-view-projection [`Transform`] of
+/// `mesh` (the task's vertices): eight at a time by
+/// [`transform::shade`], each lane it leaves (outside a plane, refused)
+/// and the last few by the one-vertex path. The out-codes or-ed, or
+/// `None` (nothing written) when the CPU has no AVX2.
+#[inline(always)]
+fn shade_in_lanes<V, S: VertexShader<V>>(
+    shader: &Transform,
+    mesh: &[MeshVertex],
+    task: &mut ShadeVertices<'_, V, S>,
+) -> Option<u8> {
+    let (clip, viewport) = (task.clip, task.viewport);
+    let uniforms = transform::Uniforms {
+        mvp: shader.mvp.to_cols_array_2d(),
+        normal_matrix: shader.normal_matrix.to_cols_array_2d(),
+        light: shader
+            .vertex_light
+            .map(|l| (l.direction.to_array(), l.ambient, l.diffuse)),
+        guard: clip.guard(),
+        w_min: W_MIN,
+        size: [viewport.width.into(), viewport.height.into()],
+    };
+    let mut outcodes = 0;
+    let mut lanes = transform::Lanes::default();
+    let groups = task
+        .screen
+        .chunks_mut(8)
+        .zip(task.shaded.chunks_mut(8))
+        .zip(mesh.chunks(8));
+    for ((screen, shaded), mesh) in groups {
+        let mut input = transform::Vertices::default();
+        for (i, v) in mesh.iter().enumerate() {
+            for c in 0..3 {
+                input.position[c][i] = v.position[c];
+                input.normal[c][i] = v.normal[c];
+                input.rgb[c][i] = v.color[c];
+            }
+        }
+        if !transform::shade(&uniforms, &input, &mut lanes) {
+            return None;
+        }
+        for (i, ((s, d), v)) in screen.iter_mut().zip(shaded).zip(mesh).enumerate() {
+            if lanes.on_screen & (1 << i) == 0 {
+                let (point, vertex) = screen_vertex(shader, clip, viewport, v);
+                outcodes |= point.outcode;
+                (*s, *d) = (point, vertex);
+                continue;
+            }
+            let point = FixedPoint {
+                x: Fixed::from_snapped(lanes.x[i]),
+                y: Fixed::from_snapped(lanes.y[i]),
+            };
+            let depth = lanes.depth[i];
+            *s = ScreenPoint {
+                point,
+                depth,
+                outcode: 0,
+            };
+            let [r, g, b] = lanes.rgb.map(|c| c[i]);
+            *d = ShadedVertex {
+                depth,
+                inv_w: lanes.inv_w[i],
+                varyings: Varyings {
+                    color: Vec4::new(r, g, b, v.color.w),
+                    uv: v.uv,
+                    normal: Vec3::from_array(lanes.normal.map(|c| c[i])),
+                },
+            };
+        }
+    }
+    Some(outcodes)
 }
 
 /// Runs the vertex shader on every vertex, assembles `triangles` (indices
@@ -336,4 +416,222 @@ pub fn process_lines<V, S: VertexShader<V>>(
         }
     }
     Ok(lines)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::shader::DirectionalLight;
+    use crate::raster::vector::Width;
+    use glam::{Mat3, Mat4, Vec2};
+    use proptest::prelude::*;
+
+    /// Every bit of what the vertex stage wrote for one vertex: the screen
+    /// record, and the stage vertex. A NaN is any NaN: Rust, as IEEE 754,
+    /// leaves the sign and payload of a computed NaN unspecified (x86 keeps
+    /// the first operand's, so swapping the operands of a product changes
+    /// them).
+    fn bits(s: &ScreenPoint, v: &ShadedVertex) -> Vec<u32> {
+        let float = |x: f32| {
+            if x.is_nan() {
+                f32::NAN.to_bits()
+            } else {
+                x.to_bits()
+            }
+        };
+        let c = v.varyings;
+        let mut out = vec![
+            s.point.x.raw() as u32,
+            s.point.y.raw() as u32,
+            float(s.depth),
+            s.outcode.into(),
+            float(v.depth),
+            float(v.inv_w),
+        ];
+        out.extend(c.color.to_array().map(float));
+        out.extend(c.uv.to_array().map(float));
+        out.extend(c.normal.to_array().map(float));
+        out
+    }
+
+    /// Shades `vertices` with `shader` on a `width` x `height` viewport,
+    /// with the loop's `copy`: every vertex's bits, and the out-codes or-ed.
+    fn shade_with(
+        copy: Width,
+        shader: &Transform,
+        vertices: &[MeshVertex],
+        (width, height): (u32, u32),
+    ) -> (Vec<Vec<u32>>, u8) {
+        let viewport = Viewport { width, height };
+        let clip = ClipVolume::new(width, height);
+        let n = vertices.len();
+        let mut screen = vec![ScreenPoint::default(); n];
+        let mut shaded = vec![ShadedVertex::flat(0.0, Vec4::ZERO); n];
+        let task = ShadeVertices {
+            shader,
+            clip: &clip,
+            viewport: &viewport,
+            input: vertices,
+            screen: &mut screen,
+            shaded: &mut shaded,
+        };
+        let outcodes = vector::limited_to(copy, || vector::run(task));
+        let bits = screen.iter().zip(&shaded).map(|(s, v)| bits(s, v));
+        (bits.collect(), outcodes)
+    }
+
+    /// A float for a matrix entry or a coordinate: mostly ordinary, with
+    /// the values that end up on a plane, beyond the guard band, or not
+    /// finite.
+    fn float() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            6 => -2.0f32..2.0,
+            1 => prop::sample::select(vec![
+                0.0, -0.0, 1.0, -1.0, 0.5, W_MIN, -W_MIN, 1e-30, 1e30, -1e30,
+                f32::MIN_POSITIVE, 1e-40, f32::MAX, f32::INFINITY, f32::NAN,
+            ]),
+            1 => any::<f32>(),
+        ]
+    }
+
+    fn vector3() -> impl Strategy<Value = Vec3> {
+        [float(), float(), float()].prop_map(Vec3::from_array)
+    }
+
+    fn mesh_vertex() -> impl Strategy<Value = MeshVertex> {
+        (vector3(), vector3(), vector3()).prop_map(|(position, normal, rgb)| MeshVertex {
+            position,
+            normal,
+            uv: Vec2::new(position.x, rgb.y),
+            color: rgb.extend(0.75),
+        })
+    }
+
+    fn transform() -> impl Strategy<Value = Transform> {
+        let matrix = prop::array::uniform16(float());
+        let light = prop::option::of((vector3(), float(), float()));
+        (matrix, prop::array::uniform9(float()), light, any::<bool>()).prop_map(
+            |(m, n, light, camera)| {
+                // Half the cases a real camera (mostly on screen), half
+                // any matrix.
+                let mut t = if camera {
+                    let view = Mat4::look_at_rh(Vec3::new(0.3, 0.2, 3.0), Vec3::ZERO, Vec3::Y);
+                    let projection = Mat4::perspective_rh_gl(0.8, 1.5, 0.1, 10.0);
+                    Transform::new(Mat4::IDENTITY, view, projection)
+                } else {
+                    let mut t = Transform::identity();
+                    t.mvp = Mat4::from_cols_array(&m);
+                    t.normal_matrix = Mat3::from_cols_array(&n);
+                    t
+                };
+                if let Some((d, a, b)) = light {
+                    t = t.with_vertex_light(DirectionalLight::new(d, a, b));
+                }
+                t
+            },
+        )
+    }
+
+    /// A camera's vertices: in and around the view, so that most are on
+    /// screen and some cross a plane.
+    fn seen_vertex() -> impl Strategy<Value = MeshVertex> {
+        ([-6.0f32..6.0, -6.0f32..6.0, -12.0f32..4.0], vector3()).prop_map(|(p, normal)| {
+            MeshVertex {
+                position: Vec3::from_array(p),
+                normal,
+                uv: Vec2::ZERO,
+                color: Vec4::new(0.8, 0.6, 0.4, 1.0),
+            }
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+
+        /// The vertex stage eight at a time (AVX2 lanes) writes the bits of
+        /// the one-vertex path, for every vertex: on screen, outside a
+        /// plane, not finite, or beyond the guard band; lit or not; and a
+        /// count that leaves a group of fewer than eight.
+        #[test]
+        fn vertices_in_lanes_get_the_bits_of_one_at_a_time(
+            shader in transform(),
+            vertices in prop::collection::vec(prop_oneof![mesh_vertex(), seen_vertex()], 1..40),
+            width in 1u32..5000,
+            height in 1u32..5000,
+        ) {
+            let size = (width, height);
+            let one_at_a_time = shade_with(Width::Baseline, &shader, &vertices, size);
+            for copy in vector::copies() {
+                prop_assert_eq!(&shade_with(copy, &shader, &vertices, size), &one_at_a_time);
+            }
+        }
+    }
+
+    /// The largest `f32` at most `v`.
+    fn at_most(v: f64) -> f32 {
+        let near = v as f32;
+        if f64::from(near) > v {
+            near.next_down()
+        } else {
+            near
+        }
+    }
+
+    /// The planes' bounds to the last bit: `z = -w`, `z = w`, `w = W_MIN`
+    /// and the largest `|x| <= g w`, `|y| <= g w` are inside; one step of
+    /// an `f32` further is outside. The lanes agree with the one-vertex
+    /// path on both sides (whose out-codes are checked too).
+    #[test]
+    fn lanes_agree_on_each_plane_and_one_step_past_it() {
+        let size = (1920, 1080);
+        let [gx, gy] = ClipVolume::new(size.0, size.1).guard();
+        // clip = (x, y, z, w) from the position (x, y, z) and w = W_MIN.
+        let mut shader = Transform::identity();
+        let at_w_min = Mat4::from_cols(Vec4::X, Vec4::Y, Vec4::Z, Vec4::W * W_MIN);
+        let mut points = Vec::new();
+        for w in [1.0, W_MIN] {
+            let up = |v: f32| v.next_up();
+            let down = |v: f32| v.next_down();
+            let (x, y) = (
+                at_most(f64::from(gx) * f64::from(w)),
+                at_most(f64::from(gy) * f64::from(w)),
+            );
+            for (p, inside) in [
+                (Vec3::new(0.0, 0.0, -w), true),
+                (Vec3::new(0.0, 0.0, down(-w)), false),
+                (Vec3::new(0.0, 0.0, w), true),
+                (Vec3::new(0.0, 0.0, up(w)), false),
+                (Vec3::new(x, 0.0, 0.0), true),
+                (Vec3::new(up(x), 0.0, 0.0), false),
+                (Vec3::new(-x, 0.0, 0.0), true),
+                (Vec3::new(down(-x), 0.0, 0.0), false),
+                (Vec3::new(0.0, y, 0.0), true),
+                (Vec3::new(0.0, up(y), 0.0), false),
+                (Vec3::new(0.0, -y, 0.0), true),
+                (Vec3::new(0.0, down(-y), 0.0), false),
+            ] {
+                points.push((w, p, inside));
+            }
+        }
+        for (w, p, inside) in points {
+            shader.mvp = if w == 1.0 { Mat4::IDENTITY } else { at_w_min };
+            let vertex = MeshVertex {
+                position: p,
+                ..MeshVertex::default()
+            };
+            let (bits, outcodes) = shade_with(Width::Baseline, &shader, &[vertex; 9], size);
+            assert_eq!(outcodes == 0, inside, "{p} at w = {w}");
+            for copy in vector::copies() {
+                assert_eq!(
+                    shade_with(copy, &shader, &[vertex; 9], size),
+                    (bits.clone(), outcodes),
+                    "{p} at w = {w}"
+                );
+            }
+        }
+        // And w just under W_MIN is outside.
+        shader.mvp = Mat4::from_cols(Vec4::X, Vec4::Y, Vec4::Z, Vec4::W * W_MIN.next_down());
+        let (_, outcodes) = shade_with(Width::Baseline, &shader, &[MeshVertex::default()], size);
+        assert_ne!(outcodes, 0);
+    }
 }

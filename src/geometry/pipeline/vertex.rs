@@ -19,6 +19,15 @@ use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 pub trait VertexShader<V>: Sync {
     /// The vertex's clip-space position and varyings.
     fn shade(&self, vertex: &V) -> ClipVertex;
+
+    /// When this shader is the model-view-projection [`Transform`] of
+    /// [`MeshVertex`]es: itself and `vertices` as such. The pipeline then
+    /// shades them eight at a time in vector registers, with the bits
+    /// [`shade`](Self::shade) gives. Other shaders keep this default, `None`.
+    fn as_transform<'v>(&self, vertices: &'v [V]) -> Option<(&Transform, &'v [MeshVertex])> {
+        let _ = vertices;
+        None
+    }
 }
 
 impl<V, F> VertexShader<V> for F
@@ -110,6 +119,13 @@ impl Transform {
 }
 
 impl VertexShader<MeshVertex> for Transform {
+    fn as_transform<'v>(
+        &self,
+        vertices: &'v [MeshVertex],
+    ) -> Option<(&Transform, &'v [MeshVertex])> {
+        Some((self, vertices))
+    }
+
     #[inline]
     fn shade(&self, v: &MeshVertex) -> ClipVertex {
         let normal = self.normal_matrix * v.normal;
