@@ -17,19 +17,22 @@
 //! faster on the fills; it is left out.
 //!
 //! It also has [`prefetch`], the hint that brings a cache line in ahead of
-//! its use, and one loop written for AVX2 by hand, lane by lane
-//! ([`transform`]: the vertex shader, divide and snap of eight vertices at
-//! once), which the compiler does not find on its own.
+//! its use, and two loops written for AVX2 by hand, lane by lane, which
+//! the compiler does not find on its own: [`transform`], the vertex
+//! shader, divide and snap of eight vertices at once, and [`triangles`],
+//! the area, culling and bounds tests of eight triangles at once.
 //!
 //! This module is the crate's only unsafe code: calling a function compiled
 //! for AVX2 is unsafe because running it on a CPU without AVX2 would
 //! fault. [`run`] calls one only after the CPU said it has the
-//! features, as [`transform::shade`] calls its AVX2 code. The prefetch intrinsic is unsafe as every `std::arch` call
+//! features, as [`transform::shade`] and [`triangles::classify`] call
+//! their AVX2 code. The prefetch intrinsic is unsafe as every `std::arch` call
 //! taking a pointer is, though it reads nothing; [`prefetch`] takes a
 //! reference.
 #![allow(unsafe_code)]
 
 pub(crate) mod transform;
+pub(crate) mod triangles;
 
 /// The vector widths a loop is compiled for, narrowest first.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]

@@ -421,6 +421,8 @@ pub fn process_lines<V, S: VertexShader<V>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::pipeline::{CullMode, FrontFace};
+    use crate::raster::edge::FillRule;
     use crate::raster::shader::DirectionalLight;
     use crate::raster::vector::Width;
     use glam::{Mat3, Mat4, Vec2};
@@ -535,13 +537,12 @@ mod tests {
     /// A camera's vertices: in and around the view, so that most are on
     /// screen and some cross a plane.
     fn seen_vertex() -> impl Strategy<Value = MeshVertex> {
-        ([-6.0f32..6.0, -6.0f32..6.0, -12.0f32..4.0], vector3()).prop_map(|(p, normal)| {
-            MeshVertex {
-                position: Vec3::from_array(p),
-                normal,
-                uv: Vec2::ZERO,
-                color: Vec4::new(0.8, 0.6, 0.4, 1.0),
-            }
+        let finite = [-2.0f32..2.0, -2.0f32..2.0, -2.0f32..2.0];
+        ([-6.0f32..6.0, -6.0f32..6.0, -12.0f32..4.0], finite).prop_map(|(p, normal)| MeshVertex {
+            position: Vec3::from_array(p),
+            normal: Vec3::from_array(normal),
+            uv: Vec2::ZERO,
+            color: Vec4::new(0.8, 0.6, 0.4, 1.0),
         })
     }
 
@@ -574,6 +575,56 @@ mod tests {
             near.next_down()
         } else {
             near
+        }
+    }
+
+    /// Runs the whole geometry stage with the loops' `copy`.
+    fn geometry_with(
+        copy: Width,
+        vertices: &[MeshVertex],
+        triangles: &[[u32; 3]],
+        options: &PipelineOptions,
+    ) -> Geometry {
+        let view = Mat4::look_at_rh(Vec3::new(0.3, 0.2, 3.0), Vec3::ZERO, Vec3::Y);
+        let projection = Mat4::perspective_rh_gl(0.8, 1.5, 0.1, 10.0);
+        let shader = Transform::new(Mat4::IDENTITY, view, projection);
+        let viewport = Viewport {
+            width: 64,
+            height: 48,
+        };
+        vector::limited_to(copy, || {
+            process_triangles(vertices, triangles, &shader, viewport, options).unwrap()
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// Assembly with its first tests in lanes (eight triangles at a
+        /// time) keeps, sets up and counts what the one-at-a-time loop
+        /// does, under every culling rule, front face and fill rule, with
+        /// triangles on and off screen, clipped, and a last group of
+        /// fewer than eight.
+        #[test]
+        fn triangles_in_lanes_assemble_as_one_at_a_time(
+            vertices in prop::collection::vec(seen_vertex(), 24),
+            triangles in prop::collection::vec(prop::array::uniform3(0u32..24), 1..60),
+        ) {
+            for cull in [CullMode::None, CullMode::Back, CullMode::Front] {
+                for front_face in [FrontFace::CounterClockwise, FrontFace::Clockwise] {
+                    for rule in [FillRule::TopLeft, FillRule::BottomRight] {
+                        let options = PipelineOptions { rule, cull, front_face };
+                        let expected = geometry_with(Width::Baseline, &vertices, &triangles, &options);
+                        for copy in vector::copies() {
+                            let lanes = geometry_with(copy, &vertices, &triangles, &options);
+                            prop_assert_eq!(&lanes.setups, &expected.setups);
+                            prop_assert_eq!(&lanes.shaded, &expected.shaded);
+                            prop_assert_eq!(&lanes.source, &expected.source);
+                            prop_assert_eq!(lanes.stats, expected.stats);
+                        }
+                    }
+                }
+            }
         }
     }
 

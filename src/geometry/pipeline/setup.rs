@@ -13,7 +13,10 @@ use crate::raster::compact::SmallTriangle;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fixed::FixedPoint;
 use crate::raster::primitive::{ShadedTriangle, ShadedVertex};
-use crate::raster::vector;
+use crate::raster::vector::{
+    self,
+    triangles::{self, Corners, Rules},
+};
 
 /// What happened to the primitives of a draw.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -215,6 +218,38 @@ impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
         vector::run(assemble);
     }
 
+    /// Assembles triangle `t`, primitive number `source`, whose corners
+    /// are at `screen`, into `part`: sets it up when it lies inside the
+    /// clip volume, rejects it when outside one plane, clips it otherwise.
+    #[inline(always)]
+    fn assemble_one(
+        &self,
+        t: &[u32; 3],
+        screen: [ScreenPoint; 3],
+        source: usize,
+        part: &mut Part,
+        polygon: &mut Vec<ClipVertex>,
+    ) {
+        let source = source as u32;
+        let codes = screen.map(|s| s.outcode);
+        if codes == [0; 3] {
+            let pixels = PixelRect::of_target(self.viewport.width, self.viewport.height);
+            part.push(
+                *t,
+                screen.map(|s| s.point),
+                screen.map(|s| s.depth),
+                source,
+                None,
+                self.options,
+                pixels,
+            );
+        } else if codes[0] & codes[1] & codes[2] != 0 {
+            part.stats.rejected += 1;
+        } else {
+            self.clip_and_push(*t, codes, source, part, polygon);
+        }
+    }
+
     /// Clips triangle `t` (primitive number `source`), which straddles a
     /// clip plane, and sets up the fan of what is left into `part`.
     #[inline(never)]
@@ -287,7 +322,11 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
 
     /// Triangles wholly inside the clip volume (nearly all) are set up
     /// here; those outside every point of one plane are rejected; the
-    /// rest are clipped out of line.
+    /// rest are clipped out of line. Eight at a time, the first tests of
+    /// the set-up (area, culling, bounds) run on vectors
+    /// ([`triangles::classify`]) and drop most triangles of a mesh; those
+    /// they keep, and all when the CPU has no AVX2, are tested and set up
+    /// one at a time.
     #[inline(always)]
     fn run(self) {
         let Assemble {
@@ -297,29 +336,55 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
             part,
         } = self;
         let options = input.options;
-        let pixels = PixelRect::of_target(input.viewport.width, input.viewport.height);
+        let (width, height) = (input.viewport.width, input.viewport.height);
+        let counter_clockwise = options.front_face == FrontFace::CounterClockwise;
+        let rules = Rules {
+            culled_positive: match options.cull {
+                CullMode::None => None,
+                CullMode::Back => Some(!counter_clockwise),
+                CullMode::Front => Some(counter_clockwise),
+            },
+            last: [width as i32 - 1, height as i32 - 1],
+        };
         let mut polygon = Vec::new();
-        for (index, t) in triangles.iter().enumerate() {
-            part.stats.primitives += 1;
-            let source = (first + index) as u32;
-            let screen = t.map(|i| input.screen[i as usize]);
-            let codes = screen.map(|s| s.outcode);
-            if codes == [0; 3] {
-                let depths = screen.map(|s| s.depth);
-                part.push(
-                    *t,
-                    screen.map(|s| s.point),
-                    depths,
-                    source,
-                    None,
-                    options,
-                    pixels,
-                );
-            } else if codes[0] & codes[1] & codes[2] != 0 {
-                part.stats.rejected += 1;
-            } else {
-                input.clip_and_push(*t, codes, source, part, &mut polygon);
+        let corners_of = |t: &[u32; 3]| t.map(|i| input.screen[i as usize]);
+        let mut groups = triangles.chunks_exact(8);
+        let mut source = first;
+        for group in &mut groups {
+            let mut corners = Corners::default();
+            let mut inside = 0u8;
+            for (i, t) in group.iter().enumerate() {
+                let mut codes = 0;
+                for (k, &v) in t.iter().enumerate() {
+                    let s = &input.screen[v as usize];
+                    corners.x[k][i] = s.point.x.raw() as i32;
+                    corners.y[k][i] = s.point.y.raw() as i32;
+                    codes |= s.outcode;
+                }
+                inside |= u8::from(codes == 0) << i;
             }
+            // What `push` would have counted, for the triangles inside
+            // the clip volume that the vector tests drop.
+            let dropped = triangles::classify(&rules, &corners).unwrap_or_default();
+            let stats = &mut part.stats;
+            stats.primitives += 8;
+            stats.degenerate += u64::from((dropped.degenerate & inside).count_ones());
+            stats.culled += u64::from((dropped.culled & inside).count_ones());
+            stats.empty_bounds += u64::from((dropped.empty_bounds & inside).count_ones());
+            let gone = (dropped.degenerate | dropped.culled | dropped.empty_bounds) & inside;
+            let mut left = !gone;
+            while left != 0 {
+                let i = left.trailing_zeros() as usize;
+                left &= left - 1;
+                let t = &group[i];
+                input.assemble_one(t, corners_of(t), source + i, part, &mut polygon);
+            }
+            source += 8;
+        }
+        for t in groups.remainder() {
+            part.stats.primitives += 1;
+            input.assemble_one(t, corners_of(t), source, part, &mut polygon);
+            source += 1;
         }
     }
 }
