@@ -323,7 +323,8 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
     /// Triangles wholly inside the clip volume (nearly all) are set up
     /// here; those outside every point of one plane are rejected; the
     /// rest are clipped out of line. Eight at a time, the first tests of
-    /// the set-up (area, culling, bounds) run on vectors
+    /// the set-up (area, culling, bounds, small and covering no sample)
+    /// run on vectors
     /// ([`triangles::classify`]) and drop most triangles of a mesh; those
     /// they keep, and all when the CPU has no AVX2, are tested and set up
     /// one at a time.
@@ -371,7 +372,10 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
             stats.degenerate += u64::from((dropped.degenerate & inside).count_ones());
             stats.culled += u64::from((dropped.culled & inside).count_ones());
             stats.empty_bounds += u64::from((dropped.empty_bounds & inside).count_ones());
-            let gone = (dropped.degenerate | dropped.culled | dropped.empty_bounds) & inside;
+            stats.no_sample += u64::from((dropped.no_sample & inside).count_ones());
+            let gone =
+                (dropped.degenerate | dropped.culled | dropped.empty_bounds | dropped.no_sample)
+                    & inside;
             let mut left = !gone;
             while left != 0 {
                 let i = left.trailing_zeros() as usize;
