@@ -62,7 +62,7 @@ pub fn to_rgba8(c: Vec4) -> [u8; 4] {
     let scaled = c.clamp(Vec4::ZERO, Vec4::ONE) * 255.0 + Vec4::splat(0.5);
     // Every lane lies in [0.5, 255.5]: truncating to i32 then keeping the
     // low byte is `as u8` (255.5 truncates to 255).
-    scaled.as_ivec4().to_array().map(|v| v as u8)
+    crate::raster::vector::truncate_to_bytes(scaled)
 }
 
 /// Converts RGBA8 to a colour in `[0, 1]`.

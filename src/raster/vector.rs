@@ -26,7 +26,8 @@
 //! for AVX2 is unsafe because running it on a CPU without AVX2 would
 //! fault. [`run`] calls one only after the CPU said it has the
 //! features, as [`transform::shade`] and [`triangles::classify`] call
-//! their AVX2 code. The prefetch intrinsic is unsafe as every `std::arch` call
+//! their AVX2 code. [`truncate_to_bytes`] needs only SSE2, which every
+//! x86-64 CPU has. The prefetch intrinsic is unsafe as every `std::arch` call
 //! taking a pointer is, though it reads nothing; [`prefetch`] takes a
 //! reference.
 #![allow(unsafe_code)]
@@ -103,6 +104,28 @@ pub(crate) fn prefetch<T>(value: &T) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = value;
+}
+
+/// The four lanes of `v`, each in `[0, 256)`, truncated to bytes: on
+/// x86-64 one SSE2 conversion and two packs. (`as i32` on each lane
+/// compiles to a conversion and the checks that saturate it, for a value
+/// out of range or NaN, lane by lane.) Out of that range the bytes are
+/// unspecified.
+#[inline(always)]
+pub(crate) fn truncate_to_bytes(v: glam::Vec4) -> [u8; 4] {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: SSE2, which these intrinsics need, is part of baseline
+    // x86-64; they take and return values, no pointer.
+    unsafe {
+        use std::arch::x86_64::{
+            __m128, _mm_cvtsi128_si32, _mm_cvttps_epi32, _mm_packs_epi32, _mm_packus_epi16,
+        };
+        let truncated = _mm_cvttps_epi32(__m128::from(v));
+        let words = _mm_packs_epi32(truncated, truncated);
+        _mm_cvtsi128_si32(_mm_packus_epi16(words, words)).to_ne_bytes()
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    v.as_ivec4().to_array().map(|v| v as u8)
 }
 
 /// The widest copy the tests allow.
