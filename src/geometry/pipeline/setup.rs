@@ -324,10 +324,9 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
     /// here; those outside every point of one plane are rejected; the
     /// rest are clipped out of line. Eight at a time, the first tests of
     /// the set-up (area, culling, bounds, small and covering no sample)
-    /// run on vectors
-    /// ([`triangles::classify`]) and drop most triangles of a mesh; those
-    /// they keep, and all when the CPU has no AVX2, are tested and set up
-    /// one at a time.
+    /// run on vectors ([`triangles::classify`]) and drop most triangles of
+    /// a mesh; those they keep, and all when the CPU has no AVX2, are
+    /// tested and set up one at a time.
     #[inline(always)]
     fn run(self) {
         let Assemble {
