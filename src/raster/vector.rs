@@ -3,31 +3,35 @@
 //! The build targets baseline x86-64, whose vectors (SSE2) hold four
 //! `f32`, in the legacy two-operand encoding. Most CPUs of the last decade
 //! also have AVX2 (eight `f32` per vector, three-operand instructions).
-//! The hot loops (the stage's span loop,
-//! the vertex shading loop, triangle assembly and set-up) are written once,
-//! as plain Rust; [`run`] has such a loop (a [`Kernel`]) compiled once per
-//! [`Width`] and runs the widest copy the CPU reports it can run.
+//! The hot loops use them in two ways:
 //!
-//! Every copy is the same Rust code, and Rust never fuses a multiply and
-//! an add on its own, so they compute the very same bits: only how the
-//! work is laid out on the vectors differs. Tests run every copy the CPU
-//! has and compare the results bit for bit (`limited_to` caps the copy).
-//!
-//! AVX-512 (sixteen `f32`) was tried as a third copy and measured no
-//! faster on the fills; it is left out.
+//! * **Compiled twice.** The stage's span loop, the vertex shading loop
+//!   and the triangle assembly loop are plain Rust; [`run`] has such a
+//!   loop (a [`Kernel`]) compiled once per [`Width`] and runs the widest
+//!   copy the CPU reports it can run. Every copy is the same Rust code,
+//!   and Rust never fuses a multiply and an add on its own, so they
+//!   compute the very same bits: only how the work is laid out on the
+//!   vectors differs. Tests run every copy the CPU has and compare the
+//!   results bit for bit (`limited_to` caps the copy). AVX-512 (sixteen
+//!   `f32`) measured no faster on the fills as a third copy, so there is
+//!   none.
+//! * **Written lane by lane.** Two steps that the compiler does not turn
+//!   into vector code on its own are written with AVX2 intrinsics, one
+//!   vertex or triangle per lane: [`transform`], the vertex shader,
+//!   divide and snap of eight mesh vertices, and [`triangles`], the area,
+//!   culling, bounds and small-triangle tests of eight triangles. The
+//!   vertex loop and the assembly loop call them, and do the lanes they
+//!   leave (and everything, on a CPU without AVX2) one at a time.
 //!
 //! It also has [`prefetch`], the hint that brings a cache line in ahead of
-//! its use, and two loops written for AVX2 by hand, lane by lane, which
-//! the compiler does not find on its own: [`transform`], the vertex
-//! shader, divide and snap of eight vertices at once, and [`triangles`],
-//! the area, culling and bounds tests of eight triangles at once.
+//! its use, and [`truncate_to_bytes`], a colour's conversion to bytes.
 //!
-//! This module is the crate's only unsafe code: calling a function compiled
-//! for AVX2 is unsafe because running it on a CPU without AVX2 would
-//! fault. [`run`] calls one only after the CPU said it has the
-//! features, as [`transform::shade`] and [`triangles::classify`] call
-//! their AVX2 code. [`truncate_to_bytes`] needs only SSE2, which every
-//! x86-64 CPU has. The prefetch intrinsic is unsafe as every `std::arch` call
+//! This module is the crate's only unsafe code. Calling a function
+//! compiled for AVX2 is unsafe because running it on a CPU without AVX2
+//! would fault: [`run`], [`transform::shade`] and [`triangles::classify`]
+//! each call their AVX2 code only after the CPU said it has the feature.
+//! [`truncate_to_bytes`]'s intrinsics need only SSE2, which every x86-64
+//! CPU has. The prefetch intrinsic is unsafe as every `std::arch` call
 //! taking a pointer is, though it reads nothing; [`prefetch`] takes a
 //! reference.
 #![allow(unsafe_code)]

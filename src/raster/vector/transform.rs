@@ -1,6 +1,7 @@
 //! The model-view-projection vertex shader, the perspective divide, the
 //! viewport transform and the snap, for eight vertices at once: one vertex
-//! per lane of AVX2's eight-`f32` (and four-`f64`) registers.
+//! per lane, eight lanes of `f32` in one AVX2 register (and, for the
+//! `f64` steps, two registers of four).
 //!
 //! It does the one-vertex path's arithmetic operation for operation, in
 //! the same order and the same precision (the transform and the light in
@@ -13,12 +14,14 @@
 //! which finds its out-code or says why it is refused. So a lane this
 //! code wrongly left to the one-vertex path would cost only time; a lane
 //! it wrongly kept would be wrong, and the tests look for those on each
-//! plane's last `f32` and on random vertices, not finite ones included.
+//! plane's last `f32` and on random vertices, NaN and infinities
+//! included.
 //!
 //! The clip planes' tests are the signs of `f64` sums of exact products,
-//! which are the signs of comparisons: `z + w >= 0` is `z >= -w`, and
-//! `x + g w >= 0` is `x >= -(g w)` with `g w` exact in `f64` (a product
-//! of two `f32` has at most 48 significant bits).
+//! which are the signs of comparisons: `z + w >= 0` is `z >= -w`, and the
+//! guard plane `x + g w >= 0` (`g` the guard-band factor of
+//! [`Uniforms::guard`]) is `x >= -(g w)`, with `g w` exact in `f64` (a
+//! product of two `f32` has at most 48 significant bits).
 
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::*;

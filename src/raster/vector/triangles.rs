@@ -3,16 +3,17 @@
 //! (zero: degenerate), back-face culling by its sign, whether its
 //! bounding box holds a pixel centre of the viewport, and, when the box
 //! holds at most 2x2 centres, whether one of them may be inside
-//! ([`SmallTriangle::may_cover_a_sample`](crate::raster::compact::SmallTriangle::may_cover_a_sample)'s
-//! 32-bit test).
+//! (the 32-bit test of
+//! [`SmallTriangle::may_cover_a_sample`](crate::raster::compact::SmallTriangle::may_cover_a_sample)).
 //!
-//! On a mesh, most triangles end here: on the full dragon at 1920x1080,
-//! of 871,414, 461,338 are culled, 2,460 degenerate, 102,789 have no
-//! pixel centre in their box and 105,183 are small and cover none. One at a time, each of these tests is a branch that goes
-//! either way at random; here they are masks. A triangle that passes
-//! them all goes on to the one-at-a-time set-up
-//! ([`TriangleSetup`](crate::raster::edge::TriangleSetup)), which tests
-//! it again on its way.
+//! On a mesh, most triangles end here: of the full dragon's 871,414,
+//! drawn at 1920x1080 turned 30 degrees (`render --azimuth 30`), 461,338
+//! are culled, 2,460 degenerate, 102,789 have no pixel centre in their
+//! box and 105,183 are small and cover none. One at a time, each of
+//! these tests is a branch that goes either way at random; here they are
+//! masks. A triangle that passes them all goes on to the one-at-a-time
+//! set-up ([`TriangleSetup`](crate::raster::edge::TriangleSetup)), which
+//! tests it again on its way.
 //!
 //! Each test is exact, as there:
 //!
