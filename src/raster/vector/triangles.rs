@@ -128,46 +128,43 @@ fn classify_avx2(rules: &Rules, c: &Corners) -> Dropped {
         Some(true) => positive,
         Some(false) => !positive & 0xff,
     } & !degenerate;
-    // The pixel centres in the box, within the viewport.
+    // The pixel centres in the box.
     let half = _mm256_set1_epi32(HALF_PIXEL as i32);
     let shift = SUBPIXEL_SCALE.trailing_zeros() as i32;
     debug_assert_eq!(1 << shift, SUBPIXEL_SCALE);
     let count = _mm_cvtsi32_si128(shift);
-    let first = |low: __m256i| {
-        let floor = _mm256_sra_epi32(_mm256_sub_epi32(half, low), count);
-        _mm256_max_epi32(
-            _mm256_sub_epi32(_mm256_setzero_si256(), floor),
-            _mm256_setzero_si256(),
+    // Per axis, the box's first and last centre, `first = -floor_low`
+    // and `last = floor_high`, before the viewport cut.
+    let floors = |a, b, c| {
+        let low = _mm256_min_epi32(_mm256_min_epi32(a, b), c);
+        let high = _mm256_max_epi32(_mm256_max_epi32(a, b), c);
+        (
+            _mm256_sra_epi32(_mm256_sub_epi32(half, low), count),
+            _mm256_sra_epi32(_mm256_sub_epi32(high, half), count),
         )
     };
-    let last = |high: __m256i, end: i32| {
-        let floor = _mm256_sra_epi32(_mm256_sub_epi32(high, half), count);
-        _mm256_min_epi32(floor, _mm256_set1_epi32(end))
+    let (floor_low_x, floor_high_x) = floors(x0, x1, x2);
+    let (floor_low_y, floor_high_y) = floors(y0, y1, y2);
+    // Small boxes: at most two centres each way (before the viewport cut),
+    // `last - first = floor_high + floor_low` at most 1.
+    let two = _mm256_set1_epi32(2);
+    let small = _mm256_and_si256(
+        _mm256_cmpgt_epi32(two, _mm256_add_epi32(floor_high_x, floor_low_x)),
+        _mm256_cmpgt_epi32(two, _mm256_add_epi32(floor_high_y, floor_low_y)),
+    );
+    // Cut to the viewport.
+    let first = |floor_low| {
+        let first = _mm256_sub_epi32(_mm256_setzero_si256(), floor_low);
+        _mm256_max_epi32(first, _mm256_setzero_si256())
     };
-    let min = |a, b, c| _mm256_min_epi32(_mm256_min_epi32(a, b), c);
-    let max = |a, b, c| _mm256_max_epi32(_mm256_max_epi32(a, b), c);
-    let (first_x, last_x) = (first(min(x0, x1, x2)), last(max(x0, x1, x2), rules.last[0]));
-    let (first_y, last_y) = (first(min(y0, y1, y2)), last(max(y0, y1, y2), rules.last[1]));
+    let (first_x, first_y) = (first(floor_low_x), first(floor_low_y));
+    let last_x = _mm256_min_epi32(floor_high_x, _mm256_set1_epi32(rules.last[0]));
+    let last_y = _mm256_min_epi32(floor_high_y, _mm256_set1_epi32(rules.last[1]));
     let empty = _mm256_or_si256(
         _mm256_cmpgt_epi32(first_x, last_x),
         _mm256_cmpgt_epi32(first_y, last_y),
     );
     let empty = _mm256_movemask_ps(_mm256_castsi256_ps(empty));
-    // Small boxes: at most two centres each way (before the viewport cut).
-    let one = _mm256_set1_epi32(1);
-    let span = |low: __m256i, high: __m256i| {
-        let floor_low = _mm256_sra_epi32(_mm256_sub_epi32(half, low), count);
-        let floor_high = _mm256_sra_epi32(_mm256_sub_epi32(high, half), count);
-        // last - first = floor_high + floor_low, at most 1.
-        _mm256_cmpgt_epi32(
-            _mm256_add_epi32(one, one),
-            _mm256_add_epi32(floor_high, floor_low),
-        )
-    };
-    let small = _mm256_and_si256(
-        span(min(x0, x1, x2), max(x0, x1, x2)),
-        span(min(y0, y1, y2), max(y0, y1, y2)),
-    );
     // The edge functions, inside-positive: each edge's coefficients
     // negated where the area is negative.
     let lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
