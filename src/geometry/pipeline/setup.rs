@@ -220,20 +220,21 @@ impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
 
     /// Assembles triangle `t`, primitive number `source`, whose corners
     /// are at `screen`, into `part`: sets it up when it lies inside the
-    /// clip volume, rejects it when outside one plane, clips it otherwise.
+    /// clip volume (whose `pixels` are the viewport's), rejects it when
+    /// outside one plane, clips it otherwise.
     #[inline(always)]
     fn assemble_one(
         &self,
         t: &[u32; 3],
         screen: [ScreenPoint; 3],
         source: usize,
+        pixels: PixelRect,
         part: &mut Part,
         polygon: &mut Vec<ClipVertex>,
     ) {
         let source = source as u32;
         let codes = screen.map(|s| s.outcode);
         if codes == [0; 3] {
-            let pixels = PixelRect::of_target(self.viewport.width, self.viewport.height);
             part.push(
                 *t,
                 screen.map(|s| s.point),
@@ -337,6 +338,7 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
         } = self;
         let options = input.options;
         let (width, height) = (input.viewport.width, input.viewport.height);
+        let pixels = PixelRect::of_target(width, height);
         let counter_clockwise = options.front_face == FrontFace::CounterClockwise;
         let rules = Rules {
             culled_positive: match options.cull {
@@ -380,13 +382,13 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
                 let i = left.trailing_zeros() as usize;
                 left &= left - 1;
                 let t = &group[i];
-                input.assemble_one(t, corners_of(t), source + i, part, &mut polygon);
+                input.assemble_one(t, corners_of(t), source + i, pixels, part, &mut polygon);
             }
             source += 8;
         }
         for t in groups.remainder() {
             part.stats.primitives += 1;
-            input.assemble_one(t, corners_of(t), source, part, &mut polygon);
+            input.assemble_one(t, corners_of(t), source, pixels, part, &mut polygon);
             source += 1;
         }
     }
