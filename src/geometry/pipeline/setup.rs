@@ -156,6 +156,22 @@ impl Part {
                 return;
             }
         }
+        self.keep(vertices, points, depths, source, bounds, options);
+    }
+
+    /// Sets up and keeps a triangle that passed [`push`](Self::push)'s
+    /// tests (its area is not zero, it is not culled, and a pixel of
+    /// `bounds`, its box within the viewport, may be covered).
+    #[inline(always)]
+    fn keep(
+        &mut self,
+        vertices: [u32; 3],
+        points: [FixedPoint; 3],
+        depths: [f32; 3],
+        source: u32,
+        bounds: PixelRect,
+        options: &PipelineOptions,
+    ) {
         let id = self.setups.len() as u32;
         if let Some(bands) = self.bands {
             bands.bin(&mut self.bins, bounds, id);
@@ -326,8 +342,9 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
     /// rest are clipped out of line. Eight at a time, the first tests of
     /// the set-up (area, culling, bounds, small and covering no sample)
     /// run on vectors ([`triangles::classify`]) and drop most triangles of
-    /// a mesh; those they keep, and all when the CPU has no AVX2, are
-    /// tested and set up one at a time.
+    /// a mesh; those they keep are set up one at a time, without being
+    /// tested again. When the CPU has no AVX2, every triangle is tested
+    /// and set up one at a time.
     #[inline(always)]
     fn run(self) {
         let Assemble {
@@ -367,7 +384,14 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
             }
             // What `push` would have counted, for the triangles inside
             // the clip volume that the vector tests drop.
-            let dropped = triangles::classify(&rules, &corners).unwrap_or_default();
+            let Some(dropped) = triangles::classify(&rules, &corners) else {
+                for (i, t) in group.iter().enumerate() {
+                    input.assemble_one(t, corners_of(t), source + i, pixels, part, &mut polygon);
+                }
+                part.stats.primitives += 8;
+                source += 8;
+                continue;
+            };
             let stats = &mut part.stats;
             stats.primitives += 8;
             stats.degenerate += u64::from((dropped.degenerate & inside).count_ones());
@@ -377,12 +401,23 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
             let gone =
                 (dropped.degenerate | dropped.culled | dropped.empty_bounds | dropped.no_sample)
                     & inside;
+            // In order: the triangles inside that passed are set up
+            // without being tested again; the others are rejected or
+            // clipped.
             let mut left = !gone;
             while left != 0 {
                 let i = left.trailing_zeros() as usize;
                 left &= left - 1;
                 let t = &group[i];
-                input.assemble_one(t, corners_of(t), source + i, pixels, part, &mut polygon);
+                let screen = corners_of(t);
+                if inside & (1 << i) != 0 {
+                    let points = screen.map(|s| s.point);
+                    let bounds = TriangleSetup::sample_bounds(points).intersect(pixels);
+                    let depths = screen.map(|s| s.depth);
+                    part.keep(*t, points, depths, (source + i) as u32, bounds, options);
+                } else {
+                    input.assemble_one(t, screen, source + i, pixels, part, &mut polygon);
+                }
             }
             source += 8;
         }

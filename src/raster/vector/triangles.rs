@@ -12,8 +12,8 @@
 //! box and 105,183 are small and cover none. One at a time, each of
 //! these tests is a branch that goes either way at random; here they are
 //! masks. A triangle that passes them all goes on to the one-at-a-time
-//! set-up ([`TriangleSetup`](crate::raster::edge::TriangleSetup)), which
-//! tests it again on its way.
+//! set-up ([`TriangleSetup`](crate::raster::edge::TriangleSetup)) without
+//! being tested again.
 //!
 //! Each test is exact, as there:
 //!
