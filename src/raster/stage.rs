@@ -49,6 +49,9 @@ use glam::Vec4;
 /// How many triangle ids ahead the stage prefetches.
 const PREFETCH_AHEAD: usize = 8;
 
+/// Rows of a triangle's box whose first pixel the stage prefetches.
+const PREFETCH_ROWS: i64 = 3;
+
 /// How varyings are interpolated across a primitive.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub enum Interpolation {
@@ -194,10 +197,12 @@ impl<'a> FragmentStage<'a> {
         }
         let (x, y) = (t.depth.origin_x, t.depth.origin_y);
         let rect = self.target.rect();
-        if rect.contains(x, y) {
-            let idx = self.target.index(x as u32, y as u32);
-            vector::prefetch(&self.target.depth[idx]);
-            vector::prefetch(&self.target.color[idx]);
+        for y in y..y + PREFETCH_ROWS {
+            if rect.contains(x, y) {
+                let idx = self.target.index(x as u32, y as u32);
+                vector::prefetch(&self.target.depth[idx]);
+                vector::prefetch(&self.target.color[idx]);
+            }
         }
     }
 
