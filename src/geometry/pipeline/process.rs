@@ -168,14 +168,17 @@ fn shade_in_lanes<V, S: VertexShader<V>>(
                 depth,
                 outcode: 0,
             };
-            let [r, g, b] = lanes.rgb.map(|c| c[i]);
+            // Element by element: `lanes.rgb.map(..)` would copy all
+            // eight lanes of each component for every vertex (stores
+            // whose loads then stalled; 2.8 ms a dragon frame).
+            let (rgb, normal) = (&lanes.rgb, &lanes.normal);
             *d = ShadedVertex {
                 depth,
                 inv_w: lanes.inv_w[i],
                 varyings: Varyings {
-                    color: Vec4::new(r, g, b, v.color.w),
+                    color: Vec4::new(rgb[0][i], rgb[1][i], rgb[2][i], v.color.w),
                     uv: v.uv,
-                    normal: Vec3::from_array(lanes.normal.map(|c| c[i])),
+                    normal: Vec3::new(normal[0][i], normal[1][i], normal[2][i]),
                 },
             };
         }
