@@ -84,6 +84,11 @@ pub struct FragmentStage<'a> {
     /// The last triangle whose fragments arrived: when another begins, the
     /// data of one further ahead is prefetched.
     current: u32,
+    /// When the triangles come as a selection (a band's), its ids in
+    /// ascending order, and the position in it of the current triangle:
+    /// the prefetch looks that far ahead in the selection, not in ids.
+    selection: &'a [u32],
+    position: usize,
 }
 
 impl<'a> FragmentStage<'a> {
@@ -107,6 +112,8 @@ impl<'a> FragmentStage<'a> {
             line_depth_offset: 0.0,
             span_colour: None,
             current: u32::MAX,
+            selection: &[],
+            position: 0,
         }
     }
 
@@ -123,6 +130,17 @@ impl<'a> FragmentStage<'a> {
     pub(crate) fn use_triangles(&mut self, triangles: &'a [ShadedTriangle]) {
         self.triangles = triangles;
         self.span_colour = None;
+        self.selection = &[];
+        self.current = u32::MAX;
+    }
+
+    /// Says that of the triangles in use only those with the ids of
+    /// `selection` (ascending) will come, so that the stage prefetches
+    /// the data of the selection's next ones.
+    pub(crate) fn use_selection(&mut self, selection: &'a [u32]) {
+        self.selection = selection;
+        self.position = 0;
+        self.current = u32::MAX;
     }
 
     /// Vertex data of the line segments, indexed by line id.
@@ -187,7 +205,19 @@ impl<'a> FragmentStage<'a> {
             return;
         }
         self.current = id;
-        let Some(t) = self.triangles.get(id as usize + PREFETCH_AHEAD) else {
+        let ahead = if self.selection.is_empty() {
+            id as usize + PREFETCH_AHEAD
+        } else {
+            // Ids come in ascending order: the position only moves on.
+            while self.selection.get(self.position).is_some_and(|&s| s < id) {
+                self.position += 1;
+            }
+            match self.selection.get(self.position + PREFETCH_AHEAD) {
+                Some(&ahead) => ahead as usize,
+                None => return,
+            }
+        };
+        let Some(t) = self.triangles.get(ahead) else {
             return;
         };
         for &v in &t.vertices {

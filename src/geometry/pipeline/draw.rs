@@ -261,6 +261,7 @@ pub(crate) fn draw_runs_binned(
                 if !per_band[b].is_empty() {
                     let run = runs[run];
                     stage.use_triangles(run.triangles);
+                    stage.use_selection(&per_band[b]);
                     let selection = TriangleSelection::indexed(run.setups, &per_band[b]);
                     work.add(&backend.rasterize_selection(selection, viewport, &mut stage));
                 }
