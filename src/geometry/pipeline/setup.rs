@@ -12,7 +12,7 @@ use crate::error::Result;
 use crate::raster::compact::SmallTriangle;
 use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fixed::FixedPoint;
-use crate::raster::primitive::{ShadedTriangle, ShadedVertex};
+use crate::raster::primitive::{DepthPlane, ShadedTriangle, ShadedVertex};
 use crate::raster::vector::{
     self,
     triangles::{self, Corners, Rules},
@@ -172,6 +172,22 @@ impl Part {
         bounds: PixelRect,
         options: &PipelineOptions,
     ) {
+        let id = self.keep_without_depth(vertices, points, source, bounds, options);
+        self.set_depth_plane(id, depths);
+    }
+
+    /// [`keep`](Self::keep), but the triangle's depth plane is left
+    /// unset, for the caller to set with
+    /// [`set_depth_plane`](Self::set_depth_plane); returns its id.
+    #[inline(always)]
+    fn keep_without_depth(
+        &mut self,
+        vertices: [u32; 3],
+        points: [FixedPoint; 3],
+        source: u32,
+        bounds: PixelRect,
+        options: &PipelineOptions,
+    ) -> u32 {
         let id = self.setups.len() as u32;
         if let Some(bands) = self.bands {
             bands.bin(&mut self.bins, bounds, id);
@@ -179,11 +195,22 @@ impl Part {
         let Some(setup) = TriangleSetup::new(id, points, options.rule) else {
             unreachable!("the area was checked to be non-zero");
         };
-        self.triangles
-            .push(ShadedTriangle::new(&setup, vertices, depths));
+        self.triangles.push(ShadedTriangle {
+            vertices,
+            depth: DepthPlane::constant(0.0),
+        });
         self.setups.push(setup);
         self.source.push(source);
         self.stats.triangles += 1;
+        id
+    }
+
+    /// Sets the depth plane of kept triangle `id`, whose vertices are at
+    /// depths `depths`.
+    #[inline(always)]
+    fn set_depth_plane(&mut self, id: u32, depths: [f32; 3]) {
+        let id = id as usize;
+        self.triangles[id].depth = DepthPlane::new(&self.setups[id], depths);
     }
 }
 
@@ -403,8 +430,12 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
                     & inside;
             // In order: the triangles inside that passed are set up
             // without being tested again; the others are rejected or
-            // clipped.
+            // clipped. The depth planes of those set up here come after,
+            // in a loop of their own: each is a chain of conversions and
+            // divisions, which the CPU then runs side by side.
             let mut left = !gone;
+            let mut planes = [(0u32, [0.0f32; 3]); 8];
+            let mut kept = 0;
             while left != 0 {
                 let i = left.trailing_zeros() as usize;
                 left &= left - 1;
@@ -413,11 +444,16 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
                 if inside & (1 << i) != 0 {
                     let points = screen.map(|s| s.point);
                     let bounds = TriangleSetup::sample_bounds(points).intersect(pixels);
-                    let depths = screen.map(|s| s.depth);
-                    part.keep(*t, points, depths, (source + i) as u32, bounds, options);
+                    let source = (source + i) as u32;
+                    let id = part.keep_without_depth(*t, points, source, bounds, options);
+                    planes[kept] = (id, screen.map(|s| s.depth));
+                    kept += 1;
                 } else {
                     input.assemble_one(t, screen, source + i, pixels, part, &mut polygon);
                 }
+            }
+            for &(id, depths) in &planes[..kept] {
+                part.set_depth_plane(id, depths);
             }
             source += 8;
         }
