@@ -110,7 +110,10 @@ impl EdgeFunction {
     /// (`b > 0`); a left edge is not horizontal and has the triangle to its
     /// right (`a > 0`).
     pub fn is_top_left(&self) -> bool {
-        self.a > 0 || (self.a == 0 && self.b > 0)
+        // `|` and `&`, not `||` and `&&`: whether an edge is a left edge is
+        // a coin toss from one triangle to the next, and as a branch the
+        // CPU guessed it wrong half the time.
+        (self.a > 0) | ((self.a == 0) & (self.b > 0))
     }
 
     /// The kind of edge, for traces and pictures.
