@@ -424,6 +424,16 @@ fn errors_name_the_real_cause() {
         s(&dir().join("z.png")),
     ]);
     expect(&out, 2, "zoom must be > 0");
+    // A negative zoom is a value out of range, not an unknown flag.
+    let out = rasterlab(&[
+        "render",
+        BUNNY,
+        "--zoom",
+        "-1",
+        "--out",
+        s(&dir().join("z.png")),
+    ]);
+    expect(&out, 2, "zoom must be > 0 and at most 1000000, not -1");
     let bom = temp_file("bom.txt", "\u{feff}0 0 5 0 5 5\n".as_bytes());
     let out = rasterlab(&["fragments", "--backend", "bbox", "--size", "8x8", s(&bom)]);
     expect(&out, 0, "");

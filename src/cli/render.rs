@@ -86,7 +86,9 @@ pub struct MeshArgs {
     #[arg(long, allow_negative_numbers = true)]
     elevation: Option<f32>,
     /// Zoom factor; 1 (the default) frames the whole mesh.
-    #[arg(long)]
+    // Negative numbers are taken as values, so that `--zoom -1` gets the
+    // range's message rather than clap's "unexpected argument".
+    #[arg(long, allow_negative_numbers = true)]
     zoom: Option<f32>,
 }
 
