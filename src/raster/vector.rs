@@ -18,7 +18,8 @@
 //! * **Written lane by lane.** Two steps that the compiler does not turn
 //!   into vector code on its own are written with AVX2 intrinsics, one
 //!   vertex or triangle per lane: [`transform`], the vertex shader,
-//!   divide and snap of eight mesh vertices, and [`triangles`], the area,
+//!   divide and snap of eight mesh vertices (read as rows of floats and
+//!   transposed into lanes in registers), and [`triangles`], the area,
 //!   culling, bounds and small-triangle tests of eight triangles. The
 //!   vertex loop and the assembly loop call them, and do the lanes they
 //!   leave (and everything, on a CPU without AVX2) one at a time.
@@ -28,7 +29,8 @@
 //!
 //! This module is the crate's only unsafe code. Calling a function
 //! compiled for AVX2 is unsafe because running it on a CPU without AVX2
-//! would fault: [`run`], [`transform::shade`] and [`triangles::classify`]
+//! would fault: [`run`], [`transform::shade`],
+//! [`transform::shade_records`] and [`triangles::classify`]
 //! each call their AVX2 code only after the CPU said it has the feature.
 //! [`truncate_to_bytes`]'s intrinsics need only SSE2, which every x86-64
 //! CPU has. The prefetch intrinsic is unsafe as every `std::arch` call

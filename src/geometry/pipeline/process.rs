@@ -140,15 +140,24 @@ fn shade_in_lanes<V, S: VertexShader<V>>(
         .zip(task.shaded.chunks_mut(8))
         .zip(mesh.chunks(8));
     for ((screen, shaded), mesh) in groups {
-        let mut input = transform::Vertices::default();
-        for (i, v) in mesh.iter().enumerate() {
-            for c in 0..3 {
-                input.position[c][i] = v.position[c];
-                input.normal[c][i] = v.normal[c];
-                input.rgb[c][i] = v.color[c];
+        // A whole group is read as records of floats and transposed in
+        // registers; the last few vertices are gathered into columns.
+        let records: &[[f32; 12]] = bytemuck::cast_slice(mesh);
+        let shaded_in_lanes = match <&transform::Records>::try_from(records) {
+            Ok(records) => transform::shade_records(&uniforms, records, &mut lanes),
+            Err(_) => {
+                let mut input = transform::Vertices::default();
+                for (i, v) in mesh.iter().enumerate() {
+                    for c in 0..3 {
+                        input.position[c][i] = v.position[c];
+                        input.normal[c][i] = v.normal[c];
+                        input.rgb[c][i] = v.color[c];
+                    }
+                }
+                transform::shade(&uniforms, &input, &mut lanes)
             }
-        }
-        if !transform::shade(&uniforms, &input, &mut lanes) {
+        };
+        if !shaded_in_lanes {
             return None;
         }
         for (i, ((s, d), v)) in screen.iter_mut().zip(shaded).zip(mesh).enumerate() {

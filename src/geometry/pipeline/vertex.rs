@@ -62,7 +62,12 @@ pub fn positions_from_floats(values: &[f32]) -> Result<Vec<Vec3>> {
 }
 
 /// A vertex of a mesh, as fed to [`Transform`].
-#[derive(Copy, Clone, Debug, Default, PartialEq)]
+///
+/// Laid out as twelve `f32` (`repr(C)`, no padding): position, normal,
+/// texture coordinates, colour. The vertex shader's AVX2 lanes read eight
+/// of them as rows of floats and transpose them in registers.
+#[derive(Copy, Clone, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
 pub struct MeshVertex {
     /// Model-space position.
     pub position: Vec3,

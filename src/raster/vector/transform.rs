@@ -89,6 +89,26 @@ pub(crate) fn shade(uniforms: &Uniforms, vertices: &Vertices, out: &mut Lanes) -
     false
 }
 
+/// Eight vertices as records of twelve `f32` each, a mesh vertex's
+/// layout: position (3), normal (3), texture coordinates (2), colour (4).
+pub(crate) type Records = [[f32; 12]; 8];
+
+/// [`shade`] of eight vertices given as [`Records`]: each record is read
+/// as three rows of four floats, and the rows are transposed into lanes
+/// in registers (instead of 72 scalar stores into [`Vertices`]). The same
+/// bits as [`shade`] of the same vertices.
+#[inline]
+pub(crate) fn shade_records(uniforms: &Uniforms, records: &Records, out: &mut Lanes) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if super::widest().min(super::allowed()) == super::Width::Avx2 {
+        // SAFETY: the CPU has AVX2, checked just above.
+        unsafe { shade_records_avx2(uniforms, records, out) };
+        return true;
+    }
+    let _ = (uniforms, records, out);
+    false
+}
+
 /// Broadcasts `x` to every lane.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
@@ -218,15 +238,61 @@ fn shade_avx2(u: &Uniforms, v: &Vertices, out: &mut Lanes) {
         // SAFETY: `a` is eight readable `f32`; the load needs no alignment.
         unsafe { _mm256_loadu_ps(a.as_ptr()) }
     };
+    let position = v.position.each_ref().map(load);
+    let normal = v.normal.each_ref().map(load);
+    let rgb = v.rgb.each_ref().map(load);
+    shade_lanes(u, position, normal, rgb, out);
+}
+
+/// [`shade_records`] on a CPU with AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn shade_records_avx2(u: &Uniforms, r: &Records, out: &mut Lanes) {
+    // Floats `at..at + 4` of every record, as four lanes of components:
+    // rows 0-3 in the low halves and 4-7 in the high ones, then the
+    // classic 4x4 transpose in each half.
+    let columns = |at: usize| {
+        let row = |k: usize| {
+            let four = &r[k][at..at + 4];
+            // SAFETY: `four` is four readable `f32`; no alignment needed.
+            unsafe { _mm_loadu_ps(four.as_ptr()) }
+        };
+        let pair = |k: usize| _mm256_insertf128_ps::<1>(_mm256_castps128_ps256(row(k)), row(k + 4));
+        let (t0, t1, t2, t3) = (pair(0), pair(1), pair(2), pair(3));
+        let (low01, high01) = (_mm256_unpacklo_ps(t0, t1), _mm256_unpackhi_ps(t0, t1));
+        let (low23, high23) = (_mm256_unpacklo_ps(t2, t3), _mm256_unpackhi_ps(t2, t3));
+        [
+            _mm256_shuffle_ps::<0x44>(low01, low23),
+            _mm256_shuffle_ps::<0xee>(low01, low23),
+            _mm256_shuffle_ps::<0x44>(high01, high23),
+            _mm256_shuffle_ps::<0xee>(high01, high23),
+        ]
+    };
+    let [px, py, pz, nx] = columns(0);
+    let [ny, nz, _, _] = columns(4);
+    let [red, green, blue, _] = columns(8);
+    shade_lanes(u, [px, py, pz], [nx, ny, nz], [red, green, blue], out);
+}
+
+/// The shader on eight vertices' model-space position, normal and colour
+/// in lanes.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn shade_lanes(
+    u: &Uniforms,
+    position: [__m256; 3],
+    normal: [__m256; 3],
+    mut rgb: [__m256; 3],
+    out: &mut Lanes,
+) {
     let store = |a: &mut [f32; 8], value| {
         // SAFETY: `a` is eight writable `f32`; the store needs no alignment.
         unsafe { _mm256_storeu_ps(a.as_mut_ptr(), value) }
     };
-    let position = v.position.each_ref().map(load);
     // Transform::shade: the normal by the normal matrix (glam's Mat3 * Vec3).
     let m = u.normal_matrix;
-    let normal = [0, 1, 2].map(|k| row([m[0][k], m[1][k], m[2][k]], v.normal.each_ref().map(load)));
-    let mut rgb = v.rgb.each_ref().map(load);
+    let normal = [0, 1, 2].map(|k| row([m[0][k], m[1][k], m[2][k]], normal));
     if let Some((direction, ambient, diffuse)) = u.light {
         // DirectionalLight::intensity: glam's normalize_or_zero, the dot
         // product with the light, at least 0, scaled and lifted.
