@@ -29,8 +29,7 @@
 //!
 //! This module is the crate's only unsafe code. Calling a function
 //! compiled for AVX2 is unsafe because running it on a CPU without AVX2
-//! would fault: [`run`], [`transform::shade`],
-//! [`transform::shade_records`] and [`triangles::classify`]
+//! would fault: [`run`], [`transform::shade`] and [`triangles::classify`]
 //! each call their AVX2 code only after the CPU said it has the feature.
 //! [`truncate_to_bytes`]'s intrinsics need only SSE2, which every x86-64
 //! CPU has. The prefetch intrinsic is unsafe as every `std::arch` call

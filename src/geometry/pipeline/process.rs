@@ -134,30 +134,26 @@ fn shade_in_lanes<V, S: VertexShader<V>>(
     };
     let mut outcodes = 0;
     let mut lanes = transform::Lanes::default();
+    // Only the task's last group can be short, so this is filled once.
+    let mut padded = transform::Records::default();
     let groups = task
         .screen
         .chunks_mut(8)
         .zip(task.shaded.chunks_mut(8))
         .zip(mesh.chunks(8));
     for ((screen, shaded), mesh) in groups {
-        // A whole group is read as records of floats and transposed in
-        // registers; the last few vertices are gathered into columns.
-        let records: &[[f32; 12]] = bytemuck::cast_slice(mesh);
-        let shaded_in_lanes = match <&transform::Records>::try_from(records) {
-            Ok(records) => transform::shade_records(&uniforms, records, &mut lanes),
+        // The group's vertices as records of floats; a last group of
+        // fewer than eight is copied, its other lanes left zero (their
+        // results are not read).
+        let rows: &[[f32; 12]] = bytemuck::cast_slice(mesh);
+        let records = match <&transform::Records>::try_from(rows) {
+            Ok(whole) => whole,
             Err(_) => {
-                let mut input = transform::Vertices::default();
-                for (i, v) in mesh.iter().enumerate() {
-                    for c in 0..3 {
-                        input.position[c][i] = v.position[c];
-                        input.normal[c][i] = v.normal[c];
-                        input.rgb[c][i] = v.color[c];
-                    }
-                }
-                transform::shade(&uniforms, &input, &mut lanes)
+                padded[..rows.len()].copy_from_slice(rows);
+                &padded
             }
         };
-        if !shaded_in_lanes {
+        if !transform::shade(&uniforms, records, &mut lanes) {
             return None;
         }
         for (i, ((s, d), v)) in screen.iter_mut().zip(shaded).zip(mesh).enumerate() {

@@ -409,18 +409,17 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
                 }
                 inside |= u8::from(codes == 0) << i;
             }
+            part.stats.primitives += 8;
             // What `push` would have counted, for the triangles inside
             // the clip volume that the vector tests drop.
             let Some(dropped) = triangles::classify(&rules, &corners) else {
                 for (i, t) in group.iter().enumerate() {
                     input.assemble_one(t, corners_of(t), source + i, pixels, part, &mut polygon);
                 }
-                part.stats.primitives += 8;
                 source += 8;
                 continue;
             };
             let stats = &mut part.stats;
-            stats.primitives += 8;
             stats.degenerate += u64::from((dropped.degenerate & inside).count_ones());
             stats.culled += u64::from((dropped.culled & inside).count_ones());
             stats.empty_bounds += u64::from((dropped.empty_bounds & inside).count_ones());

@@ -44,16 +44,10 @@ pub(crate) struct Uniforms {
     pub size: [f64; 2],
 }
 
-/// Eight vertices' inputs, one array per component (lane `i` is vertex `i`).
-#[derive(Copy, Clone, Debug, Default)]
-pub(crate) struct Vertices {
-    /// Model-space position.
-    pub position: [[f32; 8]; 3],
-    /// Model-space normal.
-    pub normal: [[f32; 8]; 3],
-    /// Colour, red, green and blue (alpha passes through unchanged).
-    pub rgb: [[f32; 8]; 3],
-}
+/// Eight vertices' inputs as records of twelve `f32` each, a mesh
+/// vertex's layout: position (3), normal (3), texture coordinates (2),
+/// colour (4; alpha passes through unchanged).
+pub(crate) type Records = [[f32; 12]; 8];
 
 /// Eight vertices' results, one array per component.
 #[derive(Copy, Clone, Debug, Default)]
@@ -77,32 +71,14 @@ pub(crate) struct Lanes {
 
 /// Shades, divides and snaps eight vertices into `out`, if this CPU has
 /// AVX2 (and the tests allow it); false, with nothing written, if not.
+/// Each record is read as three rows of four floats, and the rows are
+/// transposed into lanes in registers.
 #[inline]
-pub(crate) fn shade(uniforms: &Uniforms, vertices: &Vertices, out: &mut Lanes) -> bool {
+pub(crate) fn shade(uniforms: &Uniforms, records: &Records, out: &mut Lanes) -> bool {
     #[cfg(target_arch = "x86_64")]
     if super::widest().min(super::allowed()) == super::Width::Avx2 {
         // SAFETY: the CPU has AVX2, checked just above.
-        unsafe { shade_avx2(uniforms, vertices, out) };
-        return true;
-    }
-    let _ = (uniforms, vertices, out);
-    false
-}
-
-/// Eight vertices as records of twelve `f32` each, a mesh vertex's
-/// layout: position (3), normal (3), texture coordinates (2), colour (4).
-pub(crate) type Records = [[f32; 12]; 8];
-
-/// [`shade`] of eight vertices given as [`Records`]: each record is read
-/// as three rows of four floats, and the rows are transposed into lanes
-/// in registers (instead of 72 scalar stores into [`Vertices`]). The same
-/// bits as [`shade`] of the same vertices.
-#[inline]
-pub(crate) fn shade_records(uniforms: &Uniforms, records: &Records, out: &mut Lanes) -> bool {
-    #[cfg(target_arch = "x86_64")]
-    if super::widest().min(super::allowed()) == super::Width::Avx2 {
-        // SAFETY: the CPU has AVX2, checked just above.
-        unsafe { shade_records_avx2(uniforms, records, out) };
+        unsafe { shade_avx2(uniforms, records, out) };
         return true;
     }
     let _ = (uniforms, records, out);
@@ -233,21 +209,7 @@ fn divide_and_snap<const HALF: i32>(u: &Uniforms, [x, y, z, w]: [__m256; 4]) -> 
 /// [`shade`] on a CPU with AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn shade_avx2(u: &Uniforms, v: &Vertices, out: &mut Lanes) {
-    let load = |a: &[f32; 8]| {
-        // SAFETY: `a` is eight readable `f32`; the load needs no alignment.
-        unsafe { _mm256_loadu_ps(a.as_ptr()) }
-    };
-    let position = v.position.each_ref().map(load);
-    let normal = v.normal.each_ref().map(load);
-    let rgb = v.rgb.each_ref().map(load);
-    shade_lanes(u, position, normal, rgb, out);
-}
-
-/// [`shade_records`] on a CPU with AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn shade_records_avx2(u: &Uniforms, r: &Records, out: &mut Lanes) {
+fn shade_avx2(u: &Uniforms, r: &Records, out: &mut Lanes) {
     // Floats `at..at + 4` of every record, as four lanes of components:
     // rows 0-3 in the low halves and 4-7 in the high ones, then the
     // classic 4x4 transpose in each half.
@@ -271,21 +233,7 @@ fn shade_records_avx2(u: &Uniforms, r: &Records, out: &mut Lanes) {
     let [px, py, pz, nx] = columns(0);
     let [ny, nz, _, _] = columns(4);
     let [red, green, blue, _] = columns(8);
-    shade_lanes(u, [px, py, pz], [nx, ny, nz], [red, green, blue], out);
-}
-
-/// The shader on eight vertices' model-space position, normal and colour
-/// in lanes.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[inline]
-fn shade_lanes(
-    u: &Uniforms,
-    position: [__m256; 3],
-    normal: [__m256; 3],
-    mut rgb: [__m256; 3],
-    out: &mut Lanes,
-) {
+    let (position, normal, mut rgb) = ([px, py, pz], [nx, ny, nz], [red, green, blue]);
     let store = |a: &mut [f32; 8], value| {
         // SAFETY: `a` is eight writable `f32`; the store needs no alignment.
         unsafe { _mm256_storeu_ps(a.as_mut_ptr(), value) }
