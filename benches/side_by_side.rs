@@ -23,6 +23,11 @@
 //! so the target clears too stay on one core) except `tiled-2-threads`;
 //! rasterlab draws into one reused target made
 //! `RenderTarget::without_coverage` (colour and depth, as the peers).
+//! The two workers of `tiled-2-threads`, and the two rasterizer threads
+//! of `llvmpipe-2-threads`, are bound to a core each: left to the
+//! scheduler, they sometimes shared one core for the first 10 ms or so
+//! of a frame (`support/cores.rs` says how that was seen). The printed
+//! context says whether they were bound.
 //!
 //! Each workload runs its contenders once to warm up, then in `--rounds`
 //! rounds (default 10), each contender once per round, the order turning
@@ -44,6 +49,8 @@
 //! llvmpipe needs Mesa at run time (Debian: `libegl1 libegl-mesa0
 //! libgl1-mesa-dri`). What is missing is printed as skipped, with why.
 
+#[path = "support/cores.rs"]
+mod cores;
 #[path = "support/gl.rs"]
 mod gl;
 
@@ -67,12 +74,7 @@ use std::path::PathBuf;
 const W: u32 = 1920;
 const H: u32 = 1080;
 
-fn pool(threads: usize) -> rayon::ThreadPool {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-}
+use cores::{pool, Binding, LlvmpipeThreads};
 
 /// What the command line asks for: rounds, and name filters.
 struct Options {
@@ -112,15 +114,25 @@ impl Options {
 /// llvmpipe on one and on two rasterizer threads, or why not.
 type Gl = Result<Vec<gl::Llvmpipe>, Skipped>;
 
-fn llvmpipe() -> Gl {
+/// llvmpipe on one and on two rasterizer threads, the two-thread one's
+/// bound to a core each ([`cores`]), and how they were placed.
+fn llvmpipe() -> (Gl, Binding) {
     let open = |threads| {
         gl::Llvmpipe::new(W, H, threads).map_err(|reason| Skipped {
             reason: format!("llvmpipe unavailable: {reason}"),
         })
     };
-    let gls = vec![open(1)?, open(2)?];
-    eprintln!("llvmpipe: {}", gls[0].renderer());
-    Ok(gls)
+    let mut binding = Binding::Unbound;
+    let gls = open(1).and_then(|one| {
+        let before = LlvmpipeThreads::now();
+        let two = open(2)?;
+        binding = before.bind_new(two.threads());
+        Ok(vec![one, two])
+    });
+    if let Ok(gls) = &gls {
+        eprintln!("llvmpipe: {}", gls[0].renderer());
+    }
+    (gls, binding)
 }
 
 fn llvmpipe_name(gl: &gl::Llvmpipe) -> String {
@@ -549,7 +561,7 @@ fn lines(options: &Options) -> Vec<WorkloadResult> {
 fn main() {
     let options = Options::parse();
     let mut context = Context::start(1, options.rounds, W, H);
-    let gls = llvmpipe();
+    let (gls, llvmpipe_binding) = llvmpipe();
     if let Err(why) = &gls {
         eprintln!("llvmpipe: {why}");
     }
@@ -573,6 +585,16 @@ fn main() {
     );
     print!("{context}");
     println!("rasterlab on 1 thread unless the name says otherwise; llvmpipe-1-thread is one rasterizer thread beside the drawing thread");
+    println!(
+        "two threads: rasterlab's workers {}",
+        cores::binding(2).describe()
+    );
+    if gls.is_ok() {
+        println!(
+            "two threads: llvmpipe's rasterizer threads {}",
+            llvmpipe_binding.describe()
+        );
+    }
     println!("peer / best: the peer's time over rasterlab's best on as many threads, median of the per-round ratios [min-max]; above 1, rasterlab is faster");
     println!("cpu peer / best: the same with the CPU time of all their threads per run, steadier when the cores were busy");
     print!("{ratios}");
