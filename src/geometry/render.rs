@@ -21,7 +21,7 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::vertex::{MeshVertex, Transform};
 use crate::geometry::pipeline::Camera;
 use crate::geometry::pipeline::{
-    self, Geometry, GeometryInParts, GeometryStats, PipelineOptions, Viewport,
+    self, Geometry, GeometryInParts, GeometryStats, PipelineOptions, Runs, Viewport,
 };
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
@@ -170,6 +170,17 @@ fn first_use_order(vertex_count: usize, triangles: &[[u32; 3]]) -> Option<Vec<u3
     Some(new_index)
 }
 
+/// The fragment shader of each [`Shading`], kept as its own type (not
+/// behind a `dyn` pointer) so that the draw and its stage are compiled
+/// for it ([`FragmentStage`]).
+enum MeshShader {
+    Flat(Flat),
+    Gouraud(Gouraud),
+    Diffuse(Diffuse),
+    Normals(NormalColors),
+    Texture(Textured),
+}
+
 /// A mesh prepared for rendering from one view.
 pub struct MeshRenderer {
     settings: RenderSettings,
@@ -177,7 +188,7 @@ pub struct MeshRenderer {
     triangles: Vec<[u32; 3]>,
     edges: Vec<[u32; 2]>,
     transform: Transform,
-    shader: Box<dyn FragmentShader>,
+    shader: MeshShader,
     /// The geometry buffers, filled again for each frame so that a frame
     /// allocates nothing for them once the first is drawn.
     geometry: Mutex<GeometryInParts>,
@@ -232,12 +243,12 @@ impl MeshRenderer {
                 color: mesh.colors.as_ref().map_or(settings.color, |c| c[i]),
             })
             .collect();
-        let shader: Box<dyn FragmentShader> = match settings.shading {
-            Shading::Flat => Box::new(Flat),
-            Shading::Gouraud => Box::new(Gouraud),
-            Shading::Diffuse => Box::new(Diffuse(settings.light)),
-            Shading::Normals => Box::new(NormalColors),
-            Shading::Texture => Box::new(Textured {
+        let shader = match settings.shading {
+            Shading::Flat => MeshShader::Flat(Flat),
+            Shading::Gouraud => MeshShader::Gouraud(Gouraud),
+            Shading::Diffuse => MeshShader::Diffuse(Diffuse(settings.light)),
+            Shading::Normals => MeshShader::Normals(NormalColors),
+            Shading::Texture => MeshShader::Texture(Textured {
                 texture: Texture::checkerboard(16, 8, settings.color, settings.color * 0.35),
                 filter: settings.filter,
                 light: Some(settings.light),
@@ -391,15 +402,14 @@ impl MeshRenderer {
         };
         let geometry_time = start.elapsed();
         let start = Instant::now();
-        // The clear is folded into the draw: each row is cleared just
-        // before its first fragment.
-        let pass = pipeline::Pass {
-            shader: self.shader.as_ref(),
-            depth: self.settings.depth,
-            interpolation: self.settings.interpolation,
-            clear: Clear::all(self.settings.background),
+        let runs = geometry.runs();
+        let work = match &self.shader {
+            MeshShader::Flat(shader) => self.draw(&runs, backend, shader, target),
+            MeshShader::Gouraud(shader) => self.draw(&runs, backend, shader, target),
+            MeshShader::Diffuse(shader) => self.draw(&runs, backend, shader, target),
+            MeshShader::Normals(shader) => self.draw(&runs, backend, shader, target),
+            MeshShader::Texture(shader) => self.draw(&runs, backend, shader, target),
         };
-        let work = pipeline::draw_runs_binned(&geometry.runs(), backend, pass, target);
         if let Some(line_backend) = self.settings.wireframe {
             self.draw_wireframe(line_backend, &lines, target);
         }
@@ -413,6 +423,25 @@ impl MeshRenderer {
             raster_time,
             times: FrameTimes::new(frame_start.elapsed(), None, geometry_time, raster_time),
         })
+    }
+
+    /// Draws the triangles of `runs` with `shader`, the stage compiled for
+    /// its type, clearing the target as it goes (each row just before its
+    /// first fragment).
+    fn draw<S: FragmentShader>(
+        &self,
+        runs: &Runs<'_>,
+        backend: &dyn TriangleRasterizer,
+        shader: &S,
+        target: &mut RenderTarget,
+    ) -> WorkCounters {
+        let pass = pipeline::Pass {
+            shader,
+            depth: self.settings.depth,
+            interpolation: self.settings.interpolation,
+            clear: Clear::all(self.settings.background),
+        };
+        pipeline::draw_runs_binned(runs, backend, pass, target)
     }
 
     /// Draws the edges in a contrasting constant colour, depth-tested with
@@ -507,6 +536,57 @@ mod tests {
                         b.name()
                     );
                 }
+            }
+        }
+    }
+
+    /// The renderer's draw, compiled for each shading's shader type, gives
+    /// the bits of the same draw calling that shader through a `dyn`
+    /// pointer, on every back-end, clipped triangles included.
+    #[test]
+    fn a_shader_of_known_type_gives_the_bits_of_one_behind_a_pointer() {
+        let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
+        for shading in [
+            Shading::Flat,
+            Shading::Gouraud,
+            Shading::Diffuse,
+            Shading::Normals,
+            Shading::Texture,
+        ] {
+            let settings = RenderSettings {
+                width: 160,
+                height: 120,
+                azimuth: 40.0,
+                zoom: 6.0,
+                shading,
+                ..RenderSettings::default()
+            };
+            let renderer = MeshRenderer::new(&bunny, settings).unwrap();
+            let shader: &dyn FragmentShader = match &renderer.shader {
+                MeshShader::Flat(s) => s,
+                MeshShader::Gouraud(s) => s,
+                MeshShader::Diffuse(s) => s,
+                MeshShader::Normals(s) => s,
+                MeshShader::Texture(s) => s,
+            };
+            let geometry = renderer.geometry().unwrap();
+            assert!(geometry.stats.clipped > 0 && geometry.stats.triangles > 100);
+            for &b in triangle_backends() {
+                let mut expected = RenderTarget::new(settings.width, settings.height).unwrap();
+                expected.clear_color(settings.background);
+                pipeline::draw(
+                    &geometry,
+                    b,
+                    shader,
+                    settings.depth,
+                    settings.interpolation,
+                    &mut expected,
+                );
+                assert!(
+                    renderer.render(b).unwrap().target == expected,
+                    "{shading} {}",
+                    b.name()
+                );
             }
         }
     }

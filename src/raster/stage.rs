@@ -64,9 +64,18 @@ pub enum Interpolation {
 
 /// The shared fragment stage: a [`FragmentSink`] that depth-tests, shades
 /// and writes fragments into a [`RenderTarget`].
-pub struct FragmentStage<'a> {
+///
+/// The stage is compiled for the type of its shader `S`: given a shader
+/// of a known type (say `&Gouraud`), its `shade` is compiled into the
+/// stage's per-fragment code; given a `&dyn FragmentShader` (the default
+/// type), each fragment calls it through the pointer. Both give the same
+/// bits. On the full dragon with Gouraud shading the known type took the
+/// raster part of a frame from 19.0 to 16.1 ms, and zoomed 2.5x from 72.0
+/// to 59.2 ms: the call passed the fragment's inputs and its colour
+/// through memory, on the chain of work every fragment waits on.
+pub struct FragmentStage<'a, S: FragmentShader + ?Sized = dyn FragmentShader> {
     target: TargetRows<'a>,
-    shader: &'a dyn FragmentShader,
+    shader: &'a S,
     triangles: &'a [ShadedTriangle],
     vertices: &'a [ShadedVertex],
     lines: &'a [ShadedLine],
@@ -91,16 +100,16 @@ pub struct FragmentStage<'a> {
     position: usize,
 }
 
-impl<'a> FragmentStage<'a> {
+impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
     /// A stage writing into `target` with `shader`, default depth state and
     /// perspective-correct interpolation, and no primitive data yet.
-    pub fn new(target: &'a mut RenderTarget, shader: &'a dyn FragmentShader) -> Self {
+    pub fn new(target: &'a mut RenderTarget, shader: &'a S) -> Self {
         Self::on_rows(target.rows_mut(), shader)
     }
 
     /// A stage writing into some rows of a target only (one band of a
     /// binned draw); fragments must lie in those rows.
-    pub fn on_rows(target: TargetRows<'a>, shader: &'a dyn FragmentShader) -> Self {
+    pub fn on_rows(target: TargetRows<'a>, shader: &'a S) -> Self {
         FragmentStage {
             target,
             shader,
@@ -516,7 +525,7 @@ impl Sample<3> {
     }
 }
 
-impl FragmentSink for FragmentStage<'_> {
+impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
     fn triangle_fragment(&mut self, f: &TriangleFragment) {
         self.prefetch_ahead(f.triangle);
         if let Some(t) = self.triangle(f.triangle) {

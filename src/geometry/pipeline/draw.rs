@@ -51,10 +51,10 @@ use rayon::prelude::*;
 
 /// Rasterizes `geometry` with `backend` into `target` through the shared
 /// fragment stage.
-pub fn draw(
+pub fn draw<S: FragmentShader + ?Sized>(
     geometry: &Geometry,
     backend: &dyn TriangleRasterizer,
-    shader: &dyn FragmentShader,
+    shader: &S,
     depth: DepthState,
     interpolation: Interpolation,
     target: &mut RenderTarget,
@@ -105,10 +105,10 @@ pub fn draw(
 /// draw_clearing(&geometry, scanline, &Flat, depth, lerp, clear, &mut used);
 /// assert_eq!(used, eager);
 /// ```
-pub fn draw_clearing(
+pub fn draw_clearing<S: FragmentShader + ?Sized>(
     geometry: &Geometry,
     backend: &dyn TriangleRasterizer,
-    shader: &dyn FragmentShader,
+    shader: &S,
     depth: DepthState,
     interpolation: Interpolation,
     clear: Clear,
@@ -125,19 +125,28 @@ pub fn draw_clearing(
 }
 
 /// What a draw does besides rasterizing: shade, test depth, interpolate,
-/// and clear as it goes.
-#[derive(Copy, Clone)]
-pub(crate) struct Pass<'a> {
-    pub shader: &'a dyn FragmentShader,
+/// and clear as it goes. The draw, and its stage, are compiled for the
+/// shader's type `S` (see [`FragmentStage`]).
+pub(crate) struct Pass<'a, S: ?Sized> {
+    pub shader: &'a S,
     pub depth: DepthState,
     pub interpolation: Interpolation,
     pub clear: Clear,
 }
 
-impl<'a> Pass<'a> {
+// Not derived: a derive would ask `S: Copy`, and a shader need not be.
+impl<S: ?Sized> Clone for Pass<'_, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<S: ?Sized> Copy for Pass<'_, S> {}
+
+impl<'a, S: FragmentShader + ?Sized> Pass<'a, S> {
     /// The stage of this pass, writing into `rows`, for triangles whose
     /// stage data is `shaded`.
-    fn stage(self, rows: TargetRows<'a>, shaded: &'a TriangleData) -> FragmentStage<'a> {
+    fn stage(self, rows: TargetRows<'a>, shaded: &'a TriangleData) -> FragmentStage<'a, S> {
         FragmentStage::on_rows(rows, self.shader)
             .with_triangles(shaded)
             .with_depth(self.depth)
@@ -173,10 +182,10 @@ fn cache_band_rows(width: u32) -> u32 {
 
 /// [`draw`] of triangles in runs: band by band when they are few
 /// ([`cache_band_rows`]), else triangle by triangle over the target.
-fn draw_runs(
+fn draw_runs<S: FragmentShader + ?Sized>(
     geometry: &Runs<'_>,
     backend: &dyn TriangleRasterizer,
-    pass: Pass<'_>,
+    pass: Pass<'_, S>,
     target: &mut RenderTarget,
 ) -> WorkCounters {
     let triangles: usize = geometry.runs.iter().map(|r| r.setups.len()).sum();
@@ -205,10 +214,10 @@ fn draw_runs(
 /// Rasterizes `geometry` with `backend` into `target` through the shared
 /// fragment stage, band by band in parallel; bit-identical to
 /// [`pipeline::draw`](crate::geometry::pipeline::draw).
-pub fn draw_binned(
+pub fn draw_binned<S: FragmentShader + ?Sized>(
     geometry: &Geometry,
     backend: &dyn TriangleRasterizer,
-    shader: &dyn FragmentShader,
+    shader: &S,
     depth: DepthState,
     interpolation: Interpolation,
     target: &mut RenderTarget,
@@ -224,10 +233,10 @@ pub fn draw_binned(
 
 /// [`draw_binned`] of triangles in runs, with the bins of the pipeline's
 /// parts when they are those of this draw.
-pub(crate) fn draw_runs_binned(
+pub(crate) fn draw_runs_binned<S: FragmentShader + ?Sized>(
     geometry: &Runs<'_>,
     backend: &dyn TriangleRasterizer,
-    pass: Pass<'_>,
+    pass: Pass<'_, S>,
     target: &mut RenderTarget,
 ) -> WorkCounters {
     let threads = rayon::current_num_threads();

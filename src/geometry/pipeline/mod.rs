@@ -51,4 +51,4 @@ pub use setup::GeometryStats;
 pub use viewport::Viewport;
 
 pub(crate) use draw::{draw_runs_binned, Pass};
-pub(crate) use geometry::GeometryInParts;
+pub(crate) use geometry::{GeometryInParts, Runs};
