@@ -202,7 +202,8 @@ impl MeshRenderer {
     /// Frames `mesh` with a camera and prepares its vertices and shaders.
     ///
     /// Errors: a zero-size or oversized target, a non-finite angle, a zoom
-    /// that is not in `(0, MAX_ZOOM]`.
+    /// that is not in `(0, MAX_ZOOM]`, a vertex index out of range (the
+    /// frames do not check the indices again).
     pub fn new(mesh: &Mesh, settings: RenderSettings) -> Result<MeshRenderer> {
         RenderTarget::check_size(settings.width, settings.height)?;
         for (name, value) in [
@@ -222,6 +223,8 @@ impl MeshRenderer {
                 settings.zoom
             )));
         }
+        // Checked once here, not in every frame's geometry stages.
+        Error::check_indices(mesh.triangles.iter().flatten(), mesh.positions.len())?;
         let aspect = settings.width as f32 / settings.height as f32;
         let camera = Camera::framing(
             mesh.bounds(),
@@ -589,6 +592,21 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A mesh with an index past its last vertex is refused when the
+    /// renderer is made, since its frames do not check the indices again.
+    #[test]
+    fn a_vertex_index_out_of_range_is_refused_up_front() {
+        let mut mesh = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
+        let count = mesh.positions.len();
+        mesh.triangles[7][1] = count as u32;
+        let result = MeshRenderer::new(&mesh, RenderSettings::default());
+        assert!(
+            matches!(result, Err(Error::IndexOutOfRange { index, count: c }) if index == count as u64 && c == count),
+            "{:?}",
+            result.err()
+        );
     }
 
     #[test]

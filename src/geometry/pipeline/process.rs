@@ -238,6 +238,7 @@ pub fn process_triangles_into<V: Sync, S: VertexShader<V>>(
     viewport: Viewport,
     options: &PipelineOptions,
 ) -> Result<()> {
+    Error::check_indices(triangles.iter().flatten(), vertices.len())?;
     let input = DrawInput {
         vertices,
         triangles,
@@ -262,6 +263,13 @@ impl GeometryInParts {
     /// the tasks assembled, one run per part, instead of being copied into
     /// one array; with several parts, each bins what it keeps into the
     /// bands of a draw on rayon's threads. The image drawn is the same.
+    ///
+    /// The caller has checked that every index is below `vertices.len()`
+    /// ([`MeshRenderer::new`](crate::geometry::render::MeshRenderer::new)
+    /// does, once for all its frames): the check is a pass over every
+    /// index, 0.6 to 0.8 ms of a full dragon frame on one thread, and on
+    /// one thread whatever the draw's count. (A bad index would stop the
+    /// draw with a panic, never draw wrong.)
     pub(crate) fn process_into<V: Sync, S: VertexShader<V>>(
         &mut self,
         vertices: &[V],
@@ -293,7 +301,8 @@ struct DrawInput<'a, V, S> {
     options: &'a PipelineOptions,
 }
 
-/// The pipeline's geometry stages: shades every vertex into `shaded`, and
+/// The pipeline's geometry stages, for triangles whose indices were
+/// checked: shades every vertex into `shaded`, and
 /// assembles, clips, culls and sets up the triangles into the parts of
 /// `scratch`, one per task. With `bin`, and more than one part, the parts
 /// also bin what they keep into the bands of a draw on rayon's threads,
@@ -311,7 +320,6 @@ fn assemble<V: Sync, S: VertexShader<V>>(
         viewport,
         options,
     } = *draw;
-    Error::check_indices(triangles.iter().flatten(), vertices.len())?;
     let clip = ClipVolume::new(viewport.width, viewport.height);
     // Each vertex is shaded once, however many triangles share it; those
     // inside the clip volume are divided and snapped once too. Both
