@@ -258,10 +258,24 @@ pub(crate) fn draw_runs_binned<S: FragmentShader + ?Sized>(
             computed.chunks.iter().map(|(r, b)| (*r, &b[..])).collect()
         }
     };
-    let mut work = target
+    // The bands in order of their triangle counts, most first, each
+    // thread taking the next when it is done: the last band drawn is a
+    // small one, so the threads end together. (Taken in row order, as
+    // rayon splits a range, the full dragon's two threads drew 9.3 and
+    // 10.4 ms of bands; in this order its zoomed frame on two threads went
+    // from 47.0 to 43.4 ms.) A band's pixels are its own, so the order
+    // changes no bit.
+    let triangles_in =
+        |b: usize| -> usize { chunks.iter().map(|(_, per_band)| per_band[b].len()).sum() };
+    let mut largest_first: Vec<(usize, TargetRows<'_>)> = target
         .bands_clearing(bands.rows(), pass.clear)
-        .into_par_iter()
+        .into_iter()
         .enumerate()
+        .collect();
+    largest_first.sort_by_cached_key(|(b, _)| std::cmp::Reverse(triangles_in(*b)));
+    let mut work = largest_first
+        .into_iter()
+        .par_bridge()
         .map(|(b, rows)| {
             let viewport = rows.rect();
             let mut stage = pass.stage(rows, geometry.shaded);
