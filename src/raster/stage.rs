@@ -539,8 +539,15 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
             return;
         };
         if !self.shader.uniform_per_primitive() {
+            // As `triangle_sample` on each fragment, the vertices read once.
+            let Some(vertices) = self.vertices_of(t) else {
+                return;
+            };
             for f in span.fragments() {
-                self.triangle_sample(t, &f);
+                let z = t.depth.at(f.x, f.y);
+                if let Some(idx) = self.depth_test(f.x, f.y, z) {
+                    self.write(idx, Sample::of_triangle(z, vertices, &f));
+                }
             }
             return;
         }
