@@ -25,7 +25,7 @@
 //! `RenderTarget::without_coverage` (colour and depth, as the peers).
 //! The two workers of `tiled-2-threads`, and the two rasterizer threads
 //! of `llvmpipe-2-threads`, are bound to a core each: left to the
-//! scheduler, they sometimes shared one core for the first 10 ms or so
+//! scheduler, they sometimes shared one core for the first 12 ms or so
 //! of a frame (`support/cores.rs` says how that was seen). The printed
 //! context says whether they were bound.
 //!
@@ -587,7 +587,7 @@ fn main() {
     println!("rasterlab on 1 thread unless the name says otherwise; llvmpipe-1-thread is one rasterizer thread beside the drawing thread");
     println!(
         "two threads: rasterlab's workers {}",
-        cores::binding(2).describe()
+        cores::pool_binding(2).describe()
     );
     if gls.is_ok() {
         println!(
@@ -595,7 +595,7 @@ fn main() {
             llvmpipe_binding.describe()
         );
     }
-    println!("peer / best: the peer's time over rasterlab's best on as many threads, median of the per-round ratios [min-max]; above 1, rasterlab is faster");
+    println!("peer / best: the peer's time over rasterlab's best on as many threads (on any number when none ran on that many), median of the per-round ratios [min-max]; above 1, rasterlab is faster");
     println!("cpu peer / best: the same with the CPU time of all their threads per run, steadier when the cores were busy");
     print!("{ratios}");
 }

@@ -2,24 +2,37 @@
 //!
 //! Left to the scheduler, two worker threads woken after an idle spell
 //! can share one core while the other stays idle. On the 2-core virtual
-//! machine the benchmarks were measured on (its kernel booted with
-//! `sched_vcpu_pack`, which packs threads onto few virtual CPUs), `perf
-//! sched map` showed both of `tiled`'s workers taking turns on one CPU
-//! for about 12 ms after the one-thread contender before them had run,
-//! the other CPU idle. The bundled dragon's two-thread frame then took
+//! machine the benchmarks were measured on, `perf sched map` showed both
+//! of `tiled`'s workers taking turns on one CPU for about 12 ms after the
+//! one-thread contender before them had run, the other CPU idle. That
+//! machine's kernel is booted with `sched_vcpu_pack`, a setting of that
+//! virtual machine's kernel (not of Linux in general) that packs threads
+//! onto few virtual CPUs. The bundled dragon's two-thread frame then took
 //! as long as its one-thread frame (13.4 against 13.3 ms), its threads
 //! counting the difference as waiting for a core (9.7 ms a frame); run
 //! alone, frame after frame, it took 7.5 ms.
+//!
 //! So worker `i` of rasterlab's pools and llvmpipe's rasterizer thread
 //! `llvmpipe-i` are each bound to the `i`-th CPU the process may run on;
 //! the thread that calls them (the benchmark's main thread, llvmpipe's
-//! drawing thread) is left free.
+//! drawing thread) is left free. What that measures:
 //!
-//! Linux only (`sched_setaffinity`); elsewhere nothing is bound, and
-//! [`Binding::describe`] says so.
+//! * a best case: each worker has a CPU of its own from the frame's
+//!   first instruction. An application that does not bind its threads
+//!   (`render --threads 2` does not) gets it only once the scheduler has
+//!   spread them, which `render`'s frames, drawn one after another, do
+//!   (its figures are in the README);
+//! * on a CPU with simultaneous multithreading, the `i`-th CPU may be a
+//!   sibling hardware thread of the `(i - 1)`-th, not a core of its own.
+//!   The machine the README's figures come from has none.
+//!
+//! Linux only (`sched_setaffinity`); elsewhere nothing is bound. The
+//! printed context says whether every binding succeeded
+//! ([`pool_binding`], [`LlvmpipeThreads::bind_new`]).
 
 #[cfg(target_os = "linux")]
 use std::collections::HashSet;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Whether the workers could be given a core each.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -37,7 +50,7 @@ impl Binding {
         match self {
             Binding::OneCoreEach => "bound to a core each",
             Binding::Unbound => {
-                "left to the scheduler (fewer cores than threads, or not Linux; see benches/support/cores.rs)"
+                "left to the scheduler (fewer cores than threads, a binding refused, or not Linux; see benches/support/cores.rs)"
             }
         }
     }
@@ -71,26 +84,42 @@ fn bind(tid: libc::pid_t, cpu: usize) -> bool {
     }
 }
 
-/// How [`pool`] places the workers of a pool of `threads`: a core each
-/// when there are more than one and at least as many CPUs.
-pub fn binding(threads: usize) -> Binding {
+/// Whether [`pool`] binds the workers of a pool of `threads`: when there
+/// are more than one, and at least as many CPUs.
+fn binds(threads: usize) -> bool {
     #[cfg(target_os = "linux")]
-    if threads > 1 && allowed_cpus().len() >= threads {
-        return Binding::OneCoreEach;
+    if threads > 1 {
+        return allowed_cpus().len() >= threads;
     }
     let _ = threads;
-    Binding::Unbound
+    false
 }
 
-/// A rayon pool of `threads` workers, placed as [`binding`] says.
+/// Workers of [`pool`]s that could not be bound, so far.
+static UNBOUND_WORKERS: AtomicUsize = AtomicUsize::new(0);
+
+/// How the workers of the pools of `threads` made so far were placed: a
+/// core each if [`pool`] bound them and every binding succeeded.
+pub fn pool_binding(threads: usize) -> Binding {
+    if binds(threads) && UNBOUND_WORKERS.load(Ordering::Relaxed) == 0 {
+        Binding::OneCoreEach
+    } else {
+        Binding::Unbound
+    }
+}
+
+/// A rayon pool of `threads` workers, each bound to a CPU of its own when
+/// there are more than one and at least as many CPUs.
 pub fn pool(threads: usize) -> rayon::ThreadPool {
     let builder = rayon::ThreadPoolBuilder::new().num_threads(threads);
     #[cfg(target_os = "linux")]
-    if binding(threads) == Binding::OneCoreEach {
+    if binds(threads) {
         let cpus = allowed_cpus();
         return builder
             .start_handler(move |i| {
-                bind(0, cpus[i]);
+                if !bind(0, cpus[i]) {
+                    UNBOUND_WORKERS.fetch_add(1, Ordering::Relaxed);
+                }
             })
             .build()
             .expect("a rayon pool");
