@@ -440,6 +440,27 @@ fn errors_name_the_real_cause() {
     assert_eq!(String::from_utf8(out.stdout).unwrap().lines().count(), 15);
     let out = rasterlab(&["fragments", "--backend", "bbox", "--size", "8x8", BUNNY]);
     expect(&out, 2, "this is a mesh");
+    // A 2D file with nothing to draw is refused, as an empty mesh is.
+    let empty = temp_file("empty.txt", b"# nothing here\n\n");
+    for command in [
+        vec!["fragments", "--backend", "bbox", "--size", "8x8", s(&empty)],
+        vec![
+            "render",
+            s(&empty),
+            "--size",
+            "8x8",
+            "--out",
+            s(&dir().join("empty.png")),
+        ],
+    ] {
+        let out = rasterlab(&command);
+        expect(
+            &out,
+            2,
+            "empty.txt: no triangle, polygon or line segment in it (only blank lines and comments)",
+        );
+    }
+    assert!(!dir().join("empty.png").exists(), "no picture of nothing");
     // Faces beyond the header's count are an error, not dropped.
     let bunny = std::fs::read(BUNNY).unwrap();
     let extra = temp_file("extra.ply", &[bunny.as_slice(), b"3 0 1 2\n"].concat());

@@ -181,7 +181,9 @@ fn finish_polygon(
 }
 
 /// Reads and parses a triangle soup or line set file; `-` reads standard
-/// input. A mesh file is refused with a message that says so.
+/// input. A mesh file is refused with a message that says so, and so is a
+/// file with nothing to draw (only blank lines and comments), as an empty
+/// mesh is.
 pub fn read_shapes(path: &Path) -> Result<Shapes> {
     if crate::geometry::mesh::Mesh::is_mesh_path(path) {
         return Err(Error::Parse {
@@ -196,7 +198,16 @@ pub fn read_shapes(path: &Path) -> Result<Shapes> {
         std::fs::read_to_string(path)
     }
     .map_err(|e| Error::io(path, &e))?;
-    parse_shapes(&text, path)
+    let shapes = parse_shapes(&text, path)?;
+    if shapes.is_empty() {
+        return Err(Error::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            message: "no triangle, polygon or line segment in it (only blank lines and comments)"
+                .into(),
+        });
+    }
+    Ok(shapes)
 }
 
 #[cfg(test)]
