@@ -327,15 +327,19 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
         }
     }
 
-    /// One fragment of triangle `t`: depth from its plane, then, only if
-    /// the depth test passes, its vertices and weights for shading.
-    #[inline]
-    fn triangle_sample(&mut self, t: &ShadedTriangle, f: &TriangleFragment) {
+    /// One fragment of triangle `t`, whose vertices lie at `vertices`:
+    /// depth from its plane, then, only if the depth test passes, its
+    /// vertices are read and weighted for shading.
+    #[inline(always)]
+    fn triangle_sample(
+        &mut self,
+        t: &ShadedTriangle,
+        vertices: [&ShadedVertex; 3],
+        f: &TriangleFragment,
+    ) {
         let z = t.depth.at(f.x, f.y);
         if let Some(idx) = self.depth_test(f.x, f.y, z) {
-            if let Some(vertices) = self.vertices_of(t) {
-                self.write(idx, Sample::of_triangle(z, vertices, f));
-            }
+            self.write(idx, Sample::of_triangle(z, vertices.map(|v| *v), f));
         }
     }
 }
@@ -542,7 +546,9 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
     fn triangle_fragment(&mut self, f: &TriangleFragment) {
         self.prefetch_ahead(f.triangle);
         if let Some(t) = self.triangle(f.triangle) {
-            self.triangle_sample(t, f);
+            if let Some(vertices) = self.vertex_refs(t) {
+                self.triangle_sample(t, vertices, f);
+            }
         }
     }
 
@@ -552,16 +558,12 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
             return;
         };
         if !self.shader.uniform_per_primitive() {
-            // As `triangle_sample` on each fragment, the vertices found
-            // once.
+            // The vertices found once for the span.
             let Some(vertices) = self.vertex_refs(t) else {
                 return;
             };
             for f in span.fragments() {
-                let z = t.depth.at(f.x, f.y);
-                if let Some(idx) = self.depth_test(f.x, f.y, z) {
-                    self.write(idx, Sample::of_triangle(z, vertices.map(|v| *v), &f));
-                }
+                self.triangle_sample(t, vertices, &f);
             }
             return;
         }
