@@ -84,15 +84,23 @@ fn bind(tid: libc::pid_t, cpu: usize) -> bool {
     }
 }
 
-/// Whether [`pool`] binds the workers of a pool of `threads`: when there
-/// are more than one, and at least as many CPUs.
+/// The CPUs to bind `workers` threads to, the `i`-th worker to the
+/// `i`-th: when there are more than one, and at least as many CPUs.
+#[cfg(target_os = "linux")]
+fn cpus_for(workers: usize) -> Option<Vec<usize>> {
+    let cpus = allowed_cpus();
+    (workers > 1 && cpus.len() >= workers).then_some(cpus)
+}
+
+/// Whether [`pool`] binds the workers of a pool of `threads`.
 fn binds(threads: usize) -> bool {
     #[cfg(target_os = "linux")]
-    if threads > 1 {
-        return allowed_cpus().len() >= threads;
+    return cpus_for(threads).is_some();
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = threads;
+        false
     }
-    let _ = threads;
-    false
 }
 
 /// Workers of [`pool`]s that could not be bound, so far.
@@ -113,8 +121,7 @@ pub fn pool_binding(threads: usize) -> Binding {
 pub fn pool(threads: usize) -> rayon::ThreadPool {
     let builder = rayon::ThreadPoolBuilder::new().num_threads(threads);
     #[cfg(target_os = "linux")]
-    if binds(threads) {
-        let cpus = allowed_cpus();
+    if let Some(cpus) = cpus_for(threads) {
         return builder
             .start_handler(move |i| {
                 if !bind(0, cpus[i]) {
@@ -169,13 +176,12 @@ impl LlvmpipeThreads {
     /// many CPUs; a single worker is left unbound, as rasterlab's is.
     pub fn bind_new(&self, workers: usize) -> Binding {
         #[cfg(target_os = "linux")]
-        {
-            let cpus = allowed_cpus();
+        if let Some(cpus) = cpus_for(workers) {
             let new: Vec<_> = llvmpipe_threads()
                 .into_iter()
                 .filter(|(tid, _)| !self.seen.contains(tid))
                 .collect();
-            if workers > 1 && cpus.len() >= workers && new.len() == workers {
+            if new.len() == workers {
                 let bound = new
                     .iter()
                     .all(|&(tid, n)| n < workers && bind(tid, cpus[n]));
