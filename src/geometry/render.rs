@@ -502,6 +502,19 @@ mod tests {
     use crate::raster::vector::{self, Width};
     use std::path::Path;
 
+    /// A 160x120 view of the bundled bunny with `shading`, zoomed so that
+    /// triangles cross the near and side planes.
+    fn clipped_bunny(shading: Shading) -> RenderSettings {
+        RenderSettings {
+            width: 160,
+            height: 120,
+            azimuth: 40.0,
+            zoom: 6.0,
+            shading,
+            ..RenderSettings::default()
+        }
+    }
+
     /// The geometry loops (vertex shading, assembly and set-up) and the
     /// stage's span loop compiled for AVX2 give the very bits of their
     /// baseline copies: the same geometry and the same frame, for every
@@ -510,15 +523,7 @@ mod tests {
     fn every_copy_of_the_vectorized_loops_gives_the_same_frame() {
         let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
         for shading in [Shading::Flat, Shading::Gouraud, Shading::Diffuse] {
-            // Zoomed so that triangles cross the near and side planes.
-            let settings = RenderSettings {
-                width: 160,
-                height: 120,
-                azimuth: 40.0,
-                zoom: 6.0,
-                shading,
-                ..RenderSettings::default()
-            };
+            let settings = clipped_bunny(shading);
             let renderer = MeshRenderer::new(&bunny, settings).unwrap();
             let baseline = vector::limited_to(Width::Baseline, || renderer.geometry().unwrap());
             assert!(baseline.stats.clipped > 0 && baseline.stats.triangles > 100);
@@ -556,14 +561,7 @@ mod tests {
             Shading::Normals,
             Shading::Texture,
         ] {
-            let settings = RenderSettings {
-                width: 160,
-                height: 120,
-                azimuth: 40.0,
-                zoom: 6.0,
-                shading,
-                ..RenderSettings::default()
-            };
+            let settings = clipped_bunny(shading);
             let renderer = MeshRenderer::new(&bunny, settings).unwrap();
             let shader: &dyn FragmentShader = match &renderer.shader {
                 MeshShader::Flat(s) => s,
