@@ -7,6 +7,7 @@
 //! rasterlab check --rule watertight --exec "target/release/examples/peer_adapters euc {input} {width} {height}"
 //! rasterlab check --rule watertight --exec "target/release/examples/peer_adapters embedded-graphics {input} {width} {height}"
 //! rasterlab check --rule any --exec "target/release/examples/peer_adapters opengl {input} {width} {height}"
+//! rasterlab check --rule any --exec "target/release/examples/peer_adapters opengl-wide {input} {width} {height}"
 //! ```
 //!
 //! Each adapter reads the input file (triangles `x0 y0 x1 y1 x2 y2` in
@@ -43,6 +44,27 @@
 //!   given on: a triangle crossing the target's edge is not clipped
 //!   there; only one reaching beyond the margin is, with vertices the
 //!   driver makes of its own.
+//! * `opengl-wide`: the same context and y flip, but drawn the way
+//!   applications that rely on a wide clipping range draw: the viewport
+//!   is far larger than the framebuffer, `glViewport(-8192, -8192, 16384,
+//!   16384)` (its side is the smaller of 16,384 and `GL_MAX_VIEWPORT_DIMS`,
+//!   rounded down to a power of two: 16,384 on llvmpipe; the adapter reads
+//!   `GL_VIEWPORT` back and refuses to run when GL changed it). The
+//!   framebuffer is a square of side the larger of 64 and the target's
+//!   side rounded up to a power of two, one 64x64 tile of llvmpipe's for
+//!   the check's targets, whatever size shrinking cuts them to; the target
+//!   is its bottom-left corner: the screen's pixel `(i, j)` is GL's pixel
+//!   `(i, H - 1 - j)`, the screen point `(x, y)` GL's window point
+//!   `(x, H - y)`, sent as the clip-space point `(x, H - y) * 2 / 16384`,
+//!   which the viewport maps back to `(x, H - y)`. Each step is exact in
+//!   `f32` for coordinates on the 1/256 grid with `|x|, |y| < 2^15` (the
+//!   guard band): at most 24 significant bits, `H - y` as well while
+//!   `|H - y| < 2^16`, and the scales are powers of two. GL's clipper
+//!   cuts nothing within 8,192 px of GL's window origin (the target's
+//!   bottom-left corner), so such triangles reach llvmpipe's rasterizer
+//!   whole, on the grid they were given on, and the framebuffer's edges
+//!   only bound the pixels written. A triangle reaching farther is clipped
+//!   at the viewport's edge, 8,192 px off, with vertices the driver makes.
 
 // The support module serves the benchmarks and tests too: this adapter
 // uses part of it.
@@ -242,6 +264,106 @@ impl OpenGl {
     }
 }
 
+/// The side of the wide viewport asked for (`opengl-wide`): GL clips
+/// nothing within half of it around the framebuffer's origin.
+const WIDE_VIEWPORT: i32 = 16384;
+
+/// OpenGL with a viewport far larger than the framebuffer, which holds
+/// the target in its bottom-left corner (`opengl-wide`, see the module
+/// docs).
+struct WideGl {
+    gl: gl::Llvmpipe,
+    side: u32,
+    transform: [f32; 16],
+}
+
+impl WideGl {
+    fn new(w: u32, h: u32) -> Result<WideGl, String> {
+        let side = w.max(h).next_power_of_two().max(64);
+        let gl = gl::Llvmpipe::new(side, side, 0)?;
+        let viewport = wide_viewport(WIDE_VIEWPORT)?;
+        // Clip space from GL's window coordinates, for the viewport
+        // (-v/2, -v/2, v, v): x_ndc = x_window * 2 / v, a power of two;
+        // depth 0.5 to 0.
+        let s = 2.0 / viewport as f32;
+        let transform = [
+            s, 0.0, 0.0, 0.0, //
+            0.0, s, 0.0, 0.0, //
+            0.0, 0.0, 2.0, 0.0, //
+            0.0, 0.0, -1.0, 1.0,
+        ];
+        Ok(WideGl {
+            gl,
+            side,
+            transform,
+        })
+    }
+
+    /// The pixels of the `w x h` target GL covers drawing `t` alone.
+    fn pixels(&self, t: &Triangle, w: u32, h: u32) -> Vec<(u32, u32)> {
+        // The y flip of the module docs: exact in f32 within the guard band.
+        let vertices = t.map(|(x, y)| gl::Vertex {
+            position: [x, h as f32 - y, 0.5],
+            light: 1.0,
+        });
+        let shape = self.gl.shape(&vertices, &[0, 1, 2]);
+        self.gl.draw(
+            &shape,
+            &self.transform,
+            gl::DrawState {
+                depth: false,
+                cull_back: false,
+            },
+        );
+        let coverage = self.gl.coverage();
+        self.gl.delete(shape);
+        let side = self.side;
+        covered(w, h, |i| {
+            let (x, y) = (i as u32 % w, i as u32 / w);
+            coverage[((h - 1 - y) * side + x) as usize]
+        })
+    }
+}
+
+/// Sets the current GL context's viewport to `(-s/2, -s/2, s, s)`, with
+/// `s` the smaller of `wanted` and `GL_MAX_VIEWPORT_DIMS` rounded down to
+/// a power of two, and returns `s`. The support module keeps its GL
+/// function table to itself, so this one is looked up again through EGL
+/// (the same driver, the context current on this thread).
+fn wide_viewport(wanted: i32) -> Result<i32, String> {
+    use glow::HasContext;
+    // SAFETY: libEGL is the system's EGL loader, already loaded by the
+    // support module; khronos-egl checks its EGL 1.5 entry points.
+    let egl = unsafe { khronos_egl::DynamicInstance::<khronos_egl::EGL1_5>::load_required() }
+        .map_err(|e| format!("no libEGL.so.1: {e}"))?;
+    // SAFETY: an llvmpipe context is current on this thread (made so by
+    // `gl::Llvmpipe::new`); the entry points are its driver's.
+    let gl = unsafe {
+        glow::Context::from_loader_function(|name| {
+            egl.get_proc_address(name)
+                .map_or(std::ptr::null(), |f| f as *const std::ffi::c_void)
+        })
+    };
+    // SAFETY: plain GL calls on the current context.
+    unsafe {
+        let mut dims = [0i32; 2];
+        gl.get_parameter_i32_slice(glow::MAX_VIEWPORT_DIMS, &mut dims);
+        let most = wanted.min(dims[0]).min(dims[1]);
+        if most < 2 {
+            return Err(format!("GL_MAX_VIEWPORT_DIMS is {dims:?}"));
+        }
+        let side = 1 << (31 - most.leading_zeros());
+        let asked = [-side / 2, -side / 2, side, side];
+        gl.viewport(asked[0], asked[1], asked[2], asked[3]);
+        let mut got = [0i32; 4];
+        gl.get_parameter_i32_slice(glow::VIEWPORT, &mut got);
+        if got != asked {
+            return Err(format!("glViewport{asked:?} gave the viewport {got:?}"));
+        }
+        Ok(side)
+    }
+}
+
 fn covered(w: u32, h: u32, is_set: impl Fn(usize) -> bool) -> Vec<(u32, u32)> {
     (0..h)
         .flat_map(|y| (0..w).map(move |x| (x, y)))
@@ -251,7 +373,8 @@ fn covered(w: u32, h: u32, is_set: impl Fn(usize) -> bool) -> Vec<(u32, u32)> {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
-    let usage = "usage: peer_adapters tiny-skia|euc|embedded-graphics|opengl INPUT WIDTH HEIGHT";
+    let usage =
+        "usage: peer_adapters tiny-skia|euc|embedded-graphics|opengl|opengl-wide INPUT WIDTH HEIGHT";
     let [_, crate_name, input, width, height] = args.as_slice() else {
         eprintln!("{usage}");
         return ExitCode::from(2);
@@ -272,6 +395,7 @@ fn main() -> ExitCode {
         }
     };
     let opengl;
+    let opengl_wide;
     let draw: Draw = match crate_name.as_str() {
         "tiny-skia" => Box::new(tiny_skia_pixels),
         "euc" => Box::new(euc_pixels),
@@ -285,6 +409,16 @@ fn main() -> ExitCode {
                 }
             };
             Box::new(|t: &Triangle, w, h| opengl.pixels(t, w, h))
+        }
+        "opengl-wide" => {
+            opengl_wide = match WideGl::new(w, h) {
+                Ok(gl) => gl,
+                Err(e) => {
+                    eprintln!("OpenGL unavailable: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            Box::new(|t: &Triangle, w, h| opengl_wide.pixels(t, w, h))
         }
         _ => {
             eprintln!("{usage}");

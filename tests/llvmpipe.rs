@@ -17,6 +17,20 @@
 //!   (an occlusion query with every fragment passing) are rasterlab's,
 //!   give or take 3 (GL computes the viewport transform in `f32`,
 //!   rasterlab in `f64`, so a vertex can snap one 1/256 px apart).
+//! * llvmpipe through a viewport of 16,384 px around a 64x64 framebuffer
+//!   (`glViewport(-8192, -8192, 16384, 16384)`, as `peer_adapters
+//!   opengl-wide` draws), so that GL clips nothing within 8,192 px and far
+//!   vertices reach the rasterizer whole: a triangle whose bounding box
+//!   reaches only GL's first 64x64 tile (all of it at negative window
+//!   coordinates but that corner) loses pixels once its far edge's length
+//!   times its distance passes about 2^23 px². In GL's window coordinates
+//!   `10 10 -3000 10 10 -3000` draws nothing where the rules draw 100
+//!   pixels (through a viewport the framebuffer's size, which clips the
+//!   triangle first, llvmpipe draws them all); with the screen's y flipped
+//!   into GL's window (the adapter's way, the bottom-left rule) its mirror
+//!   image `10 54 -3000 54 10 3064` does. And the check's `overflow`
+//!   family catches it: through the flip, the check fails on an overflow
+//!   case, shrunk to at most two triangles.
 //!
 //! Without Mesa (`libEGL.so.1`, Mesa's EGL and DRI drivers) each test
 //! prints why it is skipped and passes, unless `RASTERLAB_REQUIRE_MESA=1`
@@ -25,6 +39,7 @@
 #[path = "../benches/support/gl.rs"]
 mod gl;
 
+use rasterlab::check::{self, Case, CheckOptions, Fragment, Property, SubjectError, Verdict};
 use rasterlab::geometry::mesh::Mesh;
 use rasterlab::geometry::pipeline::CullMode;
 use rasterlab::geometry::render::{MeshRenderer, RenderSettings};
@@ -193,4 +208,234 @@ fn llvmpipe_draws_the_dragons_fragments() {
             "{name}: rasterlab {ours}, llvmpipe {theirs}"
         );
     }
+}
+
+/// llvmpipe on a 64x64 framebuffer holding the target in its bottom-left
+/// corner, through a square viewport: that of `peer_adapters
+/// opengl-wide` (16,384 px centred on GL's window origin) or one the
+/// framebuffer's size, where GL clips at its edges. With `flip`, the
+/// adapter's y flip: the screen point `(x, y)` of a `W x H` target is
+/// GL's `(x, H - y)`, the screen's pixel `(i, j)` GL's `(i, H - 1 - j)`,
+/// and llvmpipe's top-left rule the screen's bottom-left. Without, GL's
+/// window coordinates are the screen's, as in the first test.
+struct Window {
+    gl: gl::Llvmpipe,
+    transform: [f32; 16],
+    flip: bool,
+}
+
+/// The framebuffer's side: one llvmpipe tile, more than the check's
+/// targets (at most 40x40).
+const WINDOW_SIDE: u32 = 64;
+
+impl Window {
+    /// With the viewport `(origin, origin, side, side)`, `side` a power of
+    /// two; `None` when Mesa is missing (see [`llvmpipe`]).
+    fn new(origin: i32, side: i32, flip: bool) -> Option<Window> {
+        let gl = llvmpipe(WINDOW_SIDE, WINDOW_SIDE)?;
+        set_viewport(origin, side);
+        // x_ndc = (x_window - origin) * 2 / side - 1, exact in f32: a power
+        // of two and a constant, 0 for the wide viewport.
+        let (k, t) = (
+            2.0 / side as f32,
+            -(2.0 * origin as f32 / side as f32 + 1.0),
+        );
+        let transform = [
+            k, 0.0, 0.0, 0.0, //
+            0.0, k, 0.0, 0.0, //
+            0.0, 0.0, 2.0, 0.0, //
+            t, t, -1.0, 1.0,
+        ];
+        Some(Window {
+            gl,
+            transform,
+            flip,
+        })
+    }
+
+    /// `peer_adapters opengl-wide`'s viewport: `glViewport(-8192, -8192,
+    /// 16384, 16384)`.
+    fn wide(flip: bool) -> Option<Window> {
+        Window::new(-8192, 16384, flip)
+    }
+
+    /// The fill rule llvmpipe follows in the screen's coordinates.
+    fn rule(&self) -> FillRule {
+        if self.flip {
+            FillRule::BottomLeft
+        } else {
+            FillRule::TopLeft
+        }
+    }
+
+    /// The fragments of `case`, each triangle drawn alone.
+    fn draw(&self, case: &Case) -> Vec<Fragment> {
+        let (w, h) = (case.width, case.height);
+        assert!(w <= WINDOW_SIDE && h <= WINDOW_SIDE, "a {w}x{h} target");
+        let mut out = Vec::new();
+        for (id, t) in case.triangles.iter().enumerate() {
+            let vertices = t.map(|(x, y)| gl::Vertex {
+                // Exact in f32 on the 1/256 grid within the guard band.
+                position: [
+                    x as f32,
+                    if self.flip {
+                        h as f32 - y as f32
+                    } else {
+                        y as f32
+                    },
+                    0.5,
+                ],
+                light: 1.0,
+            });
+            let shape = self.gl.shape(&vertices, &[0, 1, 2]);
+            self.gl.draw(
+                &shape,
+                &self.transform,
+                gl::DrawState {
+                    depth: false,
+                    cull_back: false,
+                },
+            );
+            let coverage = self.gl.coverage();
+            self.gl.delete(shape);
+            for y in 0..h {
+                let row = if self.flip { h - 1 - y } else { y };
+                for x in 0..w {
+                    if coverage[(row * WINDOW_SIDE + x) as usize] {
+                        out.push(Fragment {
+                            x: i64::from(x),
+                            y: i64::from(y),
+                            id: id as u32,
+                        });
+                    }
+                }
+            }
+        }
+        out.sort();
+        out
+    }
+}
+
+/// Sets the current context's viewport to `(origin, origin, side, side)`,
+/// after checking `GL_MAX_VIEWPORT_DIMS` allows it, and reads it back.
+/// The support module keeps its GL function table to itself, so this one
+/// is looked up again through EGL (the same driver, the context current
+/// on this thread).
+fn set_viewport(origin: i32, side: i32) {
+    use glow::HasContext;
+    // SAFETY: libEGL is loaded already (an llvmpipe context exists).
+    let egl = unsafe { khronos_egl::DynamicInstance::<khronos_egl::EGL1_5>::load_required() }
+        .expect("libEGL.so.1, loaded already");
+    // SAFETY: an llvmpipe context is current on this thread.
+    let gl = unsafe {
+        glow::Context::from_loader_function(|name| {
+            egl.get_proc_address(name)
+                .map_or(std::ptr::null(), |f| f as *const std::ffi::c_void)
+        })
+    };
+    // SAFETY: plain GL calls on the current context.
+    unsafe {
+        let mut dims = [0i32; 2];
+        gl.get_parameter_i32_slice(glow::MAX_VIEWPORT_DIMS, &mut dims);
+        assert!(
+            dims[0] >= side && dims[1] >= side,
+            "GL_MAX_VIEWPORT_DIMS {dims:?}"
+        );
+        gl.viewport(origin, origin, side, side);
+        let mut got = [0i32; 4];
+        gl.get_parameter_i32_slice(glow::VIEWPORT, &mut got);
+        assert_eq!(got, [origin, origin, side, side], "the viewport GL kept");
+    }
+}
+
+/// The rules' fragments of `case` under `rule`, sorted.
+fn exact(rule: FillRule, case: &Case) -> Vec<Fragment> {
+    let mut fragments = check::reference(Property::Exact(rule), case);
+    fragments.sort();
+    fragments
+}
+
+#[test]
+fn llvmpipe_drops_a_far_corner_in_its_first_tile_through_a_wide_viewport() {
+    let windows = (
+        Window::wide(false),
+        Window::new(0, WINDOW_SIDE as i32, false),
+        Window::wide(true),
+    );
+    let (Some(wide), Some(clipping), Some(flipped)) = windows else {
+        return;
+    };
+    let corner = Case::from_text("# size 64x64\n10 10 -3000 10 10 -3000\n").unwrap();
+    let mirrored = Case::from_text("# size 64x64\n10 54 -3000 54 10 3064\n").unwrap();
+    // GL's window coordinates: the corner at GL's origin, llvmpipe's
+    // first tile.
+    let answer = exact(wide.rule(), &corner);
+    assert_eq!(answer.len(), 100, "the rules draw the 10x10 corner");
+    assert_eq!(
+        clipping.draw(&corner),
+        answer,
+        "clipped at the framebuffer first, llvmpipe draws the corner"
+    );
+    let drawn = wide.draw(&corner);
+    eprintln!(
+        "10 10 -3000 10 10 -3000 on 64x64 in GL's window coordinates: the rules draw {}, llvmpipe through a wide viewport {}",
+        answer.len(),
+        drawn.len()
+    );
+    assert!(
+        drawn.is_empty(),
+        "llvmpipe drew {drawn:?}: fixed in this Mesa?"
+    );
+    // Through the adapter's y flip the same corner is GL's top-left,
+    // another tile's reach, and is drawn; its mirror image is the one lost.
+    assert_eq!(flipped.draw(&corner), exact(flipped.rule(), &corner));
+    assert_eq!(exact(flipped.rule(), &mirrored).len(), 100);
+    let drawn = flipped.draw(&mirrored);
+    assert!(
+        drawn.is_empty(),
+        "llvmpipe drew {drawn:?}: fixed in this Mesa?"
+    );
+}
+
+#[test]
+fn the_overflow_family_catches_llvmpipe_through_a_wide_viewport() {
+    let Some(wide) = Window::wide(true) else {
+        return;
+    };
+    let property = Property::Exact(wide.rule());
+    let options = CheckOptions {
+        cases: 1000,
+        ..CheckOptions::new(property)
+    };
+    let mut subject = |case: &Case| -> Result<Vec<Fragment>, SubjectError> { Ok(wide.draw(case)) };
+    let verdict = check::check(&options, &mut subject).unwrap();
+    eprintln!("{verdict}");
+    let Verdict::Fail {
+        case_index,
+        finding,
+        ..
+    } = verdict
+    else {
+        panic!(
+            "llvmpipe passed {} cases through a wide viewport",
+            options.cases
+        );
+    };
+    let shrunk = &finding.case;
+    eprintln!(
+        "case {case_index}, shrunk:\n{}the rules draw {} fragments, llvmpipe {}",
+        shrunk.to_text(),
+        exact(wide.rule(), shrunk).len(),
+        wide.draw(shrunk).len()
+    );
+    assert_eq!(
+        check::generate::family(property, case_index),
+        "overflow",
+        "the first failure comes from the overflow family"
+    );
+    assert!(
+        shrunk.triangles.len() <= 2,
+        "shrunk to {} triangles",
+        shrunk.triangles.len()
+    );
 }

@@ -16,7 +16,7 @@
 //! | huge | vertices far outside the target, up to the guard band, and negative |
 //! | ties | coordinates on half a subpixel (1/512 px), where snapping rounds to even (exact only) |
 //! | zero area | triangles that become segments or points once snapped, beside a normal one (exact only) |
-//! | overflow | vertices 2,000 to 30,000 px off the target, on every side, both windings, of which only a corner or a thin band is seen: edge values beyond 32 bits where the few visible pixels are |
+//! | overflow | vertices 1,500 to 30,000 px off the target, on every side, both windings, of which only a corner or a thin band is seen: edge values beyond 32 bits where the few visible pixels are, among them wide corners (the pair within one 64x64 tile at a corner of the target, far edges thousands of px long and away: length times distance past 2^23 px²) |
 //!
 //! Lines: random segments, segments between pixel centres (the midpoint
 //! test's ties), axis-parallel and diagonal segments, long segments from
@@ -29,7 +29,7 @@
 //! with a first line `# size WxH` (see [`super::Case`]).
 
 use super::case::{snap, Case, Point};
-use super::judge::{LineConvention, Property};
+use super::judge::Property;
 use crate::raster::fixed::{FixedPoint, GUARD_BAND};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 use std::f64::consts::TAU;
@@ -67,7 +67,7 @@ pub fn families(property: Property) -> &'static [&'static str] {
     match property {
         Property::Exact(_) => &EXACT_FAMILIES,
         Property::Watertight | Property::CrackFree => &MESH_FAMILIES,
-        Property::Line(LineConvention::PixelIndex) => &PIXEL_INDEX_FAMILIES,
+        Property::Line(c) if c.whole_pixels() => &PIXEL_INDEX_FAMILIES,
         Property::Line(_) => &LINE_FAMILIES,
     }
 }
@@ -89,9 +89,7 @@ pub fn case(property: Property, index: u32, rng: &mut fastrand::Rng) -> Case {
     };
     let (w, h) = (f64::from(width), f64::from(height));
     match property {
-        Property::Line(LineConvention::PixelIndex) => {
-            case.lines = pixel_index_lines(index, rng, w, h)
-        }
+        Property::Line(c) if c.whole_pixels() => case.lines = pixel_index_lines(index, rng, w, h),
         Property::Line(_) => case.lines = lines(index, rng, w, h),
         Property::Watertight | Property::CrackFree => {
             // Jitter or clamping can fold a grid or fan over itself; such
@@ -172,10 +170,27 @@ fn watertight(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point
     }
 }
 
-/// Two triangles sharing an edge, with vertices 2,000 to 30,000 px off the
-/// target (on any side), of which only a corner (a thin wedge from a
-/// vertex inside the target) or a thin band across it is seen; either
-/// winding.
+/// Two triangles sharing an edge, with vertices far off the target (on
+/// any side), either winding, of one of three kinds:
+///
+/// * a thin wedge (a quarter of the cases): a vertex inside the target,
+///   the far ends 2,000 to 30,000 px away a few thousandths of a radian
+///   apart;
+/// * a thin band (a quarter): a long shared edge across the target, the
+///   third vertices a pixel or two to either side, near the target or far;
+/// * a wide corner (half): a vertex inside the target and the far ends
+///   1,500 to 8,000 px away in the quadrant beyond one of the target's
+///   corners (left ones three times in four: where a tiled rasterizer's
+///   first tile is, top-left in y-down memory, bottom-left in OpenGL's),
+///   a quarter of the time along the two axes, as in `10 54 -3000 54 10
+///   3064` on 64x64. The pair reaches no farther into the target than
+///   its vertex there (for the check's targets, at most 40 px, it lies in
+///   the 64x64 tile at that corner), its visible part is the corner, and
+///   the edge opposite the vertex, thousands of pixels long and thousands
+///   away, has edge values (its length times its distance) of about 2^18
+///   to 2^26 px² at the visible pixels: past 2^23 px², what 32 bits of
+///   1/256 px² hold, for most. The vertices stay within 8,100 px of the
+///   target, so that a viewport 16,384 px wide around it clips nothing.
 fn overflow(rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]> {
     let limit = (GUARD_BAND - 2) as f64;
     let clamp = |p: Point| {
@@ -186,32 +201,36 @@ fn overflow(rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]> {
     };
     let far = |rng: &mut fastrand::Rng| 2000.0 + rng.f64() * 28000.0;
     let at = |c: Point, r: f64, a: f64| (c.0 + r * a.cos(), c.1 + r * a.sin());
-    let [a, b, c, d] = if rng.bool() {
-        // A corner: a vertex inside the target, the far ends a few
-        // thousandths of a radian apart.
-        let v = (coord(rng, 0.0, w), coord(rng, 0.0, h));
-        let angle = rng.f64() * TAU;
-        let spread = 0.0003 + rng.f64() * 0.003;
-        let far_end = far(rng);
-        [
-            v,
-            at(v, far_end, angle),
-            at(v, far(rng), angle + spread),
-            at(v, far(rng), angle - spread),
-        ]
-    } else {
-        // A thin band: a long shared edge across the target, the third
-        // vertices a pixel or two to either side near the target, or far.
-        let centre = (coord(rng, 0.0, w), coord(rng, 0.0, h));
-        let angle = rng.f64() * TAU;
-        let (p, q) = (at(centre, far(rng), angle), at(centre, -far(rng), angle));
-        let side = |rng: &mut fastrand::Rng, s: f64| {
-            let off = s * (0.3 + rng.f64() * 2.0);
-            let along = (rng.f64() - 0.5) * if rng.bool() { w.max(h) } else { 40000.0 };
-            let base = at(centre, along, angle);
-            at(base, off, angle + TAU / 4.0)
-        };
-        [p, q, side(rng, 1.0), side(rng, -1.0)]
+    let [a, b, c, d] = match rng.usize(0..4) {
+        0 => {
+            // A thin wedge: a vertex inside the target, the far ends a few
+            // thousandths of a radian apart.
+            let v = (coord(rng, 0.0, w), coord(rng, 0.0, h));
+            let angle = rng.f64() * TAU;
+            let spread = 0.0003 + rng.f64() * 0.003;
+            let far_end = far(rng);
+            [
+                v,
+                at(v, far_end, angle),
+                at(v, far(rng), angle + spread),
+                at(v, far(rng), angle - spread),
+            ]
+        }
+        1 => {
+            // A thin band: a long shared edge across the target, the third
+            // vertices a pixel or two to either side near the target, or far.
+            let centre = (coord(rng, 0.0, w), coord(rng, 0.0, h));
+            let angle = rng.f64() * TAU;
+            let (p, q) = (at(centre, far(rng), angle), at(centre, -far(rng), angle));
+            let side = |rng: &mut fastrand::Rng, s: f64| {
+                let off = s * (0.3 + rng.f64() * 2.0);
+                let along = (rng.f64() - 0.5) * if rng.bool() { w.max(h) } else { 40000.0 };
+                let base = at(centre, along, angle);
+                at(base, off, angle + TAU / 4.0)
+            };
+            [p, q, side(rng, 1.0), side(rng, -1.0)]
+        }
+        _ => wide_corner(rng, w, h),
     };
     let (a, b, c, d) = (clamp(a), clamp(b), clamp(c), clamp(d));
     if rng.bool() {
@@ -219,6 +238,37 @@ fn overflow(rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]> {
     } else {
         vec![[a, c, b], [b, d, a]]
     }
+}
+
+/// The overflow family's wide corner (see [`overflow`]): the vertex `v`,
+/// the far end `b` of the shared edge, and the far ends `c` and `d` of the
+/// two triangles `v b c` and `b v d`, which lie on either side of the ray
+/// from `v` through `b`, within a quarter turn, so they never overlap.
+fn wide_corner(rng: &mut fastrand::Rng, w: f64, h: f64) -> [Point; 4] {
+    let reach = |rng: &mut fastrand::Rng| 1500.0 + rng.f64() * 6500.0;
+    // The quadrant: x toward -infinity (the left corners) three times in
+    // four, y either way.
+    let sx = if rng.u8(0..4) > 0 { -1.0 } else { 1.0 };
+    let sy = if rng.bool() { -1.0 } else { 1.0 };
+    // The direction `t` in [0, 1] of the quadrant, from its horizontal
+    // axis (0) to its vertical one (1).
+    let at = |c: Point, r: f64, t: f64| {
+        let a = t * TAU / 4.0;
+        (c.0 + sx * r * a.cos(), c.1 + sy * r * a.sin())
+    };
+    let v = (coord(rng, 0.0, w), coord(rng, 0.0, h));
+    let (tc, td) = if rng.u8(0..4) == 0 {
+        (0.0, 1.0)
+    } else {
+        (rng.f64() * 0.3, 1.0 - rng.f64() * 0.3)
+    };
+    let tb = tc + (td - tc) * (0.25 + rng.f64() * 0.5);
+    [
+        v,
+        at(v, reach(rng), tb),
+        at(v, reach(rng), tc),
+        at(v, reach(rng), td),
+    ]
 }
 
 /// A star-shaped polygon with a hole around the same centre, triangulated
