@@ -30,6 +30,7 @@
 //! of the failure it started from.
 
 use super::case::Case;
+use super::cause::Diagnosis;
 use super::pixel_index;
 use super::{reference, Fragment};
 use crate::raster::edge::{FillRule, TriangleSetup};
@@ -64,16 +65,62 @@ pub enum LineConvention {
     /// variable steps only when it is positive). Drawn from its start in
     /// either direction, so `a -> b` and `b -> a` differ only at ties.
     PixelIndex,
+    /// Pixel-index endpoints, integer Bresenham with a tie going toward
+    /// the end (the decision variable steps when it is zero too).
+    PixelIndexTowardEnd,
+    /// Pixel-index endpoints as the course's midpoint pseudocode draws
+    /// them: the endpoints swapped so that the walk runs along the major
+    /// axis increasing (left to right for a line along x, top to bottom
+    /// for one along y), a tie keeping the current row (column): toward
+    /// the endpoint with the smaller major coordinate, whichever was
+    /// given first.
+    PixelIndexLeftToRight,
+    /// Pixel-index endpoints as OpenCV's `cv::line` draws them with
+    /// `LINE_8` and no `shift`: clipped to the target first, then walked
+    /// from the endpoint with the smaller x, a tie toward it.
+    PixelIndexOpenCv,
+    /// OpenCV's `LINE_4` without `shift`: clipped, then a 4-connected
+    /// staircase from the endpoint with the smaller x.
+    PixelIndexOpenCv4,
 }
 
 impl LineConvention {
     /// Every convention, default first.
-    pub const ALL: [LineConvention; 4] = [
+    pub const ALL: [LineConvention; 8] = [
         LineConvention::Midpoint,
         LineConvention::Diamond,
         LineConvention::Vulkan,
         LineConvention::PixelIndex,
+        LineConvention::PixelIndexTowardEnd,
+        LineConvention::PixelIndexLeftToRight,
+        LineConvention::PixelIndexOpenCv,
+        LineConvention::PixelIndexOpenCv4,
     ];
+
+    /// Whether the convention's endpoints are whole pixel indices (the
+    /// input's `3 4` naming pixel (3, 4)), not screen coordinates.
+    pub fn whole_pixels(self) -> bool {
+        matches!(
+            self,
+            LineConvention::PixelIndex
+                | LineConvention::PixelIndexTowardEnd
+                | LineConvention::PixelIndexLeftToRight
+                | LineConvention::PixelIndexOpenCv
+                | LineConvention::PixelIndexOpenCv4
+        )
+    }
+
+    /// How a whole-pixel convention walks its lines.
+    pub(crate) fn walk(self) -> Option<pixel_index::WholePixelWalk> {
+        match self {
+            LineConvention::PixelIndex => Some(pixel_index::WholePixelWalk::TowardStart),
+            LineConvention::PixelIndexTowardEnd => Some(pixel_index::WholePixelWalk::TowardEnd),
+            LineConvention::PixelIndexLeftToRight => Some(pixel_index::WholePixelWalk::LeftToRight),
+            LineConvention::PixelIndexOpenCv => Some(pixel_index::WholePixelWalk::OpenCv8),
+            LineConvention::PixelIndexOpenCv4 => Some(pixel_index::WholePixelWalk::OpenCv4),
+            _ => None,
+        }
+    }
 }
 
 crate::names::named_enum!(
@@ -82,7 +129,11 @@ crate::names::named_enum!(
     Midpoint = "midpoint",
     Diamond = "diamond",
     Vulkan = "vulkan",
-    PixelIndex = "pixel-index"
+    PixelIndex = "pixel-index",
+    PixelIndexTowardEnd = "pixel-index-toward-end",
+    PixelIndexLeftToRight = "pixel-index-left-to-right",
+    PixelIndexOpenCv = "pixel-index-opencv",
+    PixelIndexOpenCv4 = "pixel-index-opencv-4"
 );
 
 /// What a check requires of every case.
@@ -138,8 +189,20 @@ impl fmt::Display for Property {
                 f.write_str("lines, Vulkan's tolerance of the diamond exit rule")
             }
             Property::Line(LineConvention::PixelIndex) => {
-                f.write_str("lines, pixel-index endpoints (integer Bresenham)")
+                f.write_str("lines, pixel-index endpoints (integer Bresenham, ties toward the start)")
             }
+            Property::Line(LineConvention::PixelIndexTowardEnd) => {
+                f.write_str("lines, pixel-index endpoints (integer Bresenham, ties toward the end)")
+            }
+            Property::Line(LineConvention::PixelIndexLeftToRight) => f.write_str(
+                "lines, pixel-index endpoints (the course's midpoint walk, left to right, ties kept on the row)",
+            ),
+            Property::Line(LineConvention::PixelIndexOpenCv) => f.write_str(
+                "lines, pixel-index endpoints as OpenCV's LINE_8 (clipped, walked from the left endpoint)",
+            ),
+            Property::Line(LineConvention::PixelIndexOpenCv4) => f.write_str(
+                "lines, pixel-index endpoints as OpenCV's LINE_4 (clipped, a 4-connected staircase)",
+            ),
         }
     }
 }
@@ -230,6 +293,9 @@ pub struct Finding {
     pub original_problem: Option<String>,
     /// Where the case came from, when a check records it.
     pub provenance: Option<Provenance>,
+    /// The cause the reference confirmed, once a check has looked for one
+    /// ([`cause`](super::cause)).
+    pub cause: Option<Diagnosis>,
     /// The pixel each problem is about, in the same order.
     at: Vec<Option<Fragment>>,
 }
@@ -289,22 +355,20 @@ pub fn judge(property: Property, case: &Case, drawn: &[Fragment]) -> Option<Find
         diagnosis: None,
         original_problem: None,
         provenance: None,
+        cause: None,
         at: Vec::new(),
     };
     always(case, drawn, &mut finding);
     match property {
         Property::Exact(_) => exact(case, drawn, &mut finding),
-        Property::Line(LineConvention::Midpoint | LineConvention::Diamond) => {
-            one_per_step(case, drawn, &mut finding);
-            exact(case, drawn, &mut finding);
-        }
-        Property::Line(LineConvention::PixelIndex) => {
+        Property::Line(LineConvention::Vulkan) => vulkan(case, drawn, &mut finding),
+        Property::Line(LineConvention::PixelIndexOpenCv4) => exact(case, drawn, &mut finding),
+        Property::Line(_) => {
             one_per_step(case, drawn, &mut finding);
             exact(case, drawn, &mut finding);
         }
         Property::Watertight => watertight(case, drawn, &mut finding),
         Property::CrackFree => crack_free(case, drawn, &mut finding),
-        Property::Line(LineConvention::Vulkan) => vulkan(case, drawn, &mut finding),
     }
     if finding.problems.is_empty() {
         return None;
@@ -1027,7 +1091,7 @@ fn diagnose_line(finding: &Finding, pixel: Fragment) -> Option<String> {
             v.join(" and ")
         }
     };
-    let (a, b) = if convention == LineConvention::PixelIndex {
+    let (a, b) = if convention.whole_pixels() {
         // Pixel indices: the ideal line runs through the pixels' centres.
         let (a, b) = pixel_index::endpoints(line);
         (
@@ -1059,12 +1123,43 @@ fn diagnose_line(finding: &Finding, pixel: Fragment) -> Option<String> {
         LineConvention::PixelIndex => {
             "integer Bresenham: the pixel nearest the ideal line through the endpoint pixels' centres, a tie going toward the start"
         }
+        LineConvention::PixelIndexTowardEnd => {
+            "integer Bresenham: the pixel nearest the ideal line through the endpoint pixels' centres, a tie going toward the end"
+        }
+        LineConvention::PixelIndexOpenCv => {
+            "OpenCV's LINE_8: clipped to the target, walked from the endpoint with the smaller x, the pixel nearest the ideal line through the endpoint pixels' centres, a tie toward that endpoint"
+        }
+        LineConvention::PixelIndexOpenCv4 => {
+            "OpenCV's LINE_4: clipped to the target, a 4-connected staircase from the endpoint with the smaller x"
+        }
+        LineConvention::PixelIndexLeftToRight => {
+            "the course's midpoint walk: along the major axis increasing, the pixel nearest the ideal line through the endpoint pixels' centres, a tie staying on the current row or column"
+        }
         LineConvention::Diamond | LineConvention::Vulkan => {
             "the pixels whose diamond the segment exits"
         }
     };
+    // Halfway between two pixel centres: the ideal line on a pixel
+    // boundary.
+    let tie = (ideal - ideal.round()).abs() < 1e-9;
+    let tie_note = if tie {
+        format!(
+            "; this step is a tie (the ideal line passes exactly halfway between two pixels, at the boundary {other} = {}), which the {} rule breaks {}",
+            num(ideal.round()),
+            convention.name(),
+            match convention {
+                LineConvention::PixelIndex | LineConvention::Midpoint => "toward the start",
+                LineConvention::PixelIndexTowardEnd => "toward the end",
+                LineConvention::PixelIndexLeftToRight => "toward the endpoint with the smaller major coordinate",
+                LineConvention::PixelIndexOpenCv | LineConvention::PixelIndexOpenCv4 => "toward the endpoint with the smaller x",
+                LineConvention::Diamond | LineConvention::Vulkan => "by the diamonds' half-open sides",
+            }
+        )
+    } else {
+        String::new()
+    };
     Some(format!(
-        "line {id} from ({}, {}) to ({}, {}) is {}-major: in {axis} {step} the ideal line is at {other} = {:.4}; the {} rule ({rule}) draws {}, the subject drew {}",
+        "line {id} from ({}, {}) to ({}, {}) is {}-major: in {axis} {step} the ideal line is at {other} = {:.4}; the {} rule ({rule}) draws {}, the subject drew {}{tie_note}",
         num(a.0),
         num(a.1),
         num(b.0),

@@ -28,6 +28,11 @@
 //!   exit rule exactly, within Vulkan's tolerance of the diamond rule, or
 //!   by integer Bresenham between pixel-index endpoints (`pixel_index.rs`).
 //!
+//! A failure's cause is named only where the reference confirms it: the
+//! [`cause`] catalogue's hypotheses are each a change to the case or the
+//! reference, or a condition on the differences, tried on every failing
+//! case as generated (see [`cause`]).
+//!
 //! [`run`] is the whole check as the `rasterlab check` command runs it:
 //! a [`CheckRequest`] in, a [`CheckReport`] out (text through `Display`,
 //! the one JSON shape through `Serialize`, described by
@@ -53,19 +58,26 @@
 //! ```
 
 mod case;
+pub mod cause;
+mod engine;
 pub mod generate;
 pub mod judge;
 mod pixel_index;
 pub mod program;
 mod report;
-mod run;
+mod request;
 mod shrink;
+mod text;
 
 pub use case::{Case, Point};
+pub use cause::Diagnosis;
+pub use engine::{
+    run, run_with, run_with_progress, Progress, CONFIRMING_CASES, CONFIRMING_FAILURES,
+};
 pub use judge::{FailureKind, Finding, LineConvention, Property, Provenance};
 pub use program::Program;
-pub use run::{
-    run, run_with, timeout_from_seconds, BrokenReport, CaseFailure, CheckReport, CheckRequest,
+pub use request::{
+    timeout_from_seconds, BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice,
     Counterexample, FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
 };
 
@@ -449,40 +461,49 @@ pub(crate) fn broken(
 }
 
 /// Runs the check: `options.cases` generated cases, stopping at the first
-/// failure, which is shrunk. `progress` is called after each case.
+/// failure, whose cause is looked for (on a few more cases, see
+/// [`CONFIRMING_CASES`]) and which is shrunk. `progress` is told what the
+/// engine is doing. The same engine as [`run`], with the caller's subject.
 pub fn check_with_progress(
     options: &CheckOptions,
     subject: &mut dyn Subject,
-    progress: &mut dyn FnMut(u32),
+    progress: &mut dyn FnMut(Progress),
 ) -> Result<Verdict, Box<Broken>> {
-    let mut rng = fastrand::Rng::with_seed(options.seed);
-    for index in 0..options.cases {
-        let case = generate::case(options.property, index, &mut rng);
-        let drawn = match subject.draw(&case) {
-            Ok(drawn) => drawn,
-            Err(error) => {
-                return Err(Box::new(broken(
-                    error,
-                    &case,
-                    index,
-                    subject,
-                    options.shrink_runs,
-                )))
-            }
-        };
-        progress(index + 1);
-        if let Some(first) = judge::judge(options.property, &case, &drawn) {
-            let finding = shrink::shrink(first, subject, options.shrink_runs, &mut |_| {});
-            return Ok(Verdict::Fail {
-                case_index: index,
-                original: case,
-                finding: Box::new(finding),
-            });
-        }
-    }
-    Ok(Verdict::Pass {
+    let request = CheckRequest {
         cases: options.cases,
-    })
+        seed: options.seed,
+        shrink_runs: options.shrink_runs,
+        ..CheckRequest::new(SubjectSpec::Backend(String::new()))
+    };
+    let checker = engine::Checker {
+        request: &request,
+        mode: engine::Mode::One(options.property),
+    };
+    let run = checker
+        .check(None, &mut engine::Subjects::One(subject), progress)
+        .map_err(|e| {
+            // Nothing is written and nothing read: the engine's only
+            // errors are the request's, and this request is valid.
+            Box::new(Broken {
+                error: SubjectError::Start(e.to_string()),
+                case: simplest_case(options.property.is_lines()),
+                case_index: 0,
+                on_every_input: false,
+            })
+        })?;
+    if let Some(b) = run.broken {
+        return Err(Box::new(b));
+    }
+    match (run.report.finding, run.original, run.report.counterexample) {
+        (Some(finding), Some(original), Some(c)) => Ok(Verdict::Fail {
+            case_index: c.case_index,
+            original,
+            finding,
+        }),
+        _ => Ok(Verdict::Pass {
+            cases: run.report.cases_run,
+        }),
+    }
 }
 
 /// [`check_with_progress`] without progress reports.
@@ -503,7 +524,10 @@ pub fn reference(property: Property, case: &Case) -> Vec<Fragment> {
         Property::Line(judge::LineConvention::Midpoint) => {
             line_fragments(line_backend_walking(LineWalk::Midpoint), case)
         }
-        Property::Line(judge::LineConvention::PixelIndex) => pixel_index::fragments(case),
+        Property::Line(c) if c.whole_pixels() => pixel_index::fragments(
+            case,
+            c.walk().unwrap_or(pixel_index::WholePixelWalk::TowardStart),
+        ),
         Property::Line(_) => line_fragments(line_backend_walking(LineWalk::DiamondExit), case),
     }
 }

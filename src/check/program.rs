@@ -89,21 +89,15 @@ impl Drop for Folder {
     }
 }
 
-/// Makes Ctrl-C remove the input folders of every live [`Program`] before
-/// the process exits (status 130). Call it once, in a program that has no
-/// Ctrl-C handler of its own; it fails when one is installed already.
-/// (With the `cli` feature, which brings the Ctrl-C crate.)
-#[cfg(feature = "cli")]
-pub fn remove_temporary_files_on_interrupt() -> Result<(), String> {
-    ctrlc::set_handler(|| {
-        if let Ok(live) = live_folders().lock() {
-            for dir in live.iter() {
-                let _ = std::fs::remove_dir_all(dir);
-            }
+/// Removes the input folders of every live [`Program`]: what a program's
+/// Ctrl-C handler calls before it exits (the folders of programs dropped
+/// normally are removed by their drop).
+pub fn remove_live_input_folders() {
+    if let Ok(live) = live_folders().lock() {
+        for dir in live.iter() {
+            let _ = std::fs::remove_dir_all(dir);
         }
-        std::process::exit(130);
-    })
-    .map_err(|e| e.to_string())
+    }
 }
 
 impl Program {

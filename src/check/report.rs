@@ -13,7 +13,7 @@
 //! ([`crate::teaching::palette`]): correct, extra, missing, off the
 //! target, pixel centres, and the triangle colours.
 
-use super::judge::{Finding, LineConvention, Property};
+use super::judge::{Finding, Property};
 use crate::teaching::grid_picture::escape;
 use crate::teaching::palette::{hex, triangle_colour, Legend, Role};
 use std::collections::BTreeSet;
@@ -150,7 +150,7 @@ impl Finding {
     /// then segments `l0`, `l1`, ... (snapped; under the pixel-index
     /// convention an end names a pixel and is drawn at its centre).
     fn primitives(&self) -> Vec<Primitive> {
-        let centre = if self.property == Property::Line(LineConvention::PixelIndex) {
+        let centre = if matches!(self.property, Property::Line(c) if c.whole_pixels()) {
             0.5
         } else {
             0.0

@@ -23,18 +23,20 @@
 //! of the case as generated ([`Finding::original_problem`]).
 
 use super::case::{Case, Point};
-use super::judge::{judge, FailureKind, Finding, LineConvention, Property};
+use super::judge::{judge, FailureKind, Finding, Property};
 use super::{reference, Subject, SubjectError};
 use crate::raster::fixed::GUARD_BAND;
 
 /// Shrinks the case of `first`, a failure of `subject` already judged,
 /// within `runs` more runs of the subject; returns what is wrong with the
-/// smallest case found that fails the same way. `progress` is told how
-/// many runs have been spent.
+/// smallest case found that fails the same way and that `keep` accepts
+/// (the cause found still explains it). `progress` is told how many runs
+/// have been spent.
 pub fn shrink(
     first: Finding,
     subject: &mut dyn Subject,
     runs: u32,
+    keep: &dyn Fn(&Finding) -> bool,
     progress: &mut dyn FnMut(u32),
 ) -> Finding {
     let property = first.property;
@@ -45,7 +47,7 @@ pub fn shrink(
         if *budget == 0 || !valid(property, c) {
             return None;
         }
-        if property == Property::Line(LineConvention::PixelIndex)
+        if matches!(property, Property::Line(c) if c.whole_pixels())
             && points(c).any(|p| p.0.fract() != 0.0 || p.1.fract() != 0.0)
         {
             // Pixel indices are whole numbers.
@@ -55,7 +57,7 @@ pub fn shrink(
         progress(runs - *budget);
         let drawn = subject.draw(c).ok()?;
         let mut f = judge(property, c, &drawn)?;
-        f.lead_with(kind).then_some(f)
+        (f.lead_with(kind) && keep(&f)).then_some(f)
     };
     let mut best = first;
     'improve: while budget > 0 {

@@ -4,7 +4,8 @@
 
 use clap::Args;
 use rasterlab::check::{
-    self, timeout_from_seconds, CheckRequest, Kind, LineConvention, RuleChoice, SubjectSpec,
+    self, timeout_from_seconds, CheckRequest, ConventionChoice, Kind, Progress, RuleChoice,
+    SubjectSpec,
 };
 use rasterlab::{Error, Result};
 use std::path::PathBuf;
@@ -33,11 +34,14 @@ pub struct CheckArgs {
     #[arg(long)]
     rule: Option<RuleChoice>,
     /// Lines: midpoint (exactly `bresenham`), diamond (exactly `diamond`),
-    /// vulkan (Vulkan's tolerance of the diamond rule) or pixel-index
-    /// (whole-number endpoints naming pixels, integer Bresenham). Default:
-    /// midpoint.
+    /// vulkan (Vulkan's tolerance of the diamond rule); with whole-number
+    /// endpoints naming pixels, integer Bresenham breaking ties toward the
+    /// start (pixel-index), toward the end (pixel-index-toward-end) or as
+    /// the course's midpoint walk, left to right
+    /// (pixel-index-left-to-right); or `any` (which convention does it
+    /// follow?). Default: midpoint.
     #[arg(long)]
-    convention: Option<LineConvention>,
+    convention: Option<ConventionChoice>,
     /// How many cases.
     #[arg(long, default_value_t = 150)]
     cases: u32,
@@ -89,14 +93,23 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         case_file: args.case.clone(),
         out: Some(args.out.clone()),
         command: std::env::args().collect::<Vec<_>>().join(" "),
-        progress: !args.json,
         ..CheckRequest::new(subject)
     };
     // Ctrl-C removes the program's input files.
     if matches!(request.subject, SubjectSpec::Exec(_)) {
-        let _ = check::program::remove_temporary_files_on_interrupt();
+        let _ = ctrlc::set_handler(|| {
+            check::program::remove_live_input_folders();
+            std::process::exit(130);
+        });
     }
-    let report = check::run(&request)?;
+    let report = if args.json {
+        check::run(&request)?
+    } else {
+        let bars = Bars::default();
+        let report = check::run_with_progress(&request, &mut |p| bars.show(p));
+        bars.clear();
+        report?
+    };
     if args.json {
         let json = serde_json::to_string(&report)
             .map_err(|e| Error::InvalidArgument(format!("the report as JSON: {e}")))?;
@@ -105,4 +118,38 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         super::print::line(&report)?;
     }
     report.outcome()
+}
+
+/// The progress bars of a check on standard error: cases, the cases run
+/// to confirm a cause, the shrinking runs.
+#[derive(Default)]
+struct Bars {
+    bar: std::cell::RefCell<Option<(&'static str, indicatif::ProgressBar)>>,
+}
+
+impl Bars {
+    fn show(&self, p: Progress) {
+        let (what, pos, len) = match p {
+            Progress::Cases { done, total } => ("cases", done, total),
+            Progress::Confirming { done, total } => ("cases confirming the cause", done, total),
+            Progress::Shrinking { runs, budget } => ("shrinking runs", runs, budget),
+            Progress::Done => return self.clear(),
+        };
+        let mut slot = self.bar.borrow_mut();
+        if slot.as_ref().is_none_or(|(w, _)| *w != what) {
+            if let Some((_, old)) = slot.take() {
+                old.finish_and_clear();
+            }
+            *slot = Some((what, super::print::progress_bar(u64::from(len), what)));
+        }
+        if let Some((_, bar)) = slot.as_ref() {
+            bar.set_position(u64::from(pos));
+        }
+    }
+
+    fn clear(&self) {
+        if let Some((_, bar)) = self.bar.borrow_mut().take() {
+            bar.finish_and_clear();
+        }
+    }
 }
