@@ -64,6 +64,7 @@ pub mod generate;
 pub mod judge;
 mod pixel_index;
 pub mod program;
+mod property;
 mod report;
 mod request;
 mod shrink;

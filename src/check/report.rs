@@ -485,7 +485,7 @@ impl Finding {
         out
     }
 
-    /// The page: the problems, the diagnosis, the picture
+    /// The page: the problems, the cause (or the diagnosis), the picture
     /// ([`Finding::to_svg`], its legend in it) and the counterexample
     /// file.
     pub fn to_html(&self) -> String {
@@ -501,6 +501,29 @@ impl Finding {
             .as_deref()
             .map(|d| format!("<p id=\"diagnosis\"><b>Diagnosis:</b> {}</p>", escape(d)))
             .unwrap_or_default();
+        let cause = self
+            .cause
+            .as_ref()
+            .map(|c| {
+                let also = if c.also_fits.is_empty() {
+                    "none".to_string()
+                } else {
+                    c.also_fits
+                        .iter()
+                        .map(|f| escape(&f.join(" + ")))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
+                format!(
+                    "<table id=\"cause\"><tr><th>cause</th><td><code>{}</code>: {}</td></tr><tr><th>evidence</th><td>{}</td></tr><tr><th>confirmed on</th><td>{} of {} failing case(s) as generated</td></tr><tr><th>also fits</th><td>{also}</td></tr></table>",
+                    escape(&c.causes.join(" + ")),
+                    escape(&c.description),
+                    escape(&c.evidence),
+                    c.confirmed_on,
+                    c.failing_cases
+                )
+            })
+            .unwrap_or_default();
         format!(
             r#"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>rasterlab check: counterexample</title>
@@ -511,6 +534,7 @@ impl Finding {
 <p>Target {w0}x{h0}, {n} primitive(s). {drawn} fragment(s) drawn, {expected}. Failure kind: <b>{kind}</b>.</p>
 <ul id="problems">{problems}</ul>
 {diagnosis}
+{cause}
 {svg}
 <h2>The input (counterexample.txt)</h2>
 <pre>{text}</pre>

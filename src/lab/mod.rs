@@ -244,6 +244,10 @@ pub struct StudentView {
     pub wrong: usize,
     /// An error running it, if any.
     pub error: Option<String>,
+    /// The cause of its wrong pixels on this case, where the catalogue
+    /// has one that explains them all ([`crate::check::cause`]), or that
+    /// none does.
+    pub cause: Option<String>,
 }
 
 /// The depth test at every pixel of triangles drawn in order, each with
@@ -495,8 +499,16 @@ fn student_view(request: &LabRequest, rule: FillRule, program: &mut Program) -> 
             missing: Vec::new(),
             wrong: 0,
             error: Some(e.to_string()),
+            cause: None,
         },
         Ok(drawn) => {
+            let cause = crate::check::judge::judge(property, &case, &drawn).map(|_| {
+                crate::check::cause::diagnose(property, &[(&case, drawn.as_slice())], &[])
+                    .map_or_else(
+                        || "no cause in the catalogue explains it".to_string(),
+                        |d| d.sentence(),
+                    )
+            });
             let mut seen = std::collections::BTreeSet::new();
             let (mut correct, mut extra) = (Vec::new(), Vec::new());
             for f in drawn {
@@ -517,6 +529,7 @@ fn student_view(request: &LabRequest, rule: FillRule, program: &mut Program) -> 
                 extra,
                 missing,
                 error: None,
+                cause,
             }
         }
     }

@@ -5,7 +5,7 @@
 
 use super::End;
 use crate::check::case::Case;
-use crate::check::judge::{LineConvention, Property};
+use crate::check::property::{LineConvention, Property};
 use crate::check::{reference, Fragment};
 use std::collections::{BTreeMap, BTreeSet};
 

@@ -33,7 +33,7 @@ mod lines;
 mod triangles;
 
 use super::case::Case;
-use super::judge::{LineConvention, Property};
+use super::property::{LineConvention, Property};
 use super::Fragment;
 use crate::raster::edge::FillRule;
 use serde::Serialize;
