@@ -720,7 +720,7 @@ fn a_line_failure_is_diagnosed() {
 fn the_midpoint_convention_is_the_documented_one() {
     // Endpoints on pixel corners: the columns of the pixels containing the
     // ends' x; each column's row nearest the line, a tie to the smaller
-    // row for a horizontal line (the README's statement).
+    // row for a horizontal line (the statement of docs/check.md).
     let bresenham = line_backend("bresenham").unwrap();
     let pixels = |line: [(f64, f64); 2]| {
         let mut f = line_fragments(

@@ -1,4 +1,4 @@
-//! Coverage invariants (the rules in the README): rotating the vertex order and reversing
+//! Coverage invariants (the rules in docs/check.md): rotating the vertex order and reversing
 //! the winding change nothing; moving a triangle by whole pixels moves its
 //! coverage by the same amount.
 

@@ -21,10 +21,10 @@
 //!   first instruction. An application that does not bind its threads
 //!   (`render --threads 2` does not) gets it only once the scheduler has
 //!   spread them, which `render`'s frames, drawn one after another, do
-//!   (its figures are in the README);
+//!   (its figures are in docs/benchmarks.md);
 //! * on a CPU with simultaneous multithreading, the `i`-th CPU may be a
 //!   sibling hardware thread of the `(i - 1)`-th, not a core of its own.
-//!   The machine the README's figures come from has none.
+//!   The machine the figures of docs/benchmarks.md come from has none.
 //!
 //! Linux only (`sched_setaffinity`); elsewhere nothing is bound. The
 //! printed context says whether every binding succeeded

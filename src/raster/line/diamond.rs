@@ -1,5 +1,5 @@
 //! `diamond`: the Direct3D / Vulkan diamond-exit rule, the reference for
-//! aliased lines (the rules in the README).
+//! aliased lines (the rules in docs/check.md).
 //!
 //! Each pixel owns the open diamond `|x - xc| + |y - yc| < 1/2` around its
 //! centre. A pixel is drawn when the segment, travelling from start to end,
