@@ -235,5 +235,11 @@ PYTHON
     for peer in opengl tiny-skia euc embedded-graphics; do
         survey "$peer" "$peers $peer {input} {width} {height}"
     done
-    echo "the survey's tables are above: update docs/check.md's table from them"
+    # The line drawers: each one's `--convention any` table.
+    for line_subject in "skimage_line.py" "pillow_line.py" "opencv_line.py" "opencv_line.py --line-type 4"; do
+        set -- $line_subject
+        (cd "$tmp/survey" && "$bin" check --kind lines --convention any --keep-going \
+            --exec "python3 examples/adapters/$1 {input} {width} {height} ${2:-} ${3:-}") || true
+    done
+    echo "the survey's tables are above: update docs/check.md's tables from them"
 fi

@@ -60,6 +60,14 @@ const SKIPPED: &[(&str, &str)] = &[
         "rasterlab check --rule any --jobs 2 --cases 150 --timeout 30 --exec \"python3 examples/adapters/opencv.py",
         "part of the survey: OpenCV from pip",
     ),
+    (
+        "rasterlab check --kind lines --convention any --keep-going --exec \"python3 examples/adapters/opencv_line.py",
+        "part of the line drawers' survey: OpenCV from pip",
+    ),
+    (
+        "rasterlab check --rule bottom-left --cases 300 --timeout 60 --exec \"target/release/examples/peer_adapters opengl-wide",
+        "Mesa's llvmpipe through the wide viewport (tests/llvmpipe.rs checks its failure)",
+    ),
 ];
 
 /// Commands that exit with another status than 0, by the start of their
