@@ -46,7 +46,7 @@ use std::time::Duration;
 #[derive(Clone, Debug, PartialEq)]
 pub enum SubjectSpec {
     /// An outside program: a command line run once per case (see
-    /// [`Program`]).
+    /// [`Program`](super::Program)).
     Exec(String),
     /// A built-in back-end, by name.
     Backend(String),
@@ -327,7 +327,7 @@ pub struct RuleTable {
     pub crack_free: Option<RuleRow>,
 }
 
-/// The outcome of [`run`]: printed as text (`Display`) or JSON
+/// The outcome of [`run`](super::run): printed as text (`Display`) or JSON
 /// (`Serialize`, the same shape for every verdict).
 #[derive(Clone, Debug, Serialize)]
 pub struct CheckReport {
