@@ -570,7 +570,7 @@ fn endpoint_pixels_missing_or_doubled() {
             last_twice: true,
             ..LineMistakes::default()
         },
-        &["duplicates"],
+        &["endpoint-doubled:last"],
     );
 }
 

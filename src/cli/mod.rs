@@ -65,6 +65,14 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Check a rasterizer (another program, or a back-end) against the
     /// rules on generated cases; a failure is shrunk to a counterexample.
+    ///
+    /// The diagnosis names a cause only where the reference confirms it:
+    /// a mistake of the catalogue (another fill rule, a culled winding,
+    /// small triangles dropped, rounded or coarse vertices, corner
+    /// samples, y from the bottom, a short box, floating point, overflow;
+    /// for lines another tie rule, the other end, endpoints, a missing
+    /// octant swap, 4-connected) that explains every difference on the
+    /// failing cases as generated. docs/check.md lists them.
     Check(check::CheckArgs),
     /// Serve the interactive lab on 127.0.0.1: drag vertices, watch every
     /// back-end's pixels, traces, heat maps and depth buffer update.

@@ -245,16 +245,16 @@ enum Role {
 /// snapped to 1/2 ... 1/128 px; the bounding box one row or column short
 /// (bottom, right, top, left); floating-point edge functions; overflow.
 ///
-/// Lines: fragments off the target; pixels listed twice; each other
-/// convention taking the same kind of endpoints (whole pixel indices, or
-/// screen coordinates); the walk from the other end; an endpoint pixel
-/// left out (the last, the first, both) or drawn twice; one pixel per
-/// column on steep lines; 4-connected.
+/// Lines: fragments off the target; each other convention taking the
+/// same kind of endpoints (whole pixel indices, or screen coordinates);
+/// the walk from the other end; an endpoint pixel left out (the last, the
+/// first, both) or drawn twice (before pixels listed twice in general);
+/// pixels listed twice; one pixel per column on steep lines; 4-connected.
 ///
 /// A box one row *longer* than needed is not in the catalogue: the pixels
 /// it adds are tested and rejected, so it draws what the rules draw.
 pub fn catalogue(property: Property) -> Vec<Cause> {
-    let mut out = vec![Cause::OffTarget, Cause::Duplicates];
+    let mut out = vec![Cause::OffTarget];
     match property {
         Property::Line(base) => {
             for c in LineConvention::ALL {
@@ -272,9 +272,10 @@ pub fn catalogue(property: Property) -> Vec<Cause> {
             for e in [End::Last, End::First, End::Both] {
                 out.push(Cause::EndpointDoubled(e));
             }
-            out.extend([Cause::OnePerColumn, Cause::FourConnected]);
+            out.extend([Cause::Duplicates, Cause::OnePerColumn, Cause::FourConnected]);
         }
         _ => {
+            out.push(Cause::Duplicates);
             let mesh = property.needs_mesh();
             for r in FillRule::ALL {
                 let other = match property {
