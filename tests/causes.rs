@@ -17,6 +17,8 @@ use rasterlab::raster::edge::FillRule;
 struct Mistakes {
     /// Ties drawn whatever the edge.
     inclusive_ties: bool,
+    /// Ties given to bottom and right edges instead of top and left.
+    bottom_right_ties: bool,
     /// Culls triangles of negative (`-1`) or positive (`+1`) signed area
     /// as the subject computes it (positive: counter-clockwise on screen).
     cull: Option<i8>,
@@ -32,6 +34,10 @@ struct Mistakes {
     box_short_bottom: bool,
     /// Stops the box loop one column early on the right.
     box_short_right: bool,
+    /// Starts the box loop one row late.
+    box_short_top: bool,
+    /// Starts the box loop one column late.
+    box_short_left: bool,
     /// Edge functions in `f32` on the vertices as given.
     float32: bool,
     /// Edge values kept in 32 bits (the low 8 bits of the 1/65536 px²
@@ -133,6 +139,8 @@ fn student(m: Mistakes) -> impl FnMut(&Case) -> Result<Vec<Fragment>, SubjectErr
             let min_x = v.iter().map(|p| p.0).min().unwrap_or(0).div_euclid(256);
             let max_x = v.iter().map(|p| p.0).max().unwrap_or(0).div_euclid(256);
             let (mut y_end, mut x_end) = (max_y, max_x);
+            let y_start = min_y + i64::from(m.box_short_top);
+            let x_start = min_x + i64::from(m.box_short_left);
             if m.box_short_bottom {
                 y_end -= 1;
             }
@@ -140,12 +148,12 @@ fn student(m: Mistakes) -> impl FnMut(&Case) -> Result<Vec<Fragment>, SubjectErr
                 x_end -= 1;
             }
             let (y0, y1, x0, x1) = if m.no_clip {
-                (min_y - 1, y_end + 1, min_x - 1, x_end + 1)
+                (y_start - 1, y_end + 1, x_start - 1, x_end + 1)
             } else {
                 (
-                    min_y.max(0),
+                    y_start.max(0),
                     y_end.min(h - 1),
-                    min_x.max(0),
+                    x_start.max(0),
                     x_end.min(w - 1),
                 )
             };
@@ -156,7 +164,8 @@ fn student(m: Mistakes) -> impl FnMut(&Case) -> Result<Vec<Fragment>, SubjectErr
                     let s = (x * 256 + half, y * 256 + half);
                     let inside = (0..3).all(|k| {
                         let v = value(k, s);
-                        v > 0 || (v == 0 && (m.inclusive_ties || owns(edges[k])))
+                        let tie_owned = owns(edges[k]) != m.bottom_right_ties;
+                        v > 0 || (v == 0 && (m.inclusive_ties || tie_owned))
                     });
                     if inside {
                         let row = if m.y_up { h - 1 - y } else { y };
@@ -237,6 +246,17 @@ fn ties_drawn_on_every_edge_are_the_inclusive_rule() {
             ..Mistakes::default()
         },
         &["fill-rule:inclusive"],
+    );
+}
+
+#[test]
+fn ties_given_to_bottom_and_right_edges_are_the_bottom_right_rule() {
+    triangles_get(
+        Mistakes {
+            bottom_right_ties: true,
+            ..Mistakes::default()
+        },
+        &["fill-rule:bottom-right"],
     );
 }
 
@@ -343,6 +363,20 @@ fn a_box_loop_one_row_or_column_short() {
         },
         &["box-short:right"],
     );
+    triangles_get(
+        Mistakes {
+            box_short_top: true,
+            ..Mistakes::default()
+        },
+        &["box-short:top"],
+    );
+    triangles_get(
+        Mistakes {
+            box_short_left: true,
+            ..Mistakes::default()
+        },
+        &["box-short:left"],
+    );
 }
 
 #[test]
@@ -443,6 +477,8 @@ struct LineMistakes {
     no_octant_swap: bool,
     /// The last pixel left out.
     half_open: bool,
+    /// The first pixel left out.
+    first_left_out: bool,
     /// The last pixel listed twice.
     last_twice: bool,
     /// A step in x, then a step in y (4-connected).
@@ -496,6 +532,9 @@ fn line_student(m: LineMistakes) -> impl FnMut(&Case) -> Result<Vec<Fragment>, S
             }
             if m.half_open && pixels.len() > 1 {
                 pixels.pop();
+            }
+            if m.first_left_out && pixels.len() > 1 {
+                pixels.remove(0);
             }
             if m.last_twice {
                 if let Some(&p) = pixels.last() {
@@ -564,6 +603,13 @@ fn endpoint_pixels_missing_or_doubled() {
             ..LineMistakes::default()
         },
         &["endpoint-missing:last"],
+    );
+    lines_get(
+        LineMistakes {
+            first_left_out: true,
+            ..LineMistakes::default()
+        },
+        &["endpoint-missing:first"],
     );
     lines_get(
         LineMistakes {

@@ -57,6 +57,13 @@ impl Model {
         if let Some(end) = self.missing.or(self.doubled) {
             for id in 0..case.lines.len() {
                 let (first, last) = ends(id);
+                // A zero-length line has one pixel: left out once, or
+                // drawn twice once.
+                let last = if self.missing.is_some() {
+                    last.filter(|l| Some(*l) != first)
+                } else {
+                    last
+                };
                 let chosen: Vec<Fragment> = match end {
                     End::First => first.into_iter().collect(),
                     End::Last => last.into_iter().collect(),
@@ -76,7 +83,8 @@ impl Model {
     }
 }
 
-/// The pixels of line `id`'s start and end in `answer`: for whole-pixel
+/// The pixels of line `id`'s start and end in `answer` (the same pixel
+/// twice for a zero-length line): for whole-pixel
 /// conventions the endpoint pixels themselves, for screen ones the pixel
 /// of the answer nearest each endpoint, where the endpoint lies on the
 /// target (an endpoint off the target has no pixel to leave out).
@@ -106,9 +114,7 @@ fn endpoint_pixels(
             })
             .map(|f| **f)
     };
-    let first = pixel_of(line[0]);
-    let last = pixel_of(line[1]).filter(|l| Some(*l) != first);
-    (first, last)
+    (pixel_of(line[0]), pixel_of(line[1]))
 }
 
 /// The pixels drawn for each line.
