@@ -4,12 +4,11 @@
 //! `check` must name that mistake, and no cause before it in the
 //! catalogue's order.
 
-use rasterlab::check::cause::catalogue;
-use rasterlab::check::judge::LineConvention;
 use rasterlab::check::{
-    check, Case, CheckOptions, Fragment, Property, Subject, SubjectError, Verdict,
+    catalogue, check, Case, CheckOptions, Fragment, LineConvention, Property, Subject,
+    SubjectError, Verdict,
 };
-use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::FillRule;
 
 /// How a student's triangle rasterizer goes wrong (all `false`/`None`: it
 /// is right).
@@ -26,6 +25,8 @@ struct Mistakes {
     min_area: f64,
     /// Rounds vertices to this grid step instead of 1/256.
     grid: Option<f64>,
+    /// Snaps to 1/256 with a tie rounded up (`floor(x + 0.5)`).
+    ties_up: bool,
     /// Tests the pixel's corner (x, y) instead of its centre.
     corners: bool,
     /// Measures rows up from the bottom of the target.
@@ -67,6 +68,10 @@ fn student(m: Mistakes) -> impl FnMut(&Case) -> Result<Vec<Fragment>, SubjectErr
                         Some(g) => ((x / g).round() * g, (y / g).round() * g),
                         None => (x, y),
                     };
+                    if m.ties_up {
+                        let up = |v: f64| (v * 256.0 + 0.5).floor() as i64;
+                        return (up(x), up(y));
+                    }
                     (snap(x), snap(y))
                 })
                 .collect();
@@ -292,14 +297,16 @@ fn small_triangles_skipped_are_named_with_the_area() {
 #[test]
 fn the_tutorial_renderer_culls_by_signed_area_below_one() {
     // The tutorial's `if (total_area < 1) return;`: one winding culled and
-    // the other below 1 px² dropped, two causes together.
+    // the other below 1 px² dropped, two causes together. Its shoelace
+    // area is positive for a triangle clockwise on the screen (y down),
+    // so given screen coordinates it culls the counter-clockwise ones.
     triangles_get(
         Mistakes {
-            cull: Some(-1),
+            cull: Some(1),
             min_area: 1.0,
             ..Mistakes::default()
         },
-        &["culls:clockwise", "drops-below:1"],
+        &["culls:counter-clockwise", "drops-below:1"],
     );
 }
 
@@ -322,6 +329,19 @@ fn a_coarser_snap_is_named_with_its_grid() {
             ..Mistakes::default()
         },
         &["coarse-snap:16"],
+    );
+}
+
+#[test]
+fn a_snap_rounding_ties_up_is_named() {
+    // JavaScript's `Math.round(x * 256)`: right but at a coordinate
+    // exactly halfway between two 1/256 px steps.
+    triangles_get(
+        Mistakes {
+            ties_up: true,
+            ..Mistakes::default()
+        },
+        &["snap-ties"],
     );
 }
 
@@ -635,7 +655,7 @@ fn a_staircase_is_four_connected() {
 fn a_line_drawn_from_its_other_end() {
     // The midpoint rule walked from the second endpoint.
     let midpoint = Property::Line(LineConvention::Midpoint);
-    let backend = rasterlab::raster::backend::line_backend("bresenham").unwrap();
+    let backend = rasterlab::raster::line_backend("bresenham").unwrap();
     let mut reversed = |case: &Case| -> Result<Vec<Fragment>, SubjectError> {
         let mut flipped = case.clone();
         for l in &mut flipped.lines {

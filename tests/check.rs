@@ -6,13 +6,12 @@
 mod common;
 use common::rasterlab;
 
-use rasterlab::check::judge::LineConvention;
 use rasterlab::check::{
     check, line_fragments, run, triangle_fragments, Builtin, Case, CheckOptions, CheckRequest,
-    ConventionChoice, Fragment, Kind, Property, RuleChoice, SubjectError, SubjectSpec, Verdict,
+    ConventionChoice, Fragment, Kind, LineConvention, Property, RuleChoice, SubjectError,
+    SubjectSpec, Verdict,
 };
-use rasterlab::raster::backend::{line_backend, triangle_backend, triangle_backends};
-use rasterlab::raster::edge::FillRule;
+use rasterlab::raster::{line_backend, triangle_backend, triangle_backends, FillRule};
 use std::process::Command;
 
 fn options(property: Property, cases: u32, seed: u64) -> CheckOptions {
@@ -172,7 +171,7 @@ fn mutants_are_caught_with_at_most_three_primitives() {
         let keep: Vec<bool> = c
             .snapped_triangles()
             .iter()
-            .map(|t| rasterlab::raster::edge::TriangleSetup::signed_area(*t) > 0)
+            .map(|t| rasterlab::raster::TriangleSetup::signed_area(*t) > 0)
             .collect();
         triangle_fragments(scanline, c, FillRule::TopLeft)
             .into_iter()
@@ -229,13 +228,15 @@ fn mutants_are_caught_with_at_most_three_primitives() {
     caught(diamond, |c| line_fragments(bresenham, c));
 }
 
-fn out_dir(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("rasterlab-check-{}-{name}", std::process::id()));
-    dir.to_str().unwrap().to_string()
+/// The folder `name` in `dir` (a test's own temporary folder, removed
+/// when the test ends, whether it passes or panics), as text.
+fn out_dir(dir: &std::path::Path, name: &str) -> String {
+    dir.join(name).to_str().unwrap().to_string()
 }
 
 #[test]
 fn an_outside_program_passes_and_fails_through_exec() {
+    let tmp = tempfile::tempdir().unwrap();
     let bin = env!("CARGO_BIN_EXE_rasterlab");
     let good = format!(
         "{bin} fragments --backend scanline --rule {{rule}} --size {{width}}x{{height}} {{input}}"
@@ -247,7 +248,7 @@ fn an_outside_program_passes_and_fails_through_exec() {
         "--cases",
         "60",
         "--out",
-        &out_dir("good"),
+        &out_dir(tmp.path(), "good"),
     ]);
     assert_eq!(
         out.status.code(),
@@ -265,7 +266,7 @@ fn an_outside_program_passes_and_fails_through_exec() {
         "--cases",
         "60",
         "--out",
-        &out_dir("br"),
+        &out_dir(tmp.path(), "br"),
     ]);
     assert_eq!(out.status.code(), Some(0));
     // Inclusive drawing checked as watertight: a double draw, shrunk,
@@ -273,7 +274,7 @@ fn an_outside_program_passes_and_fails_through_exec() {
     let inclusive = format!(
         "{bin} fragments --backend scanline --rule inclusive --size {{width}}x{{height}} {{input}}"
     );
-    let dir = out_dir("inclusive");
+    let dir = out_dir(tmp.path(), "inclusive");
     let out = rasterlab(&[
         "check",
         "--exec",
@@ -309,9 +310,8 @@ fn an_outside_program_passes_and_fails_through_exec() {
         &counter,
     ]);
     let drawn =
-        rasterlab::check::program::parse_fragments(&String::from_utf8(rerun.stdout).unwrap())
-            .unwrap();
-    assert!(rasterlab::check::judge::judge(Property::Watertight, &case, &drawn).is_some());
+        rasterlab::check::parse_fragments(&String::from_utf8(rerun.stdout).unwrap()).unwrap();
+    assert!(rasterlab::check::judge(Property::Watertight, &case, &drawn).is_some());
     // JSON for autograders.
     let out = rasterlab(&[
         "check",
@@ -330,13 +330,14 @@ fn an_outside_program_passes_and_fails_through_exec() {
 
 #[test]
 fn a_broken_program_exits_2_with_the_input_that_breaks_it() {
+    let tmp = tempfile::tempdir().unwrap();
     for (command, message) in [
         ("exit 3", "the program failed"),
         ("echo hello world", "is not `x y id`"),
         ("/nonexistent/program {input}", "the program failed"),
         ("sleep 30", "longer than 0.5 s"),
     ] {
-        let dir = out_dir("broken");
+        let dir = out_dir(tmp.path(), "broken");
         let out = rasterlab(&[
             "check",
             "--exec",
@@ -364,7 +365,7 @@ fn a_broken_program_exits_2_with_the_input_that_breaks_it() {
         "--cases",
         "1",
         "--out",
-        &out_dir("yes"),
+        &out_dir(tmp.path(), "yes"),
     ]);
     assert_eq!(out.status.code(), Some(2));
     // Huge and negative numbers are defects of the program, reported.
@@ -375,7 +376,7 @@ fn a_broken_program_exits_2_with_the_input_that_breaks_it() {
         "--cases",
         "1",
         "--out",
-        &out_dir("huge"),
+        &out_dir(tmp.path(), "huge"),
     ]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stdout).contains("outside the"));
@@ -402,7 +403,7 @@ fn an_extra_pixel_is_diagnosed_by_the_edges_it_lies_beyond_and_its_true_distance
     let exact = Property::Exact(FillRule::TopLeft);
     // Far from the triangle: once said "91.8 px inside edge ...".
     let far = case_of(8, 8, vec![[(150.0, 5.0), (160.0, 5.0), (155.0, 15.0)]]);
-    let finding = rasterlab::check::judge::judge(exact, &far, &[frag(0, 0, 0)]).unwrap();
+    let finding = rasterlab::check::judge(exact, &far, &[frag(0, 0, 0)]).unwrap();
     let d = finding.diagnosis.unwrap();
     let distance = (149.5f64).hypot(4.5);
     assert!(
@@ -413,7 +414,7 @@ fn an_extra_pixel_is_diagnosed_by_the_edges_it_lies_beyond_and_its_true_distance
     assert!(!d.contains("inside"), "{d}");
     // On the line of an edge, beyond its end: once said "0.00000 px outside".
     let beside = case_of(8, 8, vec![[(2.0, 0.5), (5.0, 0.5), (3.0, 3.0)]]);
-    let finding = rasterlab::check::judge::judge(exact, &beside, &[frag(0, 0, 0)]).unwrap();
+    let finding = rasterlab::check::judge(exact, &beside, &[frag(0, 0, 0)]).unwrap();
     let d = finding.diagnosis.unwrap();
     assert!(d.contains("1.50000 px outside triangle 0"), "{d}");
     assert!(d.contains("beyond edge (3, 3)-(2, 0.5)"), "{d}");
@@ -421,7 +422,7 @@ fn an_extra_pixel_is_diagnosed_by_the_edges_it_lies_beyond_and_its_true_distance
     let big = case_of(8, 8, vec![[(0.0, 0.0), (8.0, 0.0), (0.0, 8.0)]]);
     let mut drawn = triangle_fragments(triangle_backend("naive").unwrap(), &big, FillRule::TopLeft);
     drawn.retain(|f| (f.x, f.y) != (1, 1));
-    let finding = rasterlab::check::judge::judge(exact, &big, &drawn).unwrap();
+    let finding = rasterlab::check::judge(exact, &big, &drawn).unwrap();
     let d = finding.diagnosis.unwrap();
     assert!(d.contains("1.50000 px inside triangle 0"), "{d}");
 }
@@ -430,7 +431,7 @@ fn an_extra_pixel_is_diagnosed_by_the_edges_it_lies_beyond_and_its_true_distance
 fn negative_zero_is_never_printed() {
     let case = case_of(8, 8, vec![[(2.0, -0.0), (5.0, -0.0), (-0.0, 3.0)]]);
     let finding =
-        rasterlab::check::judge::judge(Property::Exact(FillRule::TopLeft), &case, &[frag(7, 7, 0)])
+        rasterlab::check::judge(Property::Exact(FillRule::TopLeft), &case, &[frag(7, 7, 0)])
             .unwrap();
     let d = finding.diagnosis.clone().unwrap();
     assert!(!d.contains("-0"), "{d}");
@@ -450,8 +451,7 @@ fn a_double_draw_names_as_extra_the_fragment_the_rule_does_not_give() {
     );
     for property in [Property::Watertight, Property::CrackFree] {
         let finding =
-            rasterlab::check::judge::judge(property, &case, &[frag(0, 0, 0), frag(0, 0, 1)])
-                .unwrap();
+            rasterlab::check::judge(property, &case, &[frag(0, 0, 0), frag(0, 0, 1)]).unwrap();
         assert_eq!(finding.extra, vec![frag(0, 0, 0)]);
         let d = finding.diagnosis.as_deref().unwrap();
         assert!(d.contains("only triangle 1"), "{d}");
@@ -468,7 +468,7 @@ fn a_double_draw_names_as_extra_the_fragment_the_rule_does_not_give() {
 fn a_double_draw_names_the_vertex_or_edge_the_triangles_really_share() {
     let finding = |triangles| {
         let case = case_of(1, 1, triangles);
-        rasterlab::check::judge::judge(Property::Watertight, &case, &[frag(0, 0, 0), frag(0, 0, 1)])
+        rasterlab::check::judge(Property::Watertight, &case, &[frag(0, 0, 0), frag(0, 0, 1)])
             .unwrap()
     };
     let judge = |triangles| finding(triangles).diagnosis.unwrap();
@@ -545,11 +545,11 @@ fn shrinking_keeps_the_kind_of_failure() {
             ..rasterlab::raster::line::LineOptions::DEFAULT
         };
     let staircase = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
-        let mut list = rasterlab::raster::fragment::FragmentList::default();
+        let mut list = rasterlab::raster::FragmentList::default();
         bresenham.rasterize(
             &rasterlab::raster::line::LineSetup::numbered(&c.snapped_lines()),
             four,
-            rasterlab::raster::edge::PixelRect::of_target(c.width, c.height),
+            rasterlab::raster::PixelRect::of_target(c.width, c.height),
             &mut list,
         );
         Ok(list
@@ -575,9 +575,8 @@ fn shrinking_keeps_the_kind_of_failure() {
             else {
                 panic!("{property} passed");
             };
-            let first =
-                rasterlab::check::judge::judge(*property, &original, &subject(&original).unwrap())
-                    .unwrap();
+            let first = rasterlab::check::judge(*property, &original, &subject(&original).unwrap())
+                .unwrap();
             assert_eq!(
                 kind_words(&first.problems[0]),
                 kind_words(&finding.problems[0]),
@@ -709,8 +708,7 @@ fn a_line_failure_is_diagnosed() {
     drawn.retain(|f| f.x != 3);
     drawn.push(frag(3, 5, 0));
     let finding =
-        rasterlab::check::judge::judge(Property::Line(LineConvention::Midpoint), &case, &drawn)
-            .unwrap();
+        rasterlab::check::judge(Property::Line(LineConvention::Midpoint), &case, &drawn).unwrap();
     let d = finding.diagnosis.unwrap();
     assert!(d.contains("in column 3"), "{d}");
     assert!(d.contains("the subject drew (3, 5)"), "{d}");
@@ -829,7 +827,7 @@ fn crack_free_asks_only_about_shared_edges() {
         Ok(triangle_fragments(scanline, c, FillRule::TopLeft)
             .into_iter()
             .filter(|f| {
-                let t = rasterlab::raster::edge::TriangleSetup::new(
+                let t = rasterlab::raster::TriangleSetup::new(
                     f.id,
                     snapped[f.id as usize],
                     FillRule::TopLeft,
@@ -885,8 +883,7 @@ fn crack_free_asks_only_about_shared_edges() {
 fn thirty_two_bits(c: &Case) -> Result<Vec<Fragment>, SubjectError> {
     let mut out = Vec::new();
     for (id, t) in c.snapped_triangles().iter().enumerate() {
-        let Some(setup) =
-            rasterlab::raster::edge::TriangleSetup::new(id as u32, *t, FillRule::TopLeft)
+        let Some(setup) = rasterlab::raster::TriangleSetup::new(id as u32, *t, FillRule::TopLeft)
         else {
             continue;
         };
@@ -915,14 +912,11 @@ fn the_overflow_family_finds_32_bit_edge_functions() {
     let options = options(Property::Watertight, 140, 0);
     let mut rng = fastrand::Rng::with_seed(options.seed);
     for index in 0..options.cases {
-        let case = rasterlab::check::generate::case(Property::Watertight, index, &mut rng);
+        let case = rasterlab::check::generate_case(Property::Watertight, index, &mut rng);
         let drawn = thirty_two_bits(&case).unwrap();
-        if rasterlab::check::judge::judge(Property::Watertight, &case, &drawn).is_some() {
+        if rasterlab::check::judge(Property::Watertight, &case, &drawn).is_some() {
             *failing
-                .entry(rasterlab::check::generate::family(
-                    Property::Watertight,
-                    index,
-                ))
+                .entry(rasterlab::check::family(Property::Watertight, index))
                 .or_insert(0) += 1;
         }
     }
@@ -1113,7 +1107,7 @@ fn ctrl_c_removes_the_temporary_files_and_a_missing_program_is_not_shrunk() {
         "--exec",
         "nosuchprogram {input}",
         "--out",
-        &out_dir("missing"),
+        &out_dir(tmp.path(), "missing"),
     ]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
@@ -1294,8 +1288,8 @@ fn primitive_coordinates(svg: &str) -> Vec<f64> {
 
 #[test]
 fn the_counterexample_picture_labels_clips_and_uses_the_palette() {
-    use rasterlab::check::judge::judge;
-    use rasterlab::teaching::palette::{hex, triangle_colour, Role};
+    use rasterlab::check::judge;
+    use rasterlab::teaching::{triangle_colour, Role};
     let scanline = triangle_backend("scanline").unwrap();
     // Two triangles sharing a diagonal; one fragment missing, one drawn
     // off the target, left of it.
@@ -1319,7 +1313,8 @@ fn the_counterexample_picture_labels_clips_and_uses_the_palette() {
     assert!(svg.contains("data-x=\"-1\" data-y=\"0\" data-role=\"extra\""));
     // A colour and a label per triangle and per vertex.
     for (i, name) in ["t0", "t1"].iter().enumerate() {
-        let colour = hex(triangle_colour(i));
+        let [r, g, b] = triangle_colour(i);
+        let colour = format!("#{r:02x}{g:02x}{b:02x}");
         assert!(
             svg.contains(&format!("stroke=\"{colour}\"")),
             "{name} {colour}"

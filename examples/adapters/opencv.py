@@ -18,8 +18,8 @@ import numpy
 
 from protocol import run
 
-SHIFT = 0 if sys.argv[4:5] == ["noshift"] else 8
-del sys.argv[4:]
+SHIFT = 0 if "noshift" in sys.argv else 8
+sys.argv = [a for a in sys.argv if a != "noshift"]
 
 
 def draw(width, height, tri):

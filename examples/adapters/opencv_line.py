@@ -59,13 +59,11 @@ import numpy
 from protocol import pixel_index, run_lines
 
 parser = argparse.ArgumentParser()
-parser.add_argument("input")
-parser.add_argument("width")
-parser.add_argument("height")
+parser.add_argument("case", nargs="*", help="{input} {width} {height}; none: --persistent")
 parser.add_argument("--line-type", type=int, choices=[8, 4], default=8)
 parser.add_argument("--shift", type=int, default=0, choices=range(0, 17), metavar="N")
 args = parser.parse_args()
-sys.argv[1:] = [args.input, args.width, args.height]
+sys.argv[1:] = args.case
 LINE_TYPE = cv2.LINE_8 if args.line_type == 8 else cv2.LINE_4
 SHIFT = args.shift
 

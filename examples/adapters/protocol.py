@@ -13,9 +13,15 @@ Each adapter draws one triangle at a time into a mask of the target's size,
 so that every fragment is known by its triangle, and maps the library's own
 pixel convention to the one above (said at the top of each adapter).
 
+Started without `{input} {width} {height}` (`rasterlab check --persistent
+--exec "python3 examples/adapters/LIBRARY.py"`), an adapter instead reads
+case after case on standard input, each ended by a line `end`, and answers
+each with its fragments and `end`: the library is imported once, not once
+per case.
+
 Line adapters (`check --kind lines`, the `*_line.py` here) are the same but
-for the input: one segment per line, `x0 y0 x1 y1`, read by `read_lines`
-and drawn by `run_lines`, one segment alone at a time. Under `--convention
+for the input: one segment per line, `x0 y0 x1 y1`, drawn by `run_lines`,
+one segment alone at a time. Under `--convention
 pixel-index` the numbers are whole and name pixels (`pixel_index` turns
 them into ints and refuses any that is not whole); otherwise they are
 screen coordinates as above.
@@ -25,50 +31,70 @@ import math
 import sys
 
 
-def read_case():
-    """(width, height, triangles) from the command line and the input file."""
-    path, width, height = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
-    triangles = []
-    with open(path) as f:
-        for line in f:
-            line = line.split("#")[0].strip()
-            if line:
-                v = [float(t) for t in line.split()]
-                if len(v) != 6:
-                    sys.exit(f"expected six numbers a line, got {len(v)}")
-                triangles.append([(v[0], v[1]), (v[2], v[3]), (v[4], v[5])])
-    return width, height, triangles
+def parse(lines, numbers):
+    """(width, height, primitives) from a case's lines, each primitive a
+    list of `numbers // 2` (x, y) points."""
+    width = height = None
+    primitives = []
+    for line in lines:
+        if line.startswith("# size"):
+            width, height = (int(v) for v in line.split()[2].split("x"))
+            continue
+        line = line.split("#")[0].strip()
+        if line:
+            v = [float(t) for t in line.split()]
+            if len(v) != numbers:
+                raise ValueError(f"expected {numbers} numbers a line, got {len(v)}")
+            primitives.append([(v[i], v[i + 1]) for i in range(0, numbers, 2)])
+    return width, height, primitives
 
 
-def run(draw):
-    """Reads the case, calls `draw(width, height, triangle)` for each
-    triangle (it returns the drawn pixels as (x, y) pairs, or a 2D array
-    indexed [y][x] that is non-zero where drawn) and prints the fragments."""
-    width, height, triangles = read_case()
+def answer(width, height, primitives, draw):
+    """The `x y id` lines: `draw(width, height, primitive)` returns the
+    drawn pixels as (x, y) pairs, or a 2D array indexed [y][x] that is
+    non-zero where drawn."""
     out = []
-    for t, tri in enumerate(triangles):
-        pixels = draw(width, height, tri)
+    for t, primitive in enumerate(primitives):
+        pixels = draw(width, height, primitive)
         if hasattr(pixels, "nonzero"):
             ys, xs = pixels.nonzero()
             pixels = zip(xs.tolist(), ys.tolist())
         out.extend(f"{x} {y} {t}" for x, y in pixels)
-    sys.stdout.write("\n".join(out) + ("\n" if out else ""))
+    return out
 
 
-def read_lines():
-    """(width, height, segments) from the command line and the input file,
-    each segment ((x0, y0), (x1, y1)) in floats."""
-    path, width, height = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
-    segments = []
-    with open(path) as f:
-        for line in f:
-            line = line.split("#")[0].strip()
-            if line:
-                v = [float(t) for t in line.split()]
-                if len(v) != 4:
-                    sys.exit(f"expected four numbers a line, got {len(v)}")
-                segments.append(((v[0], v[1]), (v[2], v[3])))
-    return width, height, segments
+def serve(draw, numbers):
+    """Answers check in either protocol: the case file named on the
+    command line (`{input} {width} {height}`), or, with no case on the
+    command line (`--persistent`), case after case on standard input."""
+    if len(sys.argv) >= 4:
+        path, width, height = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+        with open(path) as f:
+            try:
+                _, _, primitives = parse(f.read().splitlines(), numbers)
+            except ValueError as e:
+                sys.exit(str(e))
+        out = answer(width, height, primitives, draw)
+        sys.stdout.write("\n".join(out) + ("\n" if out else ""))
+        return
+    case = []
+    for line in sys.stdin:
+        if line.strip() != "end":
+            case.append(line.rstrip("\n"))
+            continue
+        try:
+            width, height, primitives = parse(case, numbers)
+            out = answer(width, height, primitives, draw)
+            sys.stdout.write("".join(f"{l}\n" for l in out) + "end\n")
+        except Exception as e:  # reported with the case's input
+            sys.stdout.write(f"error {type(e).__name__}: {e}\n".replace("\n", " ").rstrip() + "\n")
+        sys.stdout.flush()
+        case = []
+
+
+def run(draw):
+    """Serves triangles: `draw(width, height, triangle)`, see [`answer`]."""
+    serve(draw, 6)
 
 
 def pixel_index(v):
@@ -80,16 +106,6 @@ def pixel_index(v):
 
 
 def run_lines(draw):
-    """Reads the case, calls `draw(width, height, segment)` for each segment
-    (it returns the drawn pixels as (x, y) pairs, or a 2D array indexed
-    [y][x] that is non-zero where drawn) and prints the fragments, id the
-    segment's 0-based index."""
-    width, height, segments = read_lines()
-    out = []
-    for t, seg in enumerate(segments):
-        pixels = draw(width, height, seg)
-        if hasattr(pixels, "nonzero"):
-            ys, xs = pixels.nonzero()
-            pixels = zip(xs.tolist(), ys.tolist())
-        out.extend(f"{x} {y} {t}" for x, y in pixels)
-    sys.stdout.write("\n".join(out) + ("\n" if out else ""))
+    """Serves line segments: `draw(width, height, segment)`, see
+    [`answer`]."""
+    serve(draw, 4)

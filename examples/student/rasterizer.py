@@ -1,53 +1,48 @@
 #!/usr/bin/env python3
 """A rasterizer as a student might write it for an assignment.
 
-    python3 rasterizer.py INPUT WIDTH HEIGHT
+For every pixel of the triangle's bounding box it computes the barycentric
+coordinates of the pixel centre in floating point and draws the pixel when
+all three are >= 0. The protocol (reading cases, printing `x y id`) is the
+Python starter's helper, `examples/starters/python/rasterlab_check.py`:
 
-INPUT holds one triangle per line, `x0 y0 x1 y1 x2 y2` in screen pixels
-(`#` lines are comments). For every pixel of the bounding box it computes
-the barycentric coordinates of the pixel centre in floating point and draws
-the pixel when all three are >= 0. It prints one fragment per line,
-`x y t`, where t is the triangle's index.
+    rasterlab check --rule watertight --persistent --exec "python3 examples/student/rasterizer.py"
 
-`rasterlab check --exec "python3 examples/student/rasterizer.py {input}
-{width} {height}"` finds what is wrong with it.
+finds what is wrong with it (`--exec "python3 examples/student/rasterizer.py
+{input} {width} {height}"` starts it once per case instead).
 """
 
 import math
+import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "starters", "python"))
+from rasterlab_check import run  # noqa: E402
 
-def edge(ax, ay, bx, by, px, py):
-    return (bx - ax) * (py - ay) - (by - ay) * (px - ax)
+
+def edge(a, b, p):
+    return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
 
 
-def main():
-    path, width, height = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
-    triangles = []
-    with open(path) as f:
-        for line in f:
-            line = line.split("#")[0].strip()
-            if line:
-                triangles.append([float(v) for v in line.split()])
-    out = []
-    for t, (x0, y0, x1, y1, x2, y2) in enumerate(triangles):
-        area = edge(x0, y0, x1, y1, x2, y2)
-        if area == 0:
-            continue
-        xmin = max(0, math.floor(min(x0, x1, x2)))
-        xmax = min(width - 1, math.ceil(max(x0, x1, x2)))
-        ymin = max(0, math.floor(min(y0, y1, y2)))
-        ymax = min(height - 1, math.ceil(max(y0, y1, y2)))
-        for y in range(ymin, ymax + 1):
-            for x in range(xmin, xmax + 1):
-                px, py = x + 0.5, y + 0.5
-                w0 = edge(x1, y1, x2, y2, px, py) / area
-                w1 = edge(x2, y2, x0, y0, px, py) / area
-                w2 = edge(x0, y0, x1, y1, px, py) / area
-                if w0 >= 0 and w1 >= 0 and w2 >= 0:
-                    out.append(f"{x} {y} {t}")
-    print("\n".join(out))
+def rasterize_triangle(a, b, c, width, height):
+    area = edge(a, b, c)
+    if area == 0:
+        return []
+    xmin = max(0, math.floor(min(a[0], b[0], c[0])))
+    xmax = min(width - 1, math.ceil(max(a[0], b[0], c[0])))
+    ymin = max(0, math.floor(min(a[1], b[1], c[1])))
+    ymax = min(height - 1, math.ceil(max(a[1], b[1], c[1])))
+    fragments = []
+    for y in range(ymin, ymax + 1):
+        for x in range(xmin, xmax + 1):
+            p = (x + 0.5, y + 0.5)
+            w0 = edge(b, c, p) / area
+            w1 = edge(c, a, p) / area
+            w2 = edge(a, b, p) / area
+            if w0 >= 0 and w1 >= 0 and w2 >= 0:
+                fragments.append((x, y))
+    return fragments
 
 
 if __name__ == "__main__":
-    main()
+    run(rasterize_triangle)

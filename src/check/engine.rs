@@ -45,8 +45,8 @@ use super::request::{
 };
 use super::{broken, shrink, Broken, Builtin, Fragment, Subject, SubjectError};
 use crate::error::{Error, Result};
-use crate::raster::backend::{backend, Backend};
 use crate::raster::edge::FillRule;
+use crate::raster::registry::{backend, Backend};
 
 /// Cases drawn after the first failure, at most, to confirm its cause:
 /// the next ones of the run, then as many more of the first failure's
@@ -223,10 +223,8 @@ impl Subjects<'_> {
         cases: &[(u32, Case)],
     ) -> Vec<std::result::Result<Vec<Fragment>, SubjectError>> {
         let subjects = match self {
-            Subjects::One(s) => return cases.iter().map(|(_, c)| s.draw(c)).collect(),
-            Subjects::Pool(v) if v.len() == 1 => {
-                return cases.iter().map(|(_, c)| v[0].draw(c)).collect()
-            }
+            Subjects::One(s) => return draw_until_broken(&mut **s, cases),
+            Subjects::Pool(v) if v.len() == 1 => return draw_until_broken(v[0].as_mut(), cases),
             Subjects::Pool(v) => v,
         };
         let next = std::sync::atomic::AtomicUsize::new(0);
@@ -253,6 +251,25 @@ impl Subjects<'_> {
             .map(|r| r.unwrap_or_else(|| Err(SubjectError::Start("a worker stopped".into()))))
             .collect()
     }
+}
+
+/// The cases drawn one after another, up to the first that breaks the
+/// subject (the engine stops there: a program that hangs is not made to
+/// hang on the rest of the batch too).
+fn draw_until_broken(
+    subject: &mut dyn Subject,
+    cases: &[(u32, Case)],
+) -> Vec<std::result::Result<Vec<Fragment>, SubjectError>> {
+    let mut out = Vec::with_capacity(cases.len());
+    for (_, case) in cases {
+        let result = subject.draw(case);
+        let broken = result.is_err();
+        out.push(result);
+        if broken {
+            break;
+        }
+    }
+    out
 }
 
 /// One subject per worker.
@@ -435,7 +452,7 @@ fn subject_factory<'a>(
                 }
             )))
         }
-        (_, SubjectSpec::Exec(command)) => {
+        (_, SubjectSpec::Exec(command) | SubjectSpec::Persistent(command)) => {
             let word = match mode {
                 Mode::One(Property::Exact(rule)) => rule.name(),
                 Mode::One(Property::Watertight) => "watertight",
@@ -443,7 +460,11 @@ fn subject_factory<'a>(
                 Mode::One(Property::Line(c)) => c.name(),
                 Mode::AnyRule | Mode::AnyConvention => "any",
             };
-            let mut program = Program::new(command, word);
+            let mut program = if matches!(request.subject, SubjectSpec::Persistent(_)) {
+                Program::persistent(command, word)?
+            } else {
+                Program::new(command, word)
+            };
             program.timeout = request.timeout;
             (
                 command.clone(),
@@ -517,7 +538,7 @@ impl Checker<'_> {
                         Some(c) => c.clone(),
                         None => {
                             let (p, k) = self.mode.case_property(i);
-                            generate::case(p, k, &mut rng)
+                            generate::generate_case(p, k, &mut rng)
                         }
                     };
                     (i, case)
@@ -608,6 +629,7 @@ impl Checker<'_> {
                 case_index: index,
                 family,
                 on_every_input: b.on_every_input,
+                shrunk: b.shrunk,
                 input,
                 files,
             });
@@ -623,6 +645,7 @@ impl Checker<'_> {
                 family: (*f).to_string(),
                 passed: 0,
                 total: 0,
+                explained_by_cause: None,
             })
             .collect();
         let table = match self.mode {
@@ -676,7 +699,13 @@ impl Checker<'_> {
         };
         report.families = tally;
         let mut original = None;
-        if let Some(&(index, case, first)) = failures.first() {
+        // A broken subject's report is the input that breaks it (in
+        // `counterexample.txt`): a failure found before it is listed, not
+        // shrunk over that file.
+        let first_failure = failures
+            .first()
+            .filter(|_| report.verdict != VerdictWord::Broken);
+        if let Some(&(index, case, first)) = first_failure {
             if report.verdict == VerdictWord::Pass {
                 report.verdict = VerdictWord::Fail;
             }
@@ -707,6 +736,25 @@ impl Checker<'_> {
                 }
             }
             let shrunk = self.shrink(first.clone(), diagnosis, subject, progress);
+            if let Some(cause) = &shrunk.cause {
+                // Where the cause holds, family by family (a grader's
+                // test per family names it only where it explains).
+                for t in &mut report.families {
+                    let mut family_failures = failures
+                        .iter()
+                        .filter(|(i, _, _)| family_of(*i) == t.family)
+                        .peekable();
+                    if family_failures.peek().is_some() {
+                        t.explained_by_cause = Some(
+                            family_failures
+                                .filter(|(_, c, f)| {
+                                    cause.explains(f.property, c, &f.drawn).is_some()
+                                })
+                                .count() as u32,
+                        );
+                    }
+                }
+            }
             let shrunk =
                 self.write_counterexample(&mut report, shrunk, index, original_primitives)?;
             report.finding = Some(Box::new(shrunk));
@@ -751,7 +799,7 @@ impl Checker<'_> {
                     let mut rng = fastrand::Rng::with_seed(
                         self.request.seed ^ 0x9e37_79b9_7f4a_7c15 ^ u64::from(index),
                     );
-                    (index, generate::case(property, index, &mut rng))
+                    (index, generate::generate_case(property, index, &mut rng))
                 })
                 .collect();
             done += batch;
@@ -790,7 +838,7 @@ impl Checker<'_> {
                 break;
             }
             let case = if property.is_lines() || index % 2 == 0 {
-                generate::case(property, index / 2, &mut rng)
+                generate::generate_case(property, index / 2, &mut rng)
             } else {
                 small_triangles(&mut rng)
             };
@@ -1056,6 +1104,7 @@ fn tally_for<'t>(tally: &'t mut Vec<FamilyTally>, family: &str) -> &'t mut Famil
             family: family.to_string(),
             passed: 0,
             total: 0,
+            explained_by_cause: None,
         });
         tally.last_mut().expect("just pushed")
     }

@@ -79,7 +79,7 @@ pub fn family(property: Property, index: u32) -> &'static str {
 }
 
 /// The `index`-th case of a check of `property`, from `rng`.
-pub fn case(property: Property, index: u32, rng: &mut fastrand::Rng) -> Case {
+pub fn generate_case(property: Property, index: u32, rng: &mut fastrand::Rng) -> Case {
     let width = rng.u32(6..=40);
     let height = rng.u32(6..=40);
     let mut case = Case {

@@ -6,7 +6,7 @@
 //! behind a small adapter, or a closure in a user's own `#[test]`.
 //!
 //! A check runs many [`Case`]s (a target size and some triangles or line
-//! segments, from the [`generate`] families: random soups, triangulated
+//! segments, from the case families ([`families`]): random soups, triangulated
 //! polygons with holes, fans and pinwheels around pixel centres, jittered
 //! quad grids, needles, huge and negative coordinates, half-subpixel ties,
 //! triangles of zero area after snapping, meshes). Each case is drawn by
@@ -26,12 +26,13 @@
 //!   [`judge`]);
 //! * [`Property::Line`]: lines drawn by the midpoint rule or the diamond
 //!   exit rule exactly, within Vulkan's tolerance of the diamond rule, or
-//!   by integer Bresenham between pixel-index endpoints (`pixel_index.rs`).
+//!   by integer Bresenham between pixel-index endpoints
+//!   ([`LineConvention::PixelIndex`]).
 //!
 //! A failure's cause is named only where the reference confirms it: the
-//! [`cause`] catalogue's hypotheses are each a change to the case or the
-//! reference, or a condition on the differences, tried on every failing
-//! case as generated (see [`cause`]).
+//! catalogue's hypotheses ([`Cause`], [`catalogue`]) are each a change to
+//! the case or the reference, or a condition on the differences, tried on
+//! every failing case as generated ([`Diagnosis`]).
 //!
 //! [`run`] is the whole check as the `rasterlab check` command runs it:
 //! a [`CheckRequest`] in, a [`CheckReport`] out (text through `Display`,
@@ -47,9 +48,8 @@
 //! [`Finding::ascii_grid`] and [`Finding::counterexample_text`] show.
 //!
 //! ```
-//! use rasterlab::raster::backend::triangle_backend;
 //! use rasterlab::check::{check, CheckOptions, Property, Verdict};
-//! use rasterlab::raster::edge::FillRule;
+//! use rasterlab::raster::{triangle_backend, FillRule};
 //!
 //! let scanline = triangle_backend("scanline").unwrap();
 //! let options = CheckOptions { cases: 50, ..CheckOptions::new(Property::Exact(FillRule::TopLeft)) };
@@ -58,35 +58,45 @@
 //! ```
 
 mod case;
-pub mod cause;
+pub(crate) mod cause;
 mod engine;
-pub mod generate;
-pub mod judge;
+pub(crate) mod generate;
+mod grader;
+pub(crate) mod judge;
+mod persistent;
 mod pixel_index;
-pub mod program;
+mod process;
+pub(crate) mod program;
 mod property;
-mod report;
+pub(crate) mod report;
 mod request;
 mod shrink;
 mod text;
 
 pub use case::{Case, Point};
-pub use cause::Diagnosis;
+pub use cause::{catalogue, Cause, Diagnosis, End, Side, Winding, FAR_OFF_TARGET, NEAR_AN_EDGE};
 pub use engine::{
     run, run_with, run_with_progress, Progress, CONFIRMING_CASES, CONFIRMING_FAILURES,
 };
-pub use judge::{FailureKind, Finding, LineConvention, Property, Provenance};
-pub use program::Program;
+pub use generate::{
+    families, family, generate_case, EXACT_FAMILIES, LINE_FAMILIES, MESH_FAMILIES,
+    PIXEL_INDEX_FAMILIES,
+};
+pub use grader::{gradescope, junit, ReportFormat};
+pub use judge::{cover, judge, Cover, FailureKind, Finding, Provenance};
+pub use process::parse_fragments;
+pub use program::{remove_live_input_folders, shell_words, Program};
+pub use property::{LineConvention, Property};
 pub use request::{
     timeout_from_seconds, BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice,
     Counterexample, FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
 };
 
 use crate::geometry::scene::setup_triangles;
-use crate::raster::backend::{line_backends, reference_triangle_backend};
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fragment::FragmentList;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup, LineWalk};
+use crate::raster::registry::{line_backends, reference_triangle_backend};
 use crate::raster::triangle::TriangleRasterizer;
 use std::fmt;
 
@@ -128,6 +138,15 @@ pub enum SubjectError {
         /// The text of that line.
         text: String,
     },
+    /// It answered that it cannot draw the case (`error MESSAGE` under
+    /// the persistent protocol), with its message and what it had written
+    /// on standard error meanwhile (a traceback, say).
+    Refused {
+        /// The message of its `error` line.
+        message: String,
+        /// The end of its standard error.
+        stderr: String,
+    },
     /// It printed more than the output cap.
     TooMuchOutput {
         /// The cap, in bytes.
@@ -155,6 +174,13 @@ impl fmt::Display for SubjectError {
                 f,
                 "output line {line} is not `x y id` (whole numbers): `{text}`"
             ),
+            SubjectError::Refused { message, stderr } => {
+                write!(f, "the program answered `error`: {message}")?;
+                if !stderr.is_empty() {
+                    write!(f, "\nits standard error:\n{stderr}")?;
+                }
+                Ok(())
+            }
             SubjectError::TooMuchOutput { bytes } => {
                 write!(f, "the program printed more than {bytes} bytes")
             }
@@ -173,9 +199,8 @@ impl fmt::Display for SubjectError {
 /// target:
 ///
 /// ```
-/// use rasterlab::check::{check, Case, CheckOptions, FailureKind, Fragment, Property};
-/// use rasterlab::check::{SubjectError, Verdict};
-/// use rasterlab::raster::edge::FillRule;
+/// use rasterlab::check::{check, Case, CheckOptions, FailureKind, Fragment, Property, SubjectError, Verdict};
+/// use rasterlab::raster::FillRule;
 ///
 /// fn my_rasterizer(case: &Case) -> Result<Vec<Fragment>, SubjectError> {
 ///     let edge = |a: (f64, f64), b: (f64, f64), p: (f64, f64)| {
@@ -382,6 +407,10 @@ pub struct Broken {
     /// program that cannot start, or fails whatever it is given): the
     /// case is then the first one, not shrunk.
     pub on_every_input: bool,
+    /// True when the case was shrunk (a program that hangs or prints
+    /// without end is not rerun to shrink it: each run would cost the
+    /// time limit).
+    pub shrunk: bool,
 }
 
 impl fmt::Display for Broken {
@@ -441,23 +470,26 @@ pub(crate) fn broken(
     runs: u32,
 ) -> Broken {
     let same = |e: &SubjectError| std::mem::discriminant(e) == std::mem::discriminant(&error);
-    let (case, on_every_input) = match error {
-        SubjectError::Timeout { .. } | SubjectError::TooMuchOutput { .. } => (case.clone(), false),
+    let (case, on_every_input, shrunk) = match error {
+        SubjectError::Timeout { .. } | SubjectError::TooMuchOutput { .. } => {
+            (case.clone(), false, false)
+        }
         _ if subject
             .draw(&simplest_case(!case.lines.is_empty()))
             .as_ref()
             .err()
             .is_some_and(same) =>
         {
-            (case.clone(), true)
+            (case.clone(), true, false)
         }
-        _ => (shrink::shrink_broken(case, subject, runs), false),
+        _ => (shrink::shrink_broken(case, subject, runs), false, true),
     };
     Broken {
         error,
         case,
         case_index,
         on_every_input,
+        shrunk,
     }
 }
 
@@ -490,6 +522,7 @@ pub fn check_with_progress(
                 case: simplest_case(options.property.is_lines()),
                 case_index: 0,
                 on_every_input: false,
+                shrunk: false,
             })
         })?;
     if let Some(b) = run.broken {

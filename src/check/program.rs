@@ -21,8 +21,13 @@
 //! the primitive), in any order; a fourth number (a coverage weight) is
 //! allowed and ignored, and so are blank lines.
 //!
-//! The program is not trusted: it is stopped after a time limit, its
-//! output is read up to a cap, and a number too large for 64 bits is read
+//! With [`Program::persistent`] the program is instead started once and
+//! answers case after case on its standard input (the protocol is in
+//! `persistent.rs`'s docs and the check guide).
+//!
+//! The program is not trusted: it is stopped after a time limit (with
+//! every process it started, as it runs in a process group of its own),
+//! its output is read up to a cap, and a number too large for 64 bits is read
 //! as a pixel far off the target (a defect the check reports), not as a
 //! crash of the check. Its input files live in a temporary folder removed
 //! when the last clone of the [`Program`] is dropped, and on Ctrl-C once
@@ -30,6 +35,9 @@
 //! been called.
 
 use super::case::Case;
+use super::persistent::Session;
+pub(crate) use super::process::parse_fragments;
+use super::process::{in_own_group, kill_tree};
 use super::{Fragment, Subject, SubjectError};
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -49,9 +57,37 @@ pub struct Program {
     pub timeout: Duration,
     /// The most bytes of output read.
     pub output_cap: usize,
+    /// Started once, reading case after case on standard input (the
+    /// `--persistent` protocol), instead of once per case: set only by
+    /// [`Program::persistent`], which checks the command line for it.
+    persistent: bool,
     /// The folder of the input files, made at the first run and shared by
     /// clones (each run writes a file of its own).
     dir: Arc<OnceLock<Result<Folder, String>>>,
+    /// The running copy under the persistent protocol (a clone starts
+    /// its own).
+    session: SessionSlot,
+}
+
+/// A running program under the persistent protocol, if started; a clone
+/// of it is empty.
+#[derive(Default)]
+struct SessionSlot(Option<Session>);
+
+impl Clone for SessionSlot {
+    fn clone(&self) -> SessionSlot {
+        SessionSlot(None)
+    }
+}
+
+impl std::fmt::Debug for SessionSlot {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(if self.0.is_some() {
+            "running"
+        } else {
+            "not started"
+        })
+    }
 }
 
 /// A temporary folder, removed when dropped and listed for removal on
@@ -109,8 +145,46 @@ impl Program {
             rule: rule.to_string(),
             timeout: Duration::from_secs(5),
             output_cap: 64 << 20,
+            persistent: false,
             dir: Arc::new(OnceLock::new()),
+            session: SessionSlot::default(),
         }
+    }
+
+    /// A program started once, answering case after case on its standard
+    /// input (see `persistent.rs`); its command line may hold `{rule}`
+    /// but not `{input}`, `{width}` or `{height}`, which each case gives.
+    pub fn persistent(command: &str, rule: &str) -> crate::Result<Program> {
+        if let Some(p) = ["{input}", "{width}", "{height}"]
+            .into_iter()
+            .find(|p| command.contains(p))
+        {
+            return Err(crate::Error::InvalidArgument(format!(
+                "{p} in a --persistent command: the program reads each case, its size \
+                 included, on its standard input"
+            )));
+        }
+        Ok(Program {
+            persistent: true,
+            ..Program::new(command, rule)
+        })
+    }
+
+    /// One case through the persistent protocol: a copy is started when
+    /// none runs, and one out of step after a failure is stopped.
+    fn draw_persistent(&mut self, case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+        let session = match &mut self.session.0 {
+            Some(s) => s,
+            slot => {
+                let line = self.command.replace("{rule}", &shell_quote(&self.rule));
+                slot.insert(Session::start(&line)?)
+            }
+        };
+        let answer = session.draw(case, self.timeout, self.output_cap);
+        if session.finished {
+            self.session.0 = None;
+        }
+        answer
     }
 
     /// The folder of the input files, made at the first call.
@@ -137,8 +211,37 @@ fn shell_quote(word: &str) -> String {
     format!("'{}'", word.replace('\'', r"'\''"))
 }
 
+/// A command line as a shell reads it back: each word quoted where it
+/// holds more than letters, digits and `-_./=:,+@%` (so that a command a
+/// report records can be pasted).
+///
+/// ```
+/// let line = rasterlab::check::shell_words(["check", "--exec", "python3 r.py"]);
+/// assert_eq!(line, "check --exec 'python3 r.py'");
+/// ```
+pub fn shell_words<S: AsRef<str>>(words: impl IntoIterator<Item = S>) -> String {
+    words
+        .into_iter()
+        .map(|w| {
+            let w = w.as_ref();
+            let plain = !w.is_empty()
+                && w.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "-_./=:,+@%".contains(c));
+            if plain {
+                w.to_string()
+            } else {
+                shell_quote(w)
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 impl Subject for Program {
     fn draw(&mut self, case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+        if self.persistent {
+            return self.draw_persistent(case);
+        }
         let start = |e: std::io::Error| SubjectError::Start(format!("cannot write the input: {e}"));
         let mut input = tempfile::Builder::new()
             .prefix("input-")
@@ -147,12 +250,15 @@ impl Subject for Program {
             .map_err(start)?;
         std::io::Write::write_all(&mut input, case.to_text().as_bytes()).map_err(start)?;
         let line = self.command_line(case, &input.path().to_string_lossy());
-        let mut child = Command::new("sh")
+        let mut command = Command::new("sh");
+        command
             .arg("-c")
             .arg(&line)
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
+            .stderr(Stdio::piped());
+        in_own_group(&mut command);
+        let mut child = command
             .spawn()
             .map_err(|e| SubjectError::Start(format!("{line}: {e}")))?;
         let cap = self.output_cap;
@@ -176,8 +282,7 @@ impl Subject for Program {
         let status = match child.wait_timeout(self.timeout) {
             Ok(Some(status)) => status,
             Ok(None) | Err(_) => {
-                let _ = child.kill();
-                let _ = child.wait();
+                kill_tree(&mut child);
                 return Err(SubjectError::Timeout {
                     seconds: self.timeout.as_secs_f64(),
                 });
@@ -200,51 +305,6 @@ impl Subject for Program {
         }
         parse_fragments(&String::from_utf8_lossy(&out))
     }
-}
-
-/// Reads `x y id` lines (a fourth number is allowed and ignored).
-pub fn parse_fragments(text: &str) -> Result<Vec<Fragment>, SubjectError> {
-    let mut out = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        if words.is_empty() {
-            continue;
-        }
-        let malformed = || SubjectError::Malformed {
-            line: i + 1,
-            text: line.chars().take(120).collect(),
-        };
-        if !(3..=4).contains(&words.len()) {
-            return Err(malformed());
-        }
-        let x = whole(words[0]).ok_or_else(malformed)?;
-        let y = whole(words[1]).ok_or_else(malformed)?;
-        let id = whole(words[2]).ok_or_else(malformed)?;
-        if words.len() == 4 && words[3].parse::<f64>().is_err() {
-            return Err(malformed());
-        }
-        out.push(Fragment {
-            x,
-            y,
-            // A negative or huge index names no primitive: judged as such.
-            id: u32::try_from(id).unwrap_or(u32::MAX),
-        });
-    }
-    Ok(out)
-}
-
-/// A whole number; one too large for `i64` saturates (a pixel far off the
-/// target).
-fn whole(word: &str) -> Option<i64> {
-    let digits = word.strip_prefix('-').unwrap_or(word);
-    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-        return None;
-    }
-    Some(word.parse::<i64>().unwrap_or(if word.starts_with('-') {
-        i64::MIN
-    } else {
-        i64::MAX
-    }))
 }
 
 #[cfg(test)]

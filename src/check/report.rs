@@ -4,20 +4,19 @@
 //!
 //! The picture follows the course's grid drawings: one cell per pixel,
 //! its centre marked, pixel indices along both axes, and the triangles as
-//! given (snapped to the 1/256 px grid), each in its own colour and
-//! labelled `t0`, `t1`, ..., its vertices `v0`-`v2`. A few cells of
+//! given (snapped to the 1/256 px grid), each in its own colour and line
+//! pattern and labelled `t0`, `t1`, ..., its vertices `v0`-`v2`. A few cells of
 //! margin around the target show the primitives just outside it; a
 //! primitive reaching beyond the view (the huge and overflow families
 //! have vertices thousands of pixels away) is clipped to it, and its
 //! vertices are listed in the legend. Colours are the palette's
 //! ([`crate::teaching::palette`]): correct, extra, missing, off the
-//! target, pixel centres, and the triangle colours.
+//! target, pixel centres, and the triangles' colours and line patterns.
 
 use super::judge::{Finding, Property};
-use crate::teaching::grid_picture::escape;
-use crate::teaching::palette::{hex, triangle_colour, Legend, Role};
+use crate::markup::Markup;
+use crate::teaching::palette::{colour_hex, triangle_colour, triangle_mark, Legend, Role};
 use std::collections::BTreeSet;
-use std::fmt::Write;
 
 /// The most cells drawn on a side of the target (the shrunk target is
 /// usually small).
@@ -253,49 +252,104 @@ impl Finding {
             .max(legend_width + 8.0)
             .max(caption.chars().count() as f64 * 8.4 + 12.0);
         let height = top + gh + 12.0 + legend_height;
-        let mut svg = format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"DejaVu Sans, sans-serif\">\n<title>{0}</title>\n<path d=\"M0 0H{width}V{height}H0Z\" fill=\"white\"/>\n<text class=\"caption\" x=\"4\" y=\"18\" font-size=\"15\">{0}</text>\n",
-            escape(&caption)
-        );
+        let mut m = Markup::new();
+        m.open(
+            "svg",
+            &[
+                ("xmlns", &"http://www.w3.org/2000/svg"),
+                ("width", &width),
+                ("height", &height),
+                ("viewBox", &format_args!("0 0 {width} {height}")),
+                ("font-family", &"DejaVu Sans, sans-serif"),
+            ],
+        )
+        .newline();
+        m.element("title", &[], &caption).newline();
+        m.empty(
+            "path",
+            &[
+                ("d", &format_args!("M0 0H{width}V{height}H0Z")),
+                ("fill", &"white"),
+            ],
+        )
+        .newline();
+        m.element(
+            "text",
+            &[
+                ("class", &"caption"),
+                ("x", &4),
+                ("y", &18),
+                ("font-size", &15),
+            ],
+            &caption,
+        )
+        .newline();
         // Pixel indices: every one while they fit, else every 2nd, 5th, ...
         let step = [1i64, 2, 5, 10, 20]
             .into_iter()
             .find(|&k| k as f64 * s >= 7.0 * digits + 4.0)
             .unwrap_or(20);
-        let _ = write!(svg, "<g class=\"axes\" font-size=\"11\" fill=\"#444\">");
+        m.open(
+            "g",
+            &[("class", &"axes"), ("font-size", &11), ("fill", &"#444")],
+        );
         let origin = (left + MARGIN as f64 * s, top + MARGIN as f64 * s);
         for x in (-MARGIN..w + MARGIN).filter(|x| x.rem_euclid(step) == 0) {
-            let _ = write!(
-                svg,
-                "<text class=\"column\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">{x}</text>",
-                origin.0 + (x as f64 + 0.5) * s,
-                top - 5.0
+            m.element(
+                "text",
+                &[
+                    ("class", &"column"),
+                    ("x", &(origin.0 + (x as f64 + 0.5) * s)),
+                    ("y", &(top - 5.0)),
+                    ("text-anchor", &"middle"),
+                ],
+                &x.to_string(),
             );
         }
         for y in (-MARGIN..h + MARGIN).filter(|y| y.rem_euclid(step) == 0) {
-            let _ = write!(
-                svg,
-                "<text class=\"row\" x=\"{}\" y=\"{}\" text-anchor=\"end\">{y}</text>",
-                left - 4.0,
-                origin.1 + (y as f64 + 0.5) * s + 4.0
+            m.element(
+                "text",
+                &[
+                    ("class", &"row"),
+                    ("x", &(left - 4.0)),
+                    ("y", &(origin.1 + (y as f64 + 0.5) * s + 4.0)),
+                    ("text-anchor", &"end"),
+                ],
+                &y.to_string(),
             );
         }
-        svg.push_str("</g>\n");
-        let _ = writeln!(
-            svg,
-            "<g class=\"grid\" transform=\"translate({} {})\">",
-            origin.0, origin.1
-        );
-        let _ = writeln!(
-            svg,
-            "<rect x=\"{}\" y=\"{}\" width=\"{gw}\" height=\"{gh}\" fill=\"{}\"/>\n<rect width=\"{}\" height=\"{}\" fill=\"{}\"/>",
-            view.x0 * s,
-            view.y0 * s,
-            Role::OffTarget.hex(),
-            w as f64 * s,
-            h as f64 * s,
-            Role::Untested.hex()
-        );
+        m.close("g").newline();
+        m.open(
+            "g",
+            &[
+                ("class", &"grid"),
+                (
+                    "transform",
+                    &format_args!("translate({} {})", origin.0, origin.1),
+                ),
+            ],
+        )
+        .newline();
+        m.empty(
+            "rect",
+            &[
+                ("x", &(view.x0 * s)),
+                ("y", &(view.y0 * s)),
+                ("width", &gw),
+                ("height", &gh),
+                ("fill", &Role::OffTarget.hex()),
+            ],
+        )
+        .newline();
+        m.empty(
+            "rect",
+            &[
+                ("width", &(w as f64 * s)),
+                ("height", &(h as f64 * s)),
+                ("fill", &Role::Untested.hex()),
+            ],
+        )
+        .newline();
         for y in -MARGIN..h + MARGIN {
             for x in -MARGIN..w + MARGIN {
                 let role = if extra.contains(&(x, y)) {
@@ -307,54 +361,81 @@ impl Finding {
                 } else {
                     continue;
                 };
-                let _ = writeln!(
-                    svg,
-                    "<rect class=\"cell\" data-x=\"{x}\" data-y=\"{y}\" data-role=\"{}\" x=\"{}\" y=\"{}\" width=\"{s}\" height=\"{s}\" fill=\"{}\"/>",
-                    role.key(),
-                    x as f64 * s,
-                    y as f64 * s,
-                    role.hex()
-                );
+                m.empty(
+                    "rect",
+                    &[
+                        ("class", &"cell"),
+                        ("data-x", &x),
+                        ("data-y", &y),
+                        ("data-role", &role.key()),
+                        ("x", &(x as f64 * s)),
+                        ("y", &(y as f64 * s)),
+                        ("width", &s),
+                        ("height", &s),
+                        ("fill", &role.hex()),
+                    ],
+                )
+                .newline();
             }
         }
         for k in -MARGIN..=w + MARGIN {
-            let _ = writeln!(
-                svg,
-                "<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"#9a9a9a\"/>",
-                k as f64 * s,
-                view.y0 * s,
-                view.y1 * s
-            );
+            let x = k as f64 * s;
+            m.empty(
+                "line",
+                &[
+                    ("x1", &x),
+                    ("y1", &(view.y0 * s)),
+                    ("x2", &x),
+                    ("y2", &(view.y1 * s)),
+                    ("stroke", &"#9a9a9a"),
+                ],
+            )
+            .newline();
         }
         for k in -MARGIN..=h + MARGIN {
-            let _ = writeln!(
-                svg,
-                "<line x1=\"{1}\" y1=\"{0}\" x2=\"{2}\" y2=\"{0}\" stroke=\"#9a9a9a\"/>",
-                k as f64 * s,
-                view.x0 * s,
-                view.x1 * s
-            );
+            let y = k as f64 * s;
+            m.empty(
+                "line",
+                &[
+                    ("x1", &(view.x0 * s)),
+                    ("y1", &y),
+                    ("x2", &(view.x1 * s)),
+                    ("y2", &y),
+                    ("stroke", &"#9a9a9a"),
+                ],
+            )
+            .newline();
         }
-        let _ = writeln!(
-            svg,
-            "<rect class=\"target\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\" stroke-width=\"2\"/>",
-            w as f64 * s,
-            h as f64 * s
-        );
+        m.empty(
+            "rect",
+            &[
+                ("class", &"target"),
+                ("width", &(w as f64 * s)),
+                ("height", &(h as f64 * s)),
+                ("fill", &"none"),
+                ("stroke", &"#444"),
+                ("stroke-width", &2),
+            ],
+        )
+        .newline();
+        let centre_colour = Role::PixelCentre.hex();
         for y in -MARGIN..h + MARGIN {
             for x in -MARGIN..w + MARGIN {
-                let _ = writeln!(
-                    svg,
-                    "<circle cx=\"{}\" cy=\"{}\" r=\"1.8\" fill=\"{}\"/>",
-                    (x as f64 + 0.5) * s,
-                    (y as f64 + 0.5) * s,
-                    Role::PixelCentre.hex()
-                );
+                m.empty(
+                    "circle",
+                    &[
+                        ("cx", &((x as f64 + 0.5) * s)),
+                        ("cy", &((y as f64 + 0.5) * s)),
+                        ("r", &1.8),
+                        ("fill", &centre_colour),
+                    ],
+                )
+                .newline();
             }
         }
         let to_svg = |(x, y): P| format!("{:.2},{:.2}", x * s, y * s);
-        let mut labels = String::new();
-        let label = |out: &mut String, (x, y): P, text: &str, colour: &str, class: &str| {
+        let mut labels = Markup::new();
+        let label = |out: &mut Markup, (x, y): P, text: &str, colour: &str, class: &str| {
             // Kept inside the view (bold DejaVu Sans at 14 px: about 9 px
             // a character), on a white halo.
             let half = text.chars().count() as f64 * 4.5 + 2.0;
@@ -365,13 +446,27 @@ impl Finding {
                 (lo + hi) / 2.0
             };
             let y = y.clamp(view.y0 * s + 14.0, view.y1 * s - 4.0);
-            let _ = writeln!(
-                out,
-                "<text class=\"{class}\" x=\"{x:.1}\" y=\"{y:.1}\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">{text}</text>"
-            );
+            out.element(
+                "text",
+                &[
+                    ("class", &class),
+                    ("x", &format_args!("{x:.1}")),
+                    ("y", &format_args!("{y:.1}")),
+                    ("font-size", &14),
+                    ("font-weight", &"bold"),
+                    ("text-anchor", &"middle"),
+                    ("fill", &colour),
+                    ("stroke", &"white"),
+                    ("stroke-width", &3),
+                    ("paint-order", &"stroke"),
+                ],
+                text,
+            )
+            .newline();
         };
         for (i, p) in primitives.iter().enumerate() {
-            let colour = hex(triangle_colour(i));
+            let colour = colour_hex(triangle_colour(i));
+            let dash = triangle_mark(i).dasharray();
             // The edges clipped one by one (the view's border is no edge).
             let n = p.points.len();
             let edges: Vec<(P, P)> = (0..if n == 3 { 3 } else { 1 })
@@ -382,11 +477,21 @@ impl Finding {
                     .iter()
                     .map(|&(a, b)| format!("M{} L{} ", to_svg(a), to_svg(b)))
                     .collect();
-                let _ = writeln!(
-                    svg,
-                    "<path class=\"primitive\" data-id=\"{i}\" d=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"2.5\" stroke-linecap=\"round\"/>",
-                    d.trim_end()
-                );
+                m.empty(
+                    "path",
+                    &[
+                        ("class", &"primitive"),
+                        ("data-id", &i),
+                        ("d", &d.trim_end()),
+                        ("fill", &"none"),
+                        ("stroke", &colour),
+                        ("stroke-width", &2.5),
+                        // Round caps would close a pattern's gaps.
+                        ("stroke-linecap", &dash.map_or("round", |_| "butt")),
+                        ("stroke-dasharray", &dash.unwrap_or("none")),
+                    ],
+                )
+                .newline();
             }
             let seen = if n == 3 {
                 view.clip(&p.points)
@@ -420,12 +525,17 @@ impl Finding {
                     }
                     continue;
                 }
-                let _ = writeln!(
-                    svg,
-                    "<circle class=\"vertex\" cx=\"{:.2}\" cy=\"{:.2}\" r=\"4\" fill=\"{colour}\"/>",
-                    v.0 * s,
-                    v.1 * s
-                );
+                m.empty(
+                    "circle",
+                    &[
+                        ("class", &"vertex"),
+                        ("cx", &format_args!("{:.2}", v.0 * s)),
+                        ("cy", &format_args!("{:.2}", v.1 * s)),
+                        ("r", &4),
+                        ("fill", &colour),
+                    ],
+                )
+                .newline();
                 let (dx, dy) = (v.0 - middle.0, v.1 - middle.1);
                 let len = dx.hypot(dy).max(1e-9);
                 label(
@@ -454,109 +564,128 @@ impl Finding {
                 );
             }
         }
-        svg.push_str(&labels);
-        svg.push_str("</g>\n");
-        svg.push_str(&legend);
-        svg.push_str("</svg>\n");
-        svg
+        m.raw(&labels.finish());
+        m.close("g").newline();
+        m.raw(&legend);
+        m.close("svg").newline();
+        m.finish()
     }
 
     /// Where the case came from and how it failed before shrinking, as
     /// HTML paragraphs.
-    fn provenance_html(&self) -> String {
-        let mut out = String::new();
+    fn provenance_html(&self, m: &mut Markup) {
         if let Some(p) = &self.provenance {
-            let _ = write!(
-                out,
-                "<p id=\"provenance\">Command: <code>{}</code><br>Seed {}, case {} (family {}).</p>",
-                escape(&p.command),
-                p.seed,
-                p.case_index,
-                escape(&p.family)
-            );
+            m.open("p", &[("id", &"provenance")]).text("Command: ");
+            m.element("code", &[], &p.command).empty("br", &[]);
+            m.text(&format!(
+                "Seed {}, case {} (family {}).",
+                p.seed, p.case_index, p.family
+            ))
+            .close("p");
         }
         if let Some(o) = &self.original_problem {
-            let _ = write!(
-                out,
-                "<p id=\"original\">The case as generated: {}</p>",
-                escape(o)
-            );
+            m.open("p", &[("id", &"original")])
+                .text("The case as generated: ")
+                .text(o)
+                .close("p");
         }
-        out
     }
 
     /// The page: the problems, the cause (or the diagnosis), the picture
     /// ([`Finding::to_svg`], its legend in it) and the counterexample
     /// file.
     pub fn to_html(&self) -> String {
-        let svg = self.to_svg();
-        let problems: String = self
-            .problems
-            .iter()
-            .take(20)
-            .map(|p| format!("<li>{}</li>", escape(p)))
-            .collect();
-        let diagnosis = self
-            .diagnosis
-            .as_deref()
-            .map(|d| format!("<p id=\"diagnosis\"><b>Diagnosis:</b> {}</p>", escape(d)))
-            .unwrap_or_default();
-        let cause = self
-            .cause
-            .as_ref()
-            .map(|c| {
-                let also = if c.also_fits.is_empty() {
-                    "none".to_string()
-                } else {
-                    c.also_fits
-                        .iter()
-                        .map(|f| escape(&f.join(" + ")))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                };
-                format!(
-                    "<table id=\"cause\"><tr><th>cause</th><td><code>{}</code>: {}</td></tr><tr><th>evidence</th><td>{}</td></tr><tr><th>confirmed on</th><td>{} of {} failing case(s) as generated</td></tr><tr><th>also fits</th><td>{also}</td></tr></table>",
-                    escape(&c.causes.join(" + ")),
-                    escape(&c.description),
-                    escape(&c.evidence),
-                    c.confirmed_on,
-                    c.failing_cases
-                )
-            })
-            .unwrap_or_default();
-        format!(
-            r#"<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>rasterlab check: counterexample</title>
-<style>body{{font-family:sans-serif;margin:2em;max-width:80em}} pre{{background:#f4f4f4;padding:1em;white-space:pre-wrap}}</style>
-</head><body>
-<h1>Counterexample: {property}</h1>
-{provenance}
-<p>Target {w0}x{h0}, {n} primitive(s). {drawn} fragment(s) drawn, {expected}. Failure kind: <b>{kind}</b>.</p>
-<ul id="problems">{problems}</ul>
-{diagnosis}
-{cause}
-{svg}
-<h2>The input (counterexample.txt)</h2>
-<pre>{text}</pre>
-</body></html>
-"#,
-            property = escape(&self.property.to_string()),
-            kind = self.kind(),
-            provenance = self.provenance_html(),
-            w0 = self.case.width,
-            h0 = self.case.height,
-            n = self.case.len(),
-            drawn = self.drawn.len(),
-            expected = match self.property {
-                Property::Exact(_) | Property::Line(_) => {
-                    format!("{} expected", self.expected.len())
-                }
-                // Any consistent tie rule passes: there is no one answer.
-                Property::Watertight | Property::CrackFree => {
-                    "no single answer expected (any consistent tie rule passes)".to_string()
-                }
-            },
-            text = escape(&self.counterexample_text()),
+        let mut m = Markup::new();
+        m.raw("<!DOCTYPE html>\n");
+        m.open("html", &[("lang", &"en")]).open("head", &[]);
+        m.empty("meta", &[("charset", &"utf-8")]);
+        m.element("title", &[], "rasterlab check: counterexample")
+            .newline();
+        m.element(
+            "style",
+            &[],
+            "body{font-family:sans-serif;margin:2em;max-width:80em} pre{background:#f4f4f4;padding:1em;white-space:pre-wrap}",
         )
+        .newline();
+        m.close("head").open("body", &[]).newline();
+        m.element("h1", &[], &format!("Counterexample: {}", self.property))
+            .newline();
+        self.provenance_html(&mut m);
+        m.newline();
+        let expected = match self.property {
+            Property::Exact(_) | Property::Line(_) => {
+                format!("{} expected", self.expected.len())
+            }
+            // Any consistent tie rule passes: there is no one answer.
+            Property::Watertight | Property::CrackFree => {
+                "no single answer expected (any consistent tie rule passes)".to_string()
+            }
+        };
+        m.open("p", &[]).text(&format!(
+            "Target {}x{}, {} primitive(s). {} fragment(s) drawn, {expected}. Failure kind: ",
+            self.case.width,
+            self.case.height,
+            self.case.len(),
+            self.drawn.len(),
+        ));
+        m.element("b", &[], &self.kind().to_string())
+            .text(".")
+            .close("p")
+            .newline();
+        m.open("ul", &[("id", &"problems")]);
+        for p in self.problems.iter().take(20) {
+            m.element("li", &[], p);
+        }
+        m.close("ul").newline();
+        if let Some(d) = self.diagnosis.as_deref() {
+            m.open("p", &[("id", &"diagnosis")])
+                .element("b", &[], "Diagnosis:")
+                .text(" ")
+                .text(d)
+                .close("p")
+                .newline();
+        }
+        if let Some(c) = &self.cause {
+            let also = if c.also_fits.is_empty() {
+                "none".to_string()
+            } else {
+                c.also_fits
+                    .iter()
+                    .map(|f| f.join(" + "))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            m.open("table", &[("id", &"cause")]);
+            m.open("tr", &[])
+                .element("th", &[], "cause")
+                .open("td", &[]);
+            m.element("code", &[], &c.causes.join(" + "))
+                .text(&format!(": {}", c.description))
+                .close("td")
+                .close("tr");
+            for (head, value) in [
+                ("evidence", c.evidence.clone()),
+                (
+                    "confirmed on",
+                    format!(
+                        "{} of {} failing case(s) as generated",
+                        c.confirmed_on, c.failing_cases
+                    ),
+                ),
+                ("also fits", also),
+            ] {
+                m.open("tr", &[])
+                    .element("th", &[], head)
+                    .element("td", &[], &value)
+                    .close("tr");
+            }
+            m.close("table").newline();
+        }
+        m.raw(&self.to_svg());
+        m.element("h2", &[], "The input (counterexample.txt)")
+            .newline();
+        m.element("pre", &[], &self.counterexample_text()).newline();
+        m.close("body").close("html").newline();
+        m.finish()
     }
 }

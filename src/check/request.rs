@@ -48,6 +48,9 @@ pub enum SubjectSpec {
     /// An outside program: a command line run once per case (see
     /// [`Program`](super::Program)).
     Exec(String),
+    /// An outside program started once, reading case after case on its
+    /// standard input (see [`Program::persistent`](super::Program::persistent)).
+    Persistent(String),
     /// A built-in back-end, by name.
     Backend(String),
 }
@@ -218,6 +221,10 @@ pub struct FamilyTally {
     pub passed: u32,
     /// Cases run.
     pub total: u32,
+    /// The family's failing cases that the named cause explains (`None`
+    /// when no cause was named or the family has no failure; all of a
+    /// family's failures are known only under `keep_going`).
+    pub explained_by_cause: Option<u32>,
 }
 
 /// One failing case, as found (not shrunk).
@@ -284,6 +291,9 @@ pub struct BrokenReport {
     pub family: String,
     /// True when it breaks on every input, the simplest included.
     pub on_every_input: bool,
+    /// True when `input` was shrunk (a hang or endless output is not
+    /// rerun to shrink it).
+    pub shrunk: bool,
     /// The input that triggers it (shrunk, unless it breaks on every
     /// input).
     pub input: String,
@@ -409,7 +419,11 @@ impl CheckReport {
                             "\nit fails so on every input, the simplest included: broken, not wrong",
                         );
                     } else {
-                        m.push_str("\nthe input that triggers it (shrunk)");
+                        m.push_str(if e.shrunk {
+                            "\nthe input that triggers it (shrunk)"
+                        } else {
+                            "\nthe input that triggers it"
+                        });
                     }
                     if let Some(f) = e.files.first() {
                         m.push_str(&format!(": {f}"));

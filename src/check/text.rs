@@ -92,8 +92,10 @@ impl fmt::Display for CheckReport {
                     } else {
                         let _ = writeln!(
                             out,
-                            "the input that triggers it (case {}, family {}, shrunk):",
-                            e.case_index, e.family
+                            "the input that triggers it (case {}, family {}{}):",
+                            e.case_index,
+                            e.family,
+                            if e.shrunk { ", shrunk" } else { "" }
                         );
                     }
                     for file in &e.files {

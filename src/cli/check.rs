@@ -4,10 +4,10 @@
 
 use clap::Args;
 use rasterlab::check::{
-    self, timeout_from_seconds, CheckRequest, ConventionChoice, Kind, Progress, RuleChoice,
+    timeout_from_seconds, CheckRequest, ConventionChoice, Kind, Progress, ReportFormat, RuleChoice,
     SubjectSpec,
 };
-use rasterlab::{Error, Result};
+use rasterlab::{check, Error, Result};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -18,6 +18,13 @@ pub struct CheckArgs {
     /// per fragment.
     #[arg(long)]
     exec: Option<String>,
+    /// Start the --exec program once: it reads case after case on its
+    /// standard input (the case as in the input file, then a line `end`)
+    /// and answers each with its fragments, then a line `end` (or one
+    /// line `error MESSAGE`). Many times faster for programs slow to
+    /// start; {rule} is still replaced.
+    #[arg(long)]
+    persistent: bool,
     /// Check a built-in back-end instead (see `rasterlab backends`).
     #[arg(long)]
     backend: Option<String>,
@@ -38,8 +45,9 @@ pub struct CheckArgs {
     /// endpoints naming pixels, integer Bresenham breaking ties toward the
     /// start (pixel-index), toward the end (pixel-index-toward-end) or as
     /// the course's midpoint walk, left to right
-    /// (pixel-index-left-to-right); or `any` (which convention does it
-    /// follow?). Default: midpoint.
+    /// (pixel-index-left-to-right), as OpenCV's LINE_8 and LINE_4 without
+    /// `shift` (pixel-index-opencv, pixel-index-opencv-4); or `any`
+    /// (which convention does it follow?). Default: midpoint.
     #[arg(long)]
     convention: Option<ConventionChoice>,
     /// How many cases.
@@ -65,14 +73,43 @@ pub struct CheckArgs {
     /// Directory for counterexample.txt, counterexample.svg and report.html.
     #[arg(long, default_value = "check-output")]
     out: PathBuf,
-    /// Print the report as JSON on standard output (for autograders; the
-    /// shape is docs/check-report.schema.json).
+    /// How the report is printed: text; json (rasterlab's report,
+    /// docs/check-report.schema.json); gradescope (Gradescope's
+    /// results.json) or junit (JUnit XML), a test per case family, which
+    /// run every case as --keep-going does.
+    #[arg(
+        long,
+        value_name = "FORMAT",
+        default_value = "text",
+        conflicts_with = "json"
+    )]
+    format: ReportFormat,
+    /// The same as --format json.
     #[arg(long)]
     json: bool,
 }
 
 pub fn run(args: &CheckArgs) -> Result<()> {
+    let format = if args.json {
+        ReportFormat::Json
+    } else {
+        args.format
+    };
+    if args.persistent && args.exec.is_none() {
+        return Err(Error::InvalidArgument(
+            "--persistent starts an --exec program once; a --backend runs in rasterlab".into(),
+        ));
+    }
+    if let (Some(command), false) = (&args.exec, args.persistent) {
+        if !command.contains("{input}") {
+            eprintln!(
+                "note: the command has no {{input}}, so the program is not given the case; \
+                 a program that reads cases on its standard input runs with --persistent"
+            );
+        }
+    }
     let subject = match (&args.exec, &args.backend) {
+        (Some(command), _) if args.persistent => SubjectSpec::Persistent(command.clone()),
         (Some(command), _) => SubjectSpec::Exec(command.clone()),
         (None, Some(name)) => SubjectSpec::Backend(name.clone()),
         (None, None) => {
@@ -89,33 +126,41 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         seed: args.seed,
         timeout: timeout_from_seconds(args.timeout)?,
         jobs: args.jobs,
-        keep_going: args.keep_going,
+        keep_going: args.keep_going || format.for_graders(),
         case_file: args.case.clone(),
         out: Some(args.out.clone()),
-        command: std::env::args().collect::<Vec<_>>().join(" "),
+        command: check::shell_words(std::env::args()),
         ..CheckRequest::new(subject)
     };
     // Ctrl-C removes the program's input files.
-    if matches!(request.subject, SubjectSpec::Exec(_)) {
+    if matches!(
+        request.subject,
+        SubjectSpec::Exec(_) | SubjectSpec::Persistent(_)
+    ) {
         let _ = ctrlc::set_handler(|| {
-            check::program::remove_live_input_folders();
+            check::remove_live_input_folders();
             std::process::exit(130);
         });
     }
-    let report = if args.json {
-        check::run(&request)?
-    } else {
+    let report = if format == ReportFormat::Text {
         let bars = Bars::default();
         let report = check::run_with_progress(&request, &mut |p| bars.show(p));
         bars.clear();
         report?
+    } else {
+        check::run(&request)?
     };
-    if args.json {
-        let json = serde_json::to_string(&report)
-            .map_err(|e| Error::InvalidArgument(format!("the report as JSON: {e}")))?;
-        super::print::line(json)?;
-    } else if report.exit_code() != 2 {
-        super::print::line(&report)?;
+    let json = |text: serde_json::Result<String>| {
+        text.map_err(|e| Error::InvalidArgument(format!("the report as JSON: {e}")))
+    };
+    match format {
+        ReportFormat::Text if report.exit_code() != 2 => super::print::line(&report)?,
+        ReportFormat::Text => {}
+        ReportFormat::Json => super::print::line(json(serde_json::to_string(&report))?)?,
+        ReportFormat::Gradescope => super::print::line(json(serde_json::to_string_pretty(
+            &check::gradescope(&report),
+        ))?)?,
+        ReportFormat::Junit => super::print::out(check::junit(&report))?,
     }
     report.outcome()
 }

@@ -57,13 +57,14 @@ impl Model {
         if let Some(end) = self.missing.or(self.doubled) {
             for id in 0..case.lines.len() {
                 let (first, last) = ends(id);
-                // A zero-length line has one pixel: left out once, or
-                // drawn twice once.
-                let last = if self.missing.is_some() {
-                    last.filter(|l| Some(*l) != first)
-                } else {
-                    last
-                };
+                // A zero-length line has one pixel, the first and the
+                // last: a loop that leaves out either end (`0..n`,
+                // `1..=n`, n = 0) draws nothing of it; one that draws an
+                // end twice draws it twice once.
+                if self.missing.is_some() && first.is_some() && first == last {
+                    changed.extend(first);
+                    continue;
+                }
                 let chosen: Vec<Fragment> = match end {
                     End::First => first.into_iter().collect(),
                     End::Last => last.into_iter().collect(),
@@ -126,27 +127,72 @@ fn by_line(drawn: &[Fragment]) -> BTreeMap<u32, BTreeSet<(i64, i64)>> {
     out
 }
 
-/// Whether every line in `ids` is steep and drawn one pixel per column,
-/// every column of its run drawn once (the walk along x used for a line
-/// that runs along y: the octant swap left out).
-pub(super) fn one_per_column(case: &Case, drawn: &[Fragment], ids: &BTreeSet<u32>) -> bool {
+/// Whether every line in `ids` is steep and drawn one pixel per column
+/// (the walk along x used for a line that runs along y: the octant swap
+/// left out): one pixel in each column of a contiguous run of columns
+/// within the line's, or, in each column of its run, the pixel nearest
+/// the ideal line (either one at a tie) wherever that pixel is on the
+/// target, and nothing else. `whole_pixels`: the endpoints name pixels, whose centres the
+/// line joins; otherwise they are screen coordinates.
+pub(super) fn one_per_column(
+    case: &Case,
+    whole_pixels: bool,
+    drawn: &[Fragment],
+    ids: &BTreeSet<u32>,
+) -> bool {
     let pixels = by_line(drawn);
+    let (w, h) = (i64::from(case.width), i64::from(case.height));
+    let empty = BTreeSet::new();
     !ids.is_empty()
         && ids.iter().all(|id| {
             let Some(line) = case.lines.get(*id as usize) else {
                 return false;
             };
-            let (dx, dy) = (line[1].0 - line[0].0, line[1].1 - line[0].1);
-            let Some(p) = pixels.get(id) else {
+            // In pixel units whose whole numbers are pixel centres.
+            let shift = if whole_pixels { 0.0 } else { 0.5 };
+            let [(x0, y0), (x1, y1)] = line.map(|p| (p.0 - shift, p.1 - shift));
+            let (dx, dy) = (x1 - x0, y1 - y0);
+            if dy.abs() <= dx.abs() {
                 return false;
-            };
+            }
+            let p = pixels.get(id).unwrap_or(&empty);
+            if dx == 0.0 {
+                // A vertical line has one column: one of its endpoint
+                // pixels drawn, or none where one lies off the target.
+                let ends = [(x0, y0), (x1, y1)].map(|q| (q.0.round() as i64, q.1.round() as i64));
+                let on = |q: &(i64, i64)| (0..w).contains(&q.0) && (0..h).contains(&q.1);
+                return match p.len() {
+                    0 => ends.iter().any(|q| !on(q)),
+                    1 => p.iter().all(|q| ends.contains(q)),
+                    _ => false,
+                };
+            }
+            let (lo, hi) = (x0.min(x1).round() as i64, x0.max(x1).round() as i64);
+            if p.iter().any(|q| q.0 < lo || q.0 > hi) {
+                return false;
+            }
+            // One pixel in each column of a contiguous run, wherever the
+            // walk went (a first-octant Bresenham on a steep line runs
+            // diagonally and stops short)...
             let columns: BTreeSet<i64> = p.iter().map(|q| q.0).collect();
-            let (lo, hi) = (columns.first().copied(), columns.last().copied());
-            dy.abs() > dx.abs()
-                && columns.len() == p.len()
-                && lo
-                    .zip(hi)
-                    .is_some_and(|(lo, hi)| (hi - lo + 1) as usize == p.len())
+            let contiguous = columns.len() == p.len()
+                && columns
+                    .first()
+                    .zip(columns.last())
+                    .is_some_and(|(a, b)| (b - a + 1) as usize == p.len());
+            // ... or the pixel nearest the line in each column, which may
+            // lie off the target (then nothing is drawn there).
+            contiguous
+                || (lo.max(0)..=hi.min(w - 1)).all(|c| {
+                    let y = y0 + (c as f64 - x0) * dy / dx;
+                    let rows: Vec<i64> = p.iter().filter(|q| q.0 == c).map(|q| q.1).collect();
+                    let nearest = |r: i64| (r as f64 - y).abs() <= 0.5 + 1e-9;
+                    match rows.as_slice() {
+                        [] => !(0..h).any(nearest),
+                        [r] => nearest(*r),
+                        _ => false,
+                    }
+                })
         })
 }
 

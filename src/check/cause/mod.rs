@@ -96,6 +96,9 @@ pub enum Cause {
     FlippedY,
     /// Vertices snapped to 1/n px, not 1/256.
     CoarseSnap(u32),
+    /// Vertices snapped to 1/256 px, but a coordinate exactly halfway
+    /// rounded up or away from zero, not to even.
+    SnapTies,
     /// The bounding-box loop one row or column short on this side.
     BoxShort(Side),
     /// Floating-point edge functions: every difference within
@@ -145,6 +148,7 @@ impl Cause {
             Cause::CornerSamples => "corner-samples".into(),
             Cause::FlippedY => "y-flipped".into(),
             Cause::CoarseSnap(n) => format!("coarse-snap:{n}"),
+            Cause::SnapTies => "snap-ties".to_string(),
             Cause::BoxShort(s) => format!("box-short:{}", side(s)),
             Cause::FloatEdges => "float-edges".into(),
             Cause::Overflow => "overflow".into(),
@@ -205,6 +209,12 @@ impl fmt::Display for Cause {
                 f.write_str("y measured up from the bottom of the target: the picture flipped")
             }
             Cause::CoarseSnap(n) => write!(f, "vertices snapped to 1/{n} px instead of 1/256"),
+            Cause::SnapTies => write!(
+                f,
+                "vertices snapped to 1/256 px with a coordinate exactly halfway rounded up \
+                 or away from zero (`floor(x + 0.5)`, C's `round`, JavaScript's `Math.round`), \
+                 not to even"
+            ),
             Cause::BoxShort(s) => write!(f, "the bounding box {}", side(s)),
             Cause::FloatEdges => f.write_str(
                 "floating-point edge functions (or vertices not snapped to 1/256 px): every difference lies within a hair of an edge",
@@ -301,6 +311,7 @@ pub fn catalogue(property: Property) -> Vec<Cause> {
             for n in [2, 4, 8, 16, 32, 64, 128] {
                 out.push(Cause::CoarseSnap(n));
             }
+            out.push(Cause::SnapTies);
             for s in [Side::Bottom, Side::Right, Side::Top, Side::Left] {
                 out.push(Cause::BoxShort(s));
             }
@@ -436,7 +447,7 @@ pub fn explains(
         Property::Line(_) => vec![None],
     };
     for base in bases {
-        let answer = if lines {
+        let answers = if lines {
             let Property::Line(convention) = property else {
                 return None;
             };
@@ -451,7 +462,7 @@ pub fn explains(
                     return None;
                 }
             }
-            model.fragments(case, base)
+            vec![model.fragments(case, base)]
         } else {
             let mut model = triangles::Model::default();
             for c in causes.iter().filter(|c| c.role() == Role::Model) {
@@ -459,42 +470,56 @@ pub fn explains(
                     return None;
                 }
             }
-            model.fragments(case, base.unwrap_or(FillRule::TopLeft))
+            // A rounding's tie (exactly halfway) goes one of three ways
+            // in the wild: any of them may be the subject's.
+            model
+                .rounding_ties()
+                .into_iter()
+                .map(|m| m.fragments(case, base.unwrap_or(FillRule::TopLeft)))
+                .collect()
         };
-        let (extra, missing) = differences(&kept, &answer);
-        let explained = match conditions.first() {
-            None => extra.is_empty() && missing.is_empty(),
-            Some(c) => {
-                let differing: BTreeSet<u32> = extra.iter().chain(&missing).map(|f| f.id).collect();
-                !differing.is_empty()
-                    && match c {
-                        Cause::BoxShort(side) => {
-                            extra.is_empty() && triangles::box_short(*side, &answer, &missing)
+        for answer in answers {
+            let (extra, missing) = differences(&kept, &answer);
+            let explained = match conditions.first() {
+                None => extra.is_empty() && missing.is_empty(),
+                Some(c) => {
+                    let differing: BTreeSet<u32> =
+                        extra.iter().chain(&missing).map(|f| f.id).collect();
+                    !differing.is_empty()
+                        && match c {
+                            Cause::BoxShort(side) => {
+                                extra.is_empty() && triangles::box_short(*side, &answer, &missing)
+                            }
+                            Cause::FloatEdges => extra.iter().chain(&missing).all(|f| {
+                                case.triangles.get(f.id as usize).is_some_and(|t| {
+                                    triangles::distance_to_an_edge(t, f.x, f.y) <= NEAR_AN_EDGE
+                                })
+                            }),
+                            Cause::Overflow => differing.iter().all(|id| {
+                                case.triangles.get(*id as usize).is_some_and(|t| {
+                                    triangles::reach_off_target(case, t) > FAR_OFF_TARGET
+                                })
+                            }),
+                            Cause::OnePerColumn => {
+                                let Property::Line(c) = property else {
+                                    return None;
+                                };
+                                lines::one_per_column(case, c.whole_pixels(), &kept, &differing)
+                            }
+                            Cause::FourConnected => {
+                                let Property::Line(c) = property else {
+                                    return None;
+                                };
+                                lines::four_connected(case, c, &kept, &answer, &differing)
+                            }
+                            _ => false,
                         }
-                        Cause::FloatEdges => extra.iter().chain(&missing).all(|f| {
-                            case.triangles.get(f.id as usize).is_some_and(|t| {
-                                triangles::distance_to_an_edge(t, f.x, f.y) <= NEAR_AN_EDGE
-                            })
-                        }),
-                        Cause::Overflow => differing.iter().all(|id| {
-                            case.triangles.get(*id as usize).is_some_and(|t| {
-                                triangles::reach_off_target(case, t) > FAR_OFF_TARGET
-                            })
-                        }),
-                        Cause::OnePerColumn => lines::one_per_column(case, &kept, &differing),
-                        Cause::FourConnected => {
-                            let Property::Line(c) = property else {
-                                return None;
-                            };
-                            lines::four_connected(case, c, &kept, &answer, &differing)
-                        }
-                        _ => false,
-                    }
+                }
+            };
+            if explained {
+                notes.extend(evidence(causes, case, &answer, &extra, &missing));
+                return Some(notes.join("; "));
             }
-        };
-        if explained {
-            notes.extend(evidence(causes, case, &answer, &extra, &missing));
-            return Some(notes.join("; "));
         }
     }
     None
@@ -525,11 +550,13 @@ fn evidence(
                     triangles::clockwise(&case.triangles[i as usize]) == cw
                         && triangles::area(&case.triangles[i as usize]) > 0.0
                 });
-                out.push(format!(
-                    "triangle(s) {} wound {} drew nothing",
-                    list(&culled),
-                    if cw { "clockwise" } else { "counter-clockwise" }
-                ));
+                if !culled.is_empty() {
+                    out.push(format!(
+                        "triangle(s) {} wound {} drew nothing",
+                        list(&culled),
+                        if cw { "clockwise" } else { "counter-clockwise" }
+                    ));
+                }
             }
             Cause::DropsBelow(a) => {
                 let areas: Vec<String> = ids_with(&|i| {
@@ -549,14 +576,16 @@ fn evidence(
                     .filter(|&i| drew(i))
                     .map(|i| triangles::area(&case.triangles[i as usize]))
                     .fold(f64::INFINITY, f64::min);
-                let mut s = format!("triangle(s) {} drew nothing", areas.join(", "));
-                if smallest_drawn.is_finite() {
-                    s.push_str(&format!(
-                        ", the smallest drawn has {} px²",
-                        round4(smallest_drawn)
-                    ));
+                if !areas.is_empty() {
+                    let mut s = format!("triangle(s) {} drew nothing", areas.join(", "));
+                    if smallest_drawn.is_finite() {
+                        s.push_str(&format!(
+                            ", the smallest drawn has {} px²",
+                            round4(smallest_drawn)
+                        ));
+                    }
+                    out.push(s);
                 }
-                out.push(s);
             }
             Cause::BoxShort(_) => {
                 let lost: BTreeSet<u32> = missing.iter().map(|f| f.id).collect();

@@ -15,8 +15,8 @@
 use super::{Cause, Side, Winding};
 use crate::check::case::{Case, Point};
 use crate::check::{triangle_fragments, Fragment};
-use crate::raster::backend::reference_triangle_backend;
 use crate::raster::edge::FillRule;
+use crate::raster::registry::reference_triangle_backend;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// How far a vertex must lie off the target for its triangle to count as
@@ -33,6 +33,10 @@ pub(super) struct Model {
     rule: Option<FillRule>,
     /// Grid step the vertices are rounded to (1.0: whole pixels).
     grid: Option<f64>,
+    /// Which way that rounding breaks a tie.
+    tie: RoundingTie,
+    /// Only the ways other than to even (the rules' own snap at 1/256).
+    tie_not_even: bool,
     corner_samples: bool,
     flip_y: bool,
     /// Triangles of this winding (`+1` counter-clockwise on screen, `-1`
@@ -42,7 +46,49 @@ pub(super) struct Model {
     drop_below: Option<f64>,
 }
 
+/// How a rounding breaks a tie (a coordinate exactly halfway between
+/// two grid points): C's `round` away from zero, Python's `round` and
+/// numpy's to even (as the rules' own snapping does), JavaScript's
+/// `Math.round` and `floor(x + 0.5)` up.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(super) enum RoundingTie {
+    #[default]
+    ToEven,
+    AwayFromZero,
+    Up,
+}
+
+impl RoundingTie {
+    fn round(self, v: f64) -> f64 {
+        match self {
+            RoundingTie::ToEven => v.round_ties_even(),
+            RoundingTie::AwayFromZero => v.round(),
+            RoundingTie::Up => (v + 0.5).floor(),
+        }
+    }
+}
+
 impl Model {
+    /// The model once per way of breaking a rounding's tie, when it
+    /// rounds the vertices; itself alone otherwise.
+    pub(super) fn rounding_ties(&self) -> Vec<Model> {
+        if self.grid.is_none() {
+            return vec![self.clone()];
+        }
+        [
+            RoundingTie::ToEven,
+            RoundingTie::AwayFromZero,
+            RoundingTie::Up,
+        ]
+        .into_iter()
+        .filter(|&t| !(self.tie_not_even && t == RoundingTie::ToEven))
+        .map(|tie| Model {
+            tie,
+            ..self.clone()
+        })
+        .collect()
+    }
+
     /// Adds a cause's change; false when the cause is not a change to the
     /// case or the reference, or conflicts with one already made.
     pub(super) fn add(&mut self, cause: &Cause) -> bool {
@@ -57,6 +103,10 @@ impl Model {
             Cause::FillRule(r) => set(&mut self.rule, r),
             Cause::RoundedToPixels => set(&mut self.grid, 1.0),
             Cause::CoarseSnap(n) => set(&mut self.grid, 1.0 / f64::from(n)),
+            Cause::SnapTies => {
+                self.tie_not_even = true;
+                set(&mut self.grid, 1.0 / 256.0)
+            }
             Cause::CornerSamples => !std::mem::replace(&mut self.corner_samples, true),
             Cause::FlippedY => !std::mem::replace(&mut self.flip_y, true),
             Cause::Culls(w) => set(&mut self.cull, if w == Winding::Clockwise { -1 } else { 1 }),
@@ -70,7 +120,8 @@ impl Model {
         let point = |p: Point| -> Point {
             let mut q = p;
             if let Some(step) = self.grid {
-                q = ((q.0 / step).round() * step, (q.1 / step).round() * step);
+                let round = |v: f64| self.tie.round(v / step) * step;
+                q = (round(q.0), round(q.1));
             }
             if self.corner_samples {
                 q = (q.0 + 0.5, q.1 + 0.5);

@@ -40,7 +40,7 @@ use mesh::{crack_free, watertight};
 
 use super::case::Case;
 use super::cause::Diagnosis;
-pub use super::property::{LineConvention, Property};
+pub(crate) use super::property::{LineConvention, Property};
 use super::{reference, Fragment};
 use crate::raster::edge::{FillRule, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
@@ -135,7 +135,7 @@ pub struct Finding {
     /// Where the case came from, when a check records it.
     pub provenance: Option<Provenance>,
     /// The cause the reference confirmed, once a check has looked for one
-    /// ([`cause`](super::cause)).
+    /// ([`Cause`](super::Cause)).
     pub cause: Option<Diagnosis>,
     /// The pixel each problem is about, in the same order.
     at: Vec<Option<Fragment>>,

@@ -1,0 +1,276 @@
+//! `check --format gradescope` and `--format junit` against the shapes
+//! their readers document: Gradescope's `results.json` (a top-level
+//! `score`, `output` and `tests`; each test `name`, `number`, `score`,
+//! `max_score`, `status`, `output`) and JUnit XML as Jenkins and GitLab
+//! read it (`testsuites` > `testsuite` with `tests`, `failures`, `errors`
+//! and `skipped` > `testcase` with `classname` and `name`, holding a
+//! `failure` or an `error` with `message` and `type`). Each is checked on
+//! a passing subject, a failing one and a broken one.
+
+mod common;
+
+use common::rasterlab;
+use rasterlab::check::{
+    gradescope, junit, run_with, Builtin, Case, CheckReport, CheckRequest, Fragment, Subject,
+    SubjectError, SubjectSpec,
+};
+use rasterlab::raster::{triangle_backend, FillRule};
+
+/// Gradescope's `results.json` fields as its autograder documentation
+/// lists them (those this report uses; no other key allowed).
+fn gradescope_schema() -> jsonschema::Validator {
+    let schema = serde_json::json!({
+        "type": "object",
+        "additionalProperties": false,
+        "required": ["score", "output", "tests"],
+        "properties": {
+            "score": { "type": "number", "minimum": 0 },
+            "output": { "type": "string" },
+            "tests": {
+                "type": "array",
+                "items": {
+                    "type": "object",
+                    "additionalProperties": false,
+                    "required": ["name", "number", "score", "max_score", "status", "output"],
+                    "properties": {
+                        "name": { "type": "string" },
+                        "number": { "type": "string" },
+                        "score": { "type": "number", "minimum": 0 },
+                        "max_score": { "type": "number", "minimum": 0 },
+                        "status": { "enum": ["passed", "failed"] },
+                        "output": { "type": "string" }
+                    }
+                }
+            }
+        }
+    });
+    jsonschema::validator_for(&schema).unwrap()
+}
+
+/// A report of 60 cases, every case run, of the subject `make` makes.
+fn report(make: &(dyn Fn() -> Box<dyn Subject + Send> + Sync)) -> CheckReport {
+    let mut request = CheckRequest::new(SubjectSpec::Backend(String::new()));
+    request.cases = 60;
+    request.keep_going = true;
+    request.command =
+        "rasterlab check --exec ./mine --format gradescope --out /autograder/results/check".into();
+    run_with(&request, "mine", make).unwrap()
+}
+
+fn passing() -> CheckReport {
+    let bbox = triangle_backend("bbox").unwrap();
+    report(&move || Box::new(Builtin::triangles(bbox, FillRule::TopLeft)))
+}
+
+fn failing() -> CheckReport {
+    let bbox = triangle_backend("bbox").unwrap();
+    report(&move || Box::new(Builtin::triangles(bbox, FillRule::Inclusive)))
+}
+
+fn broken() -> CheckReport {
+    report(&|| {
+        Box::new(|c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+            if c.len() > 3 {
+                return Err(SubjectError::Failed {
+                    status: "exit status: 1".into(),
+                    stderr: "IndexError: <list> & \u{7} index out of range".into(),
+                });
+            }
+            Ok(Vec::new())
+        })
+    })
+}
+
+#[test]
+fn gradescope_results_have_gradescopes_fields_a_test_per_family() {
+    let schema = gradescope_schema();
+    for (what, report) in [
+        ("passing", passing()),
+        ("failing", failing()),
+        ("broken", broken()),
+    ] {
+        let results = gradescope(&report);
+        if let Err(e) = schema.validate(&results) {
+            panic!("{what}: {e}\n{results:#}");
+        }
+        let tests = results["tests"].as_array().unwrap();
+        let sum: f64 = tests.iter().map(|t| t["score"].as_f64().unwrap()).sum();
+        assert_eq!(results["score"].as_f64().unwrap(), sum, "{what}");
+        for t in tests {
+            let passed = t["score"] == t["max_score"];
+            assert_eq!(t["status"] == "passed", passed, "{what}: {t}");
+        }
+        match what {
+            "passing" => {
+                assert_eq!(sum, 60.0);
+                assert_eq!(tests.len(), report.families.len());
+                assert!(tests.iter().all(|t| t["status"] == "passed"));
+            }
+            "failing" => {
+                assert_eq!(sum, f64::from(report.passed));
+                let failed: Vec<&serde_json::Value> =
+                    tests.iter().filter(|t| t["status"] == "failed").collect();
+                assert!(!failed.is_empty());
+                for t in &failed {
+                    let out = t["output"].as_str().unwrap();
+                    // The cause, where it explains this family's failures,
+                    // and the command that reruns it without the format.
+                    assert!(
+                        out.contains("cause: ties decided by the inclusive rule"),
+                        "{out}"
+                    );
+                    assert!(
+                        out.contains("rerun: rasterlab check --exec ./mine\n")
+                            || out.ends_with("rerun: rasterlab check --exec ./mine"),
+                        "{out}"
+                    );
+                }
+                // The shrunk counterexample sits in its family's test.
+                let family = &report.counterexample.as_ref().unwrap().family;
+                let own = tests
+                    .iter()
+                    .find(|t| t["name"] == format!("family {family}"))
+                    .unwrap();
+                assert!(
+                    own["output"].as_str().unwrap().contains("# size 1x1"),
+                    "{own}"
+                );
+            }
+            _ => {
+                assert_eq!(tests.len(), 1);
+                assert_eq!(tests[0]["name"], "the program runs");
+                assert_eq!(tests[0]["status"], "failed");
+                assert!(tests[0]["output"].as_str().unwrap().contains("IndexError"));
+            }
+        }
+    }
+}
+
+#[test]
+fn junit_xml_has_the_elements_jenkins_and_gitlab_read() {
+    for (what, report) in [
+        ("passing", passing()),
+        ("failing", failing()),
+        ("broken", broken()),
+    ] {
+        let xml = junit(&report);
+        let doc = roxmltree::Document::parse(&xml).unwrap_or_else(|e| panic!("{what}: {e}\n{xml}"));
+        let root = doc.root_element();
+        assert_eq!(root.tag_name().name(), "testsuites", "{what}");
+        let suites: Vec<_> = root.children().filter(|n| n.is_element()).collect();
+        assert_eq!(suites.len(), 1, "{what}");
+        let suite = suites[0];
+        assert_eq!(suite.tag_name().name(), "testsuite");
+        let number = |n: roxmltree::Node, a: &str| -> usize {
+            n.attribute(a)
+                .unwrap_or_else(|| panic!("{what}: no {a}"))
+                .parse()
+                .unwrap()
+        };
+        let cases: Vec<_> = suite
+            .children()
+            .filter(|n| n.has_tag_name("testcase"))
+            .collect();
+        assert_eq!(number(suite, "tests"), cases.len(), "{what}");
+        assert_eq!(number(root, "tests"), cases.len(), "{what}");
+        assert_eq!(number(suite, "skipped"), 0);
+        let with = |tag: &str| {
+            cases
+                .iter()
+                .filter(|c| c.children().any(|n| n.has_tag_name(tag)))
+                .count()
+        };
+        assert_eq!(number(suite, "failures"), with("failure"), "{what}");
+        assert_eq!(number(suite, "errors"), with("error"), "{what}");
+        for c in &cases {
+            assert!(c
+                .attribute("classname")
+                .is_some_and(|n| n.starts_with("rasterlab.check.")));
+            assert!(c.attribute("name").is_some());
+            for f in c.children().filter(|n| n.is_element()) {
+                assert!(f.attribute("message").is_some() && f.attribute("type").is_some());
+            }
+        }
+        match what {
+            "passing" => assert_eq!(with("failure") + with("error"), 0),
+            "failing" => {
+                assert!(with("failure") > 0 && with("error") == 0);
+                let failure = cases
+                    .iter()
+                    .flat_map(|c| c.children())
+                    .find(|n| n.has_tag_name("failure"))
+                    .unwrap();
+                assert!(failure.text().unwrap().contains("cause:"), "{xml}");
+            }
+            _ => {
+                assert_eq!((with("failure"), with("error")), (0, 1));
+                // Escaped, and the control character XML forbids left out.
+                let error = cases[0]
+                    .children()
+                    .find(|n| n.has_tag_name("error"))
+                    .unwrap();
+                let text = error.text().unwrap();
+                assert!(text.contains("IndexError: <list> &"), "{xml}");
+                assert!(!text.contains('\u{7}'), "{xml}");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_command_line_prints_each_format_and_runs_every_case() {
+    for format in ["gradescope", "junit", "json", "text"] {
+        let out = rasterlab(&[
+            "check",
+            "--backend",
+            "scanline",
+            "--rule",
+            "inclusive",
+            "--cases",
+            "30",
+            "--format",
+            format,
+            "--out",
+            tempfile::tempdir().unwrap().path().to_str().unwrap(),
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{format}");
+        let text = String::from_utf8_lossy(&out.stdout);
+        match format {
+            "gradescope" => {
+                let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+                assert_eq!(v["score"], 30.0);
+            }
+            "junit" => assert!(text.starts_with("<?xml") && text.contains("tests=\"")),
+            "json" => assert!(text.contains("rasterlab-check-report/2")),
+            _ => assert!(text.starts_with("PASS")),
+        }
+    }
+    // A failing subject under a grader format (it draws nothing): every
+    // case is run and scored, exit 1.
+    let out = rasterlab(&[
+        "check",
+        "--exec",
+        "true",
+        "--cases",
+        "30",
+        "--format",
+        "gradescope",
+        "--out",
+        tempfile::tempdir().unwrap().path().to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let max: f64 = v["tests"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["max_score"].as_f64().unwrap())
+        .sum();
+    assert_eq!(max, 30.0);
+    assert!(v["score"].as_f64().unwrap() < 30.0);
+    let bad = rasterlab(&["check", "--backend", "bbox", "--format", "xml"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("gradescope"));
+    let both = rasterlab(&["check", "--backend", "bbox", "--format", "junit", "--json"]);
+    assert_eq!(both.status.code(), Some(2));
+}
