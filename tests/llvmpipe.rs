@@ -32,6 +32,14 @@
 //!   family catches it: through the flip, the check fails on an overflow
 //!   case, shrunk to at most two triangles.
 //!
+//! * Multisampling, in an OpenGL 4.0 context: llvmpipe's 4 sample
+//!   positions (`glGetMultisamplefv`) are the standard pattern's, and
+//!   the mask of every pixel of 500 random triangles, read from
+//!   `gl_SampleMaskIn` and from the samples written, is rasterlab's
+//!   (`rasterlab::raster::masks_of`): on the standard pattern under the
+//!   top-left rule with GL's window y as rasterlab's y, and on the pattern
+//!   mirrored in y under the bottom-left rule through the adapters' flip.
+//!
 //! Without Mesa (`libEGL.so.1`, Mesa's EGL and DRI drivers) each test
 //! prints why it is skipped and passes, unless `RASTERLAB_REQUIRE_MESA=1`
 //! (set by `.ci/run`, which installs Mesa), where a missing Mesa fails.
@@ -39,17 +47,14 @@
 #[path = "../benches/support/gl.rs"]
 mod gl;
 
-use rasterlab::check::{self, Case, CheckOptions, Fragment, Property, SubjectError, Verdict};
-use rasterlab::geometry::mesh::Mesh;
-use rasterlab::geometry::pipeline::CullMode;
-use rasterlab::geometry::render::{MeshRenderer, RenderSettings};
-use rasterlab::geometry::scene::setup_triangles;
-use rasterlab::measure::data;
-use rasterlab::raster::backend::triangle_backend;
-use rasterlab::raster::edge::{FillRule, PixelRect};
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::fragment::{FragmentSink, LineFragment, TriangleFragment};
-use rasterlab::raster::target::RenderTarget;
+use rasterlab::check;
+use rasterlab::check::{Case, CheckOptions, Fragment, Property, SubjectError, Verdict};
+use rasterlab::geometry::{setup_triangles, CullMode, Mesh, MeshRenderer, RenderSettings};
+use rasterlab::measure::{find, FULL_DRAGON};
+use rasterlab::raster::{
+    masks_of, triangle_backend, FillRule, FixedPoint, FragmentSink, LineFragment, PixelRect,
+    RenderTarget, SamplePattern, TriangleFragment,
+};
 
 /// llvmpipe, or `None` with the reason printed (a failure when
 /// `RASTERLAB_REQUIRE_MESA=1`).
@@ -149,6 +154,115 @@ fn llvmpipe_agrees_with_the_top_left_rule_on_random_triangles() {
     assert!(ties > 300, "too few ties to test the rule: {ties}");
 }
 
+/// llvmpipe multisampling against rasterlab's masks: with 4 samples
+/// (llvmpipe's `GL_MAX_SAMPLES`; a 2-sample target is given its 4-sample
+/// positions), 500 random triangles on a
+/// 32x32 target, vertices on grids of 1/2, 1/16 and 1/256 px (so samples
+/// fall on edges), each drawn alone. Mapped as the first test maps them
+/// (GL's window y is rasterlab's y), every pixel's mask, as the fragment
+/// shader sees it (`gl_SampleMaskIn`) and as the samples written show it,
+/// is rasterlab's on the standard pattern under the top-left rule; with
+/// GL's window y running up from rasterlab's bottom row (the adapters'
+/// way), rasterlab's on the pattern mirrored in y under the bottom-left
+/// rule. `glGetMultisamplefv` gives the standard table's positions.
+#[test]
+fn llvmpipe_multisamples_on_the_standard_pattern() {
+    const SIZE: u32 = 32;
+    for samples in [4] {
+        let reader = match gl::MaskReader::new(SIZE, SIZE, samples) {
+            Ok(reader) => reader,
+            Err(reason) => {
+                assert!(
+                    std::env::var("RASTERLAB_REQUIRE_MESA").as_deref() != Ok("1"),
+                    "RASTERLAB_REQUIRE_MESA=1 but llvmpipe multisampling is unavailable: {reason}"
+                );
+                eprintln!("skipped: llvmpipe multisampling unavailable: {reason}");
+                return;
+            }
+        };
+        let standard = SamplePattern::standard(samples as u32).unwrap();
+        for i in 0..samples as usize {
+            let (x, y) = standard.offset(i);
+            let (gx, gy) = reader.sample_position(i as u32);
+            assert_eq!(
+                (gx, gy),
+                (0.5 + f32::from(x) / 16.0, 0.5 + f32::from(y) / 16.0),
+                "{samples} samples: sample {i}'s position"
+            );
+        }
+        let naive = triangle_backend("naive").unwrap();
+        let mut rng = fastrand::Rng::with_seed(11);
+        let (mut partial, mut ties) = (0, 0);
+        for case in 0..500 {
+            let steps = [128, 16, 1][case % 3];
+            let mut corner = || {
+                let k = |rng: &mut fastrand::Rng| rng.i32(0..=SIZE as i32 * 256);
+                let (x, y) = (k(&mut rng) / steps * steps, k(&mut rng) / steps * steps);
+                (x as f32 / 256.0, y as f32 / 256.0)
+            };
+            let corners = [corner(), corner(), corner()];
+            let points = corners.map(|(x, y)| FixedPoint::snap(x, y).unwrap());
+            for flipped in [false, true] {
+                let (rule, pattern) = if flipped {
+                    (FillRule::BottomLeft, standard.mirrored_y())
+                } else {
+                    (FillRule::TopLeft, standard)
+                };
+                let setups = setup_triangles(&[points], rule);
+                let mut expected = vec![0u32; (SIZE * SIZE) as usize];
+                for m in masks_of(naive, &setups, PixelRect::of_target(SIZE, SIZE), &pattern) {
+                    expected[(m.y as u32 * SIZE + m.x as u32) as usize] = m.mask;
+                }
+                let window = corners.map(|(x, y)| {
+                    if flipped {
+                        (x, SIZE as f32 - y)
+                    } else {
+                        (x, y)
+                    }
+                });
+                let got = reader.masks(window);
+                for (i, &(written, seen)) in got.iter().enumerate() {
+                    let (x, row) = (i as u32 % SIZE, i as u32 / SIZE);
+                    let y = if flipped { SIZE - 1 - row } else { row };
+                    let want = expected[(y * SIZE + x) as usize];
+                    assert_eq!(
+                        (written, seen),
+                        (want, want),
+                        "{samples} samples, case {case} {corners:?}, flipped {flipped}: pixel ({x}, {y})"
+                    );
+                    partial += usize::from(want != 0 && want != standard.full_mask());
+                }
+            }
+            ties += usize::from(setups_have_a_sample_on_an_edge(points, &standard));
+        }
+        eprintln!(
+            "llvmpipe ({}, {samples} samples): the masks of 500 random triangles, both ways up, are rasterlab's ({partial} partial masks, {ties} triangles with a sample on an edge)",
+            reader.renderer()
+        );
+        assert!(ties > 50, "too few ties to test the rule: {ties}");
+    }
+}
+
+/// Whether some sample of the pattern lies exactly on an edge of the
+/// triangle (within the target of the multisampling test).
+fn setups_have_a_sample_on_an_edge(points: [FixedPoint; 3], pattern: &SamplePattern) -> bool {
+    let Some(s) = setup_triangles(&[points], FillRule::TopLeft)
+        .first()
+        .copied()
+    else {
+        return false;
+    };
+    (0..32i64).any(|y| {
+        (0..32i64).any(|x| {
+            (0..pattern.count() as usize).any(|i| {
+                let (px, py) = pattern.sample_point(x, y, i);
+                let e = s.edges.map(|e| e.eval_raw(px, py));
+                e.contains(&0) && e.iter().all(|&v| v >= 0)
+            })
+        })
+    })
+}
+
 /// rasterlab's fragments and llvmpipe's for `mesh` at 1920x1080, with
 /// the benchmarks' camera (azimuth 30 degrees, back faces culled).
 fn fragments(gl: &gl::Llvmpipe, mesh: &Mesh) -> (u64, u64) {
@@ -191,7 +305,7 @@ fn llvmpipe_draws_the_dragons_fragments() {
         "dragon_vrip_res4".to_string(),
         Ok(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/dragon_vrip_res4.ply.gz")),
     )];
-    models.push(("dragon_vrip".to_string(), data::find(data::FULL_DRAGON)));
+    models.push(("dragon_vrip".to_string(), find(FULL_DRAGON)));
     for (name, path) in models {
         let path = match path {
             Ok(path) => path,
@@ -429,7 +543,7 @@ fn the_overflow_family_catches_llvmpipe_through_a_wide_viewport() {
         wide.draw(shrunk).len()
     );
     assert_eq!(
-        check::generate::family(property, case_index),
+        check::family(property, case_index),
         "overflow",
         "the first failure comes from the overflow family"
     );

@@ -97,34 +97,7 @@ impl Llvmpipe {
             )
         })?;
         let display = open_display(&egl, threads)?;
-        egl.bind_api(egl::OPENGL_API)
-            .map_err(|e| format!("eglBindAPI(OpenGL): {e}"))?;
-        let attributes = [
-            egl::CONTEXT_MAJOR_VERSION,
-            3,
-            egl::CONTEXT_MINOR_VERSION,
-            3,
-            egl::CONTEXT_OPENGL_PROFILE_MASK,
-            egl::CONTEXT_OPENGL_CORE_PROFILE_BIT,
-            egl::NONE,
-        ];
-        // SAFETY: a null config is EGL_NO_CONFIG_KHR (EGL_KHR_no_config_context,
-        // which Mesa offers): the context draws only into framebuffer objects.
-        let no_config = unsafe { egl::Config::from_ptr(std::ptr::null_mut()) };
-        let context = egl
-            .create_context(display, no_config, None, &attributes)
-            .map_err(|e| format!("eglCreateContext(OpenGL 3.3 core): {e}"))?;
-        egl.make_current(display, None, None, Some(context))
-            .map_err(|e| format!("eglMakeCurrent: {e}"))?;
-        // SAFETY: the context is current; eglGetProcAddress returns GL
-        // entry points of that context's vendor (or null, which glow
-        // turns into a panic only when the function is called).
-        let gl = unsafe {
-            glow::Context::from_loader_function(|name| {
-                egl.get_proc_address(name)
-                    .map_or(std::ptr::null(), |f| f as *const std::ffi::c_void)
-            })
-        };
+        let (context, gl) = open_context(&egl, display, (3, 3))?;
         // SAFETY: plain GL calls on the current context.
         let renderer = unsafe { gl.get_parameter_string(glow::RENDERER) };
         if !renderer.contains("llvmpipe") {
@@ -414,6 +387,326 @@ fn software_device(
     Err("no Mesa software EGL device for a second llvmpipe display".into())
 }
 
+/// A core-profile OpenGL context of `version` on `display`, current on
+/// this thread, with its GL functions.
+fn open_context(
+    egl: &egl::DynamicInstance<egl::EGL1_5>,
+    display: egl::Display,
+    version: (i32, i32),
+) -> Result<(egl::Context, glow::Context), String> {
+    egl.bind_api(egl::OPENGL_API)
+        .map_err(|e| format!("eglBindAPI(OpenGL): {e}"))?;
+    let attributes = [
+        egl::CONTEXT_MAJOR_VERSION,
+        version.0,
+        egl::CONTEXT_MINOR_VERSION,
+        version.1,
+        egl::CONTEXT_OPENGL_PROFILE_MASK,
+        egl::CONTEXT_OPENGL_CORE_PROFILE_BIT,
+        egl::NONE,
+    ];
+    // SAFETY: a null config is EGL_NO_CONFIG_KHR (EGL_KHR_no_config_context,
+    // which Mesa offers): the context draws only into framebuffer objects.
+    let no_config = unsafe { egl::Config::from_ptr(std::ptr::null_mut()) };
+    let context = egl
+        .create_context(display, no_config, None, &attributes)
+        .map_err(|e| {
+            format!(
+                "eglCreateContext(OpenGL {}.{} core): {e}",
+                version.0, version.1
+            )
+        })?;
+    egl.make_current(display, None, None, Some(context))
+        .map_err(|e| format!("eglMakeCurrent: {e}"))?;
+    // SAFETY: the context is current; eglGetProcAddress returns GL
+    // entry points of that context's vendor (or null, which glow
+    // turns into a panic only when the function is called).
+    let gl = unsafe {
+        glow::Context::from_loader_function(|name| {
+            egl.get_proc_address(name)
+                .map_or(std::ptr::null(), |f| f as *const std::ffi::c_void)
+        })
+    };
+    Ok((context, gl))
+}
+
+/// llvmpipe multisampling: the coverage mask of each pixel a triangle
+/// touches, as its fragment shader sees it (`gl_SampleMaskIn`, GLSL 4.00,
+/// so an OpenGL 4.0 core context), and the samples it really wrote.
+#[allow(dead_code)] // the tests read masks; the bench does not
+pub struct MaskReader {
+    egl: egl::DynamicInstance<egl::EGL1_5>,
+    display: egl::Display,
+    context: egl::Context,
+    gl: glow::Context,
+    draw: glow::Program,
+    transform: glow::UniformLocation,
+    resolve: glow::Program,
+    multisampled: glow::Framebuffer,
+    texture: glow::Texture,
+    resolved: glow::Framebuffer,
+    samples: i32,
+    width: u32,
+    height: u32,
+}
+
+#[allow(dead_code)] // the tests read masks; the bench does not
+impl MaskReader {
+    /// llvmpipe drawing into a `width` x `height` target of `samples`
+    /// samples per pixel (at most `GL_MAX_SAMPLES`); the error says what
+    /// is missing.
+    pub fn new(width: u32, height: u32, samples: i32) -> Result<MaskReader, String> {
+        // SAFETY: as in `Llvmpipe::new`.
+        let egl = unsafe { egl::DynamicInstance::<egl::EGL1_5>::load_required() }.map_err(|e| {
+            format!(
+                "no libEGL.so.1 ({e}): install Mesa (Debian: libegl1 libegl-mesa0 libgl1-mesa-dri)"
+            )
+        })?;
+        let display = open_display(&egl, 1)?;
+        let (context, gl) = open_context(&egl, display, (4, 0))?;
+        // SAFETY: GL calls on the current context.
+        unsafe {
+            let renderer = gl.get_parameter_string(glow::RENDERER);
+            if !renderer.contains("llvmpipe") {
+                return Err(format!("EGL gave the renderer {renderer:?}, not llvmpipe"));
+            }
+            let max = gl.get_parameter_i32(glow::MAX_SAMPLES);
+            if samples > max {
+                return Err(format!(
+                    "llvmpipe offers at most {max} samples, not {samples}"
+                ));
+            }
+            let target =
+                |ms: bool, format: u32| -> Result<(glow::Framebuffer, glow::Texture), String> {
+                    let texture = gl.create_texture()?;
+                    let framebuffer = gl.create_framebuffer()?;
+                    gl.bind_framebuffer(glow::FRAMEBUFFER, Some(framebuffer));
+                    if ms {
+                        gl.bind_texture(glow::TEXTURE_2D_MULTISAMPLE, Some(texture));
+                        gl.tex_image_2d_multisample(
+                            glow::TEXTURE_2D_MULTISAMPLE,
+                            samples,
+                            format as i32,
+                            width as i32,
+                            height as i32,
+                            true,
+                        );
+                        gl.framebuffer_texture_2d(
+                            glow::FRAMEBUFFER,
+                            glow::COLOR_ATTACHMENT0,
+                            glow::TEXTURE_2D_MULTISAMPLE,
+                            Some(texture),
+                            0,
+                        );
+                    } else {
+                        gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+                        gl.tex_storage_2d(glow::TEXTURE_2D, 1, format, width as i32, height as i32);
+                        gl.framebuffer_texture_2d(
+                            glow::FRAMEBUFFER,
+                            glow::COLOR_ATTACHMENT0,
+                            glow::TEXTURE_2D,
+                            Some(texture),
+                            0,
+                        );
+                    }
+                    let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
+                    if status != glow::FRAMEBUFFER_COMPLETE {
+                        return Err(format!("framebuffer incomplete: 0x{status:x}"));
+                    }
+                    Ok((framebuffer, texture))
+                };
+            let (multisampled, texture) = target(true, glow::R32UI)?;
+            let (resolved, _) = target(false, glow::RG32UI)?;
+            let draw = program(
+                &gl,
+                "#version 400 core\n\
+                 layout(location = 0) in vec3 position;\n\
+                 uniform mat4 transform;\n\
+                 void main() { gl_Position = transform * vec4(position, 1.0); }\n",
+                "#version 400 core\n\
+                 out uint mask;\n\
+                 void main() { mask = uint(gl_SampleMaskIn[0]); }\n",
+            )?;
+            // A triangle over the whole target; each pixel gathers its
+            // samples: which were written (bit i for sample i) and the
+            // mask the fragment shader saw.
+            let resolve = program(
+                &gl,
+                "#version 400 core\n\
+                 void main() {\n\
+                   vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));\n\
+                   gl_Position = vec4(p, 0.0, 1.0);\n\
+                 }\n",
+                &format!(
+                    "#version 400 core\n\
+                     uniform usampler2DMS samples;\n\
+                     out uvec2 masks;\n\
+                     void main() {{\n\
+                       uint written = 0u, seen = 0u;\n\
+                       for (int i = 0; i < {samples}; i++) {{\n\
+                         uint m = texelFetch(samples, ivec2(gl_FragCoord.xy), i).r;\n\
+                         if (m != 0u) {{ written |= 1u << i; seen |= m; }}\n\
+                       }}\n\
+                       masks = uvec2(written, seen);\n\
+                     }}\n"
+                ),
+            )?;
+            let transform = gl
+                .get_uniform_location(draw, "transform")
+                .ok_or("no uniform `transform`")?;
+            gl.viewport(0, 0, width as i32, height as i32);
+            Ok(MaskReader {
+                egl,
+                display,
+                context,
+                gl,
+                draw,
+                transform,
+                resolve,
+                multisampled,
+                texture,
+                resolved,
+                samples,
+                width,
+                height,
+            })
+        }
+    }
+
+    /// The GL renderer string.
+    pub fn renderer(&self) -> String {
+        self.make_current();
+        // SAFETY: a GL call on the current context.
+        unsafe { self.gl.get_parameter_string(glow::RENDERER) }
+    }
+
+    /// Sample `i`'s position in its pixel, in GL's window coordinates
+    /// (`glGetMultisamplefv(GL_SAMPLE_POSITION)`: x right, y up, in [0, 1]).
+    pub fn sample_position(&self, i: u32) -> (f32, f32) {
+        type GetMultisample = unsafe extern "system" fn(u32, u32, *mut f32);
+        self.make_current();
+        let f = self
+            .egl
+            .get_proc_address("glGetMultisamplefv")
+            .expect("glGetMultisamplefv (OpenGL 3.2)");
+        let mut xy = [0.0f32; 2];
+        // SAFETY: the entry point has glGetMultisamplefv's signature and
+        // writes two floats; the multisampled framebuffer is bound.
+        unsafe {
+            self.gl
+                .bind_framebuffer(glow::FRAMEBUFFER, Some(self.multisampled));
+            let get: GetMultisample = std::mem::transmute(f);
+            get(glow::SAMPLE_POSITION, i, xy.as_mut_ptr());
+        }
+        (xy[0], xy[1])
+    }
+
+    /// The triangle `corners` (window coordinates, pixels) drawn alone:
+    /// per pixel, row 0 first (window y = 0), the samples written (bit i
+    /// for sample i) and the `gl_SampleMaskIn` its fragment shader saw.
+    pub fn masks(&self, corners: [(f32, f32); 3]) -> Vec<(u32, u32)> {
+        self.make_current();
+        let gl = &self.gl;
+        let (w, h) = (self.width as f32, self.height as f32);
+        let transform = [
+            2.0 / w,
+            0.0,
+            0.0,
+            0.0, //
+            0.0,
+            2.0 / h,
+            0.0,
+            0.0, //
+            0.0,
+            0.0,
+            1.0,
+            0.0, //
+            -1.0,
+            -1.0,
+            0.0,
+            1.0,
+        ];
+        let vertices: Vec<f32> = corners.iter().flat_map(|&(x, y)| [x, y, 0.0]).collect();
+        let mut out = vec![0u32; self.width as usize * self.height as usize * 2];
+        // SAFETY: GL calls on the current context, with objects it made;
+        // the read-back buffer holds the whole target in RG32UI.
+        unsafe {
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.multisampled));
+            gl.clear_buffer_u32_slice(glow::COLOR, 0, &[0, 0, 0, 0]);
+            let vertex_array = gl.create_vertex_array().expect("a vertex array");
+            gl.bind_vertex_array(Some(vertex_array));
+            let vbo = gl.create_buffer().expect("a vertex buffer");
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+            gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, as_bytes(&vertices), glow::STATIC_DRAW);
+            gl.enable_vertex_attrib_array(0);
+            gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, 12, 0);
+            gl.use_program(Some(self.draw));
+            gl.uniform_matrix_4_f32_slice(Some(&self.transform), false, &transform);
+            gl.draw_arrays(glow::TRIANGLES, 0, 3);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.resolved));
+            gl.use_program(Some(self.resolve));
+            gl.active_texture(glow::TEXTURE0);
+            gl.bind_texture(glow::TEXTURE_2D_MULTISAMPLE, Some(self.texture));
+            gl.draw_arrays(glow::TRIANGLES, 0, 3);
+            gl.read_pixels(
+                0,
+                0,
+                self.width as i32,
+                self.height as i32,
+                glow::RG_INTEGER,
+                glow::UNSIGNED_INT,
+                glow::PixelPackData::Slice(Some(as_bytes_mut(&mut out))),
+            );
+            gl.delete_buffer(vbo);
+            gl.delete_vertex_array(vertex_array);
+        }
+        out.chunks_exact(2).map(|p| (p[0], p[1])).collect()
+    }
+
+    fn make_current(&self) {
+        self.egl
+            .make_current(self.display, None, None, Some(self.context))
+            .expect("an llvmpipe context made current again");
+    }
+}
+
+impl Drop for MaskReader {
+    fn drop(&mut self) {
+        let _ = self.egl.make_current(self.display, None, None, None);
+        let _ = self.egl.destroy_context(self.display, self.context);
+    }
+}
+
+/// A program of a vertex and a fragment shader.
+///
+/// # Safety
+///
+/// A GL context must be current.
+unsafe fn program(
+    gl: &glow::Context,
+    vertex: &str,
+    fragment: &str,
+) -> Result<glow::Program, String> {
+    let program = gl.create_program()?;
+    for (kind, source) in [
+        (glow::VERTEX_SHADER, vertex),
+        (glow::FRAGMENT_SHADER, fragment),
+    ] {
+        let shader = gl.create_shader(kind)?;
+        gl.shader_source(shader, source);
+        gl.compile_shader(shader);
+        if !gl.get_shader_compile_status(shader) {
+            return Err(gl.get_shader_info_log(shader));
+        }
+        gl.attach_shader(program, shader);
+    }
+    gl.link_program(program);
+    if !gl.get_program_link_status(program) {
+        return Err(gl.get_program_info_log(program));
+    }
+    Ok(program)
+}
+
 /// The framebuffer (RGBA8 colour, 32-bit float depth), the program and
 /// the occlusion query.
 ///
@@ -449,37 +742,19 @@ unsafe fn set_up(
     gl.clear_color(0.0, 0.0, 0.0, 0.0);
     gl.clear_depth_f32(1.0);
     gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
-    let program = gl.create_program()?;
-    for (kind, source) in [
-        (
-            glow::VERTEX_SHADER,
-            "#version 330 core\n\
+    let program = program(
+        gl,
+        "#version 330 core\n\
              layout(location = 0) in vec3 position;\n\
              layout(location = 1) in float light;\n\
              uniform mat4 transform;\n\
              out float grey;\n\
              void main() { grey = light; gl_Position = transform * vec4(position, 1.0); }\n",
-        ),
-        (
-            glow::FRAGMENT_SHADER,
-            "#version 330 core\n\
+        "#version 330 core\n\
              in float grey;\n\
              out vec4 colour;\n\
              void main() { colour = vec4(grey, grey, grey, 1.0); }\n",
-        ),
-    ] {
-        let shader = gl.create_shader(kind)?;
-        gl.shader_source(shader, source);
-        gl.compile_shader(shader);
-        if !gl.get_shader_compile_status(shader) {
-            return Err(gl.get_shader_info_log(shader));
-        }
-        gl.attach_shader(program, shader);
-    }
-    gl.link_program(program);
-    if !gl.get_program_link_status(program) {
-        return Err(gl.get_program_info_log(program));
-    }
+    )?;
     let transform = gl
         .get_uniform_location(program, "transform")
         .ok_or("no uniform `transform`")?;
@@ -487,8 +762,17 @@ unsafe fn set_up(
     Ok((program, transform, query))
 }
 
+/// The bytes of a slice of plain numbers, to write into.
+#[allow(dead_code)] // the tests read masks; the bench does not
+fn as_bytes_mut(values: &mut [u32]) -> &mut [u8] {
+    // SAFETY: u32 is plain data; every byte pattern is a valid u32.
+    unsafe {
+        std::slice::from_raw_parts_mut(values.as_mut_ptr().cast(), std::mem::size_of_val(values))
+    }
+}
+
 /// The bytes of a slice of plain numbers.
 fn as_bytes<T: Copy>(values: &[T]) -> &[u8] {
-    // SAFETY: T is u32 or Vertex (four f32), plain data without padding.
+    // SAFETY: T is u32, f32 or Vertex (four f32), plain data without padding.
     unsafe { std::slice::from_raw_parts(values.as_ptr().cast(), std::mem::size_of_val(values)) }
 }

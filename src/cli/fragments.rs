@@ -2,9 +2,9 @@
 
 use super::args::{LineArgs, Size};
 use clap::Args;
-use rasterlab::geometry::listing::{list_fragments_in_file, FragmentsRequest};
-use rasterlab::{backend, Backend};
-use rasterlab::{FillRule, Result};
+use rasterlab::geometry::{list_fragments_in_file, FragmentsRequest};
+use rasterlab::raster::{backend, Backend, FillRule, SamplePattern};
+use rasterlab::Result;
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -20,8 +20,20 @@ pub struct FragmentsArgs {
     rule: FillRule,
     #[command(flatten)]
     line: LineArgs,
+    /// Multisample triangles on the standard pattern of N samples (1, 2,
+    /// 4, 8 or 16): print `x y id mask`, bit i of the mask for sample i.
+    #[arg(long, value_name = "N", value_parser = msaa)]
+    msaa: Option<SamplePattern>,
     /// Triangle soup (`x0 y0 x1 y1 x2 y2` per line) or line set (`x0 y0 x1 y1` per line).
     file: PathBuf,
+}
+
+/// `--msaa N`: the standard pattern of N samples.
+fn msaa(text: &str) -> std::result::Result<SamplePattern, String> {
+    let n: u32 = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a sample count (1, 2, 4, 8 or 16)"))?;
+    SamplePattern::standard(n).map_err(|e| e.to_string())
 }
 
 pub fn run(args: &FragmentsArgs) -> Result<()> {
@@ -32,6 +44,7 @@ pub fn run(args: &FragmentsArgs) -> Result<()> {
         height: args.size.height,
         rule: args.rule,
         line: args.line.options(),
+        msaa: args.msaa,
     })?;
     super::print::out(listing)
 }

@@ -1,0 +1,266 @@
+//! Multisampling: every triangle back-end gives the coverage masks the
+//! reference gives, sample for sample, under every fill rule, on the
+//! standard patterns; a spade-triangulated polygon covers each sample
+//! inside it exactly once under the watertight rules; and a sample lying
+//! on an edge goes to the triangle whose edge owns its ties.
+
+mod common;
+
+use common::*;
+use proptest::prelude::*;
+use rasterlab::geometry::{setup_triangles, Polygon, Side};
+use rasterlab::raster::{
+    masks_of, reference_masks, triangle_backends, FillRule, FixedPoint, MaskFragment,
+    SamplePattern, SAMPLE_COUNTS,
+};
+
+/// Every back-end's masks against the reference's, for one rule and pattern.
+fn check_masks(
+    triangles: &[[FixedPoint; 3]],
+    rule: FillRule,
+    pattern: &SamplePattern,
+) -> Result<(), String> {
+    let setups = setup_triangles(triangles, rule);
+    let reference = reference_masks(&setups, viewport(), pattern);
+    for b in triangle_backends() {
+        let masks = masks_of(*b, &setups, viewport(), pattern);
+        if masks != reference {
+            let first = masks
+                .iter()
+                .zip(&reference)
+                .find(|(m, r)| m != r)
+                .map(|(m, r)| format!("{m:?} against the reference's {r:?}"))
+                .unwrap_or_else(|| format!("{} masks against {}", masks.len(), reference.len()));
+            return Err(format!(
+                "{} under {rule}, {} samples: {first}",
+                b.name(),
+                pattern.count()
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A soup whose vertices lie on the 1/16 px grid of the sample offsets as
+/// often as not, so that edges run through samples and ties decide.
+fn sample_grid_soup() -> impl Strategy<Value = Vec<[FixedPoint; 3]>> {
+    prop_oneof![
+        Just(Some(1.0 / 16.0)),
+        Just(Some(1.0 / 8.0)),
+        quantum().prop_map(|q| q)
+    ]
+    .prop_flat_map(|q| {
+        let p = point(-4.0, SIZE as f32 + 4.0, q);
+        proptest::collection::vec([p.clone(), p.clone(), p], 1..=6)
+    })
+}
+
+/// Per pixel and sample, how many triangles cover it.
+fn sample_counts(masks: &[MaskFragment], samples: u32) -> Vec<u32> {
+    let mut counts = vec![0; (SIZE * SIZE * samples) as usize];
+    for m in masks {
+        for i in 0..samples {
+            if m.mask & (1 << i) != 0 {
+                counts[((m.y as u32 * SIZE + m.x as u32) * samples + i) as usize] += 1;
+            }
+        }
+    }
+    counts
+}
+
+/// Every sample strictly inside the polygon is covered exactly once, none
+/// outside it, and none on its outline twice.
+fn check_sample_watertight(
+    poly: &Polygon,
+    rule: FillRule,
+    pattern: &SamplePattern,
+) -> Result<(), String> {
+    let setups = setup_triangles(&triangulation(poly), rule);
+    let backends = triangle_backends();
+    // One back-end per pattern, in turn (the first property compares them
+    // all with the reference).
+    let b = backends[pattern.count() as usize % backends.len()];
+    let counts = sample_counts(&masks_of(b, &setups, viewport(), pattern), pattern.count());
+    for y in 0..SIZE as i64 {
+        for x in 0..SIZE as i64 {
+            for i in 0..pattern.count() as usize {
+                let (px, py) = pattern.sample_point(x, y, i);
+                let side = poly.classify(FixedPoint::from_raw(px, py).unwrap());
+                let n =
+                    counts[((y as u32 * SIZE + x as u32) * pattern.count() + i as u32) as usize];
+                let ok = match side {
+                    Side::Inside => n == 1,
+                    Side::Outside => n == 0,
+                    Side::Boundary => n <= 1,
+                };
+                if !ok {
+                    return Err(format!(
+                        "{} under {rule}: sample {i} of pixel ({x}, {y}) is {side:?} and covered {n} times",
+                        b.name()
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(crate::common::proptest_config(300, "tests/proptest-regressions/multisample.txt"))]
+
+    /// Random soups, vertices on the sample grid or off it: every
+    /// back-end's masks equal the reference's under all 7 rules.
+    #[test]
+    fn every_backend_gives_the_reference_masks(
+        triangles in sample_grid_soup(),
+        count in proptest::sample::select(&SAMPLE_COUNTS[1..]),
+    ) {
+        let pattern = SamplePattern::standard(count).unwrap();
+        for rule in FillRule::ALL {
+            check_masks(&triangles, rule, &pattern).map_err(TestCaseError::fail)?;
+            check_masks(&triangles, rule, &pattern.mirrored_y()).map_err(TestCaseError::fail)?;
+        }
+    }
+
+    /// Spade triangulations of polygons with and without holes: under the
+    /// watertight rules, every sample inside is covered exactly once.
+    #[test]
+    fn samples_of_spade_meshes_are_covered_exactly_once(
+        poly in polygon(),
+        count in proptest::sample::select(&[4u32, 8, 16][..]),
+    ) {
+        let pattern = SamplePattern::standard(count).unwrap();
+        for rule in FillRule::WATERTIGHT {
+            check_sample_watertight(&poly, rule, &pattern).map_err(TestCaseError::fail)?;
+        }
+    }
+}
+
+/// Two rectangles, each of two triangles, side by side along x = 0.375:
+/// the line runs through sample 0 of pixel (0, 0) under the 4-sample
+/// pattern, at (0.375, 0.125). The top-left rule gives it to the right
+/// rectangle (the edge is its left edge), the bottom-right rule to the
+/// left one, `inclusive` to both and `exclusive` to neither.
+#[test]
+fn a_sample_on_a_shared_edge_goes_to_the_edge_that_owns_ties() {
+    let p = |x: f32, y: f32| snap(x, y);
+    let left = [
+        [p(-4.0, -4.0), p(0.375, -4.0), p(0.375, 8.0)],
+        [p(-4.0, -4.0), p(0.375, 8.0), p(-4.0, 8.0)],
+    ];
+    let right = [
+        [p(0.375, -4.0), p(5.0, -4.0), p(5.0, 8.0)],
+        [p(0.375, -4.0), p(5.0, 8.0), p(0.375, 8.0)],
+    ];
+    let triangles: Vec<_> = left.iter().chain(&right).copied().collect();
+    let pattern = SamplePattern::standard(4).unwrap();
+    let side_masks = |rule: FillRule| {
+        let setups = setup_triangles(&triangles, rule);
+        let masks = reference_masks(&setups, viewport(), &pattern);
+        let of = |ids: std::ops::Range<u32>| {
+            masks
+                .iter()
+                .filter(|m| (m.x, m.y) == (0, 0) && ids.contains(&m.triangle))
+                .fold(0, |acc, m| acc | m.mask)
+        };
+        for b in triangle_backends() {
+            assert_eq!(
+                masks_of(*b, &setups, viewport(), &pattern),
+                masks,
+                "{}",
+                b.name()
+            );
+        }
+        (of(0..2), of(2..4))
+    };
+    // Samples: 0 on the edge, 1 (0.875, 0.375) and 3 (0.625, 0.875)
+    // right of it, 2 (0.125, 0.625) left of it.
+    assert_eq!(side_masks(FillRule::TopLeft), (0b0100, 0b1011));
+    assert_eq!(side_masks(FillRule::BottomRight), (0b0101, 0b1010));
+    assert_eq!(side_masks(FillRule::Inclusive), (0b0101, 0b1011));
+    assert_eq!(side_masks(FillRule::Exclusive), (0b0100, 0b1010));
+}
+
+/// One sample is the centre: the 1-sample masks are the single-sample
+/// fragments, every bit 1.
+#[test]
+fn one_sample_is_the_pixel_centre() {
+    let triangles = [[snap(0.5, 0.5), snap(30.0, 4.0), snap(7.0, 33.0)]];
+    let setups = setup_triangles(&triangles, FillRule::TopLeft);
+    let masks = reference_masks(&setups, viewport(), &SamplePattern::standard(1).unwrap());
+    let list = fragments(triangle_backends()[0], &triangles, FillRule::TopLeft);
+    let mut centres: Vec<(i64, i64)> = list
+        .triangles
+        .iter()
+        .map(|f| (i64::from(f.y), i64::from(f.x)))
+        .collect();
+    centres.sort();
+    assert_eq!(
+        masks.iter().map(|m| (m.y, m.x)).collect::<Vec<_>>(),
+        centres
+    );
+    assert!(masks.iter().all(|m| m.mask == 1));
+}
+
+/// `fragments --msaa 4` on two triangles splitting a 5 x 5 square: each
+/// pixel of the diagonal is shared, samples 0 and 1 (mask 3) to the
+/// first triangle and 2 and 3 (mask 12) to the second, and the square's
+/// 100 samples are each covered once; a count with no standard pattern
+/// and a line set are refused with exit 2.
+#[test]
+fn fragments_prints_masks() {
+    let tmp = tempfile::tempdir().unwrap();
+    let square = tmp.path().join("square.txt");
+    std::fs::write(&square, "0 0 5 0 5 5\n0 5 0 0 5 5\n").unwrap();
+    let square = square.to_str().unwrap();
+    let out = rasterlab(&[
+        "fragments",
+        "--backend",
+        "tiled",
+        "--size",
+        "5x5",
+        "--msaa",
+        "4",
+        square,
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut samples = [0u32; 2];
+    for line in text.lines() {
+        let v: Vec<u32> = line.split(' ').map(|w| w.parse().unwrap()).collect();
+        let [x, y, id, mask] = v[..] else {
+            panic!("{line}")
+        };
+        samples[id as usize] += mask.count_ones();
+        if x == y {
+            assert_eq!(mask, if id == 0 { 3 } else { 12 }, "{line}");
+        } else {
+            assert_eq!(mask, 15, "{line}");
+        }
+    }
+    assert_eq!(samples, [50, 50]);
+    let three = rasterlab(&[
+        "fragments",
+        "--backend",
+        "tiled",
+        "--size",
+        "5x5",
+        "--msaa",
+        "3",
+        square,
+    ]);
+    assert_eq!(three.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&three.stderr).contains("1, 2, 4, 8 and 16"));
+    let lines = rasterlab(&[
+        "fragments",
+        "--backend",
+        "bresenham",
+        "--size",
+        "8x8",
+        "--msaa",
+        "4",
+        "assets/lines.txt",
+    ]);
+    assert_eq!(lines.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&lines.stderr).contains("not multisampled"));
+}
