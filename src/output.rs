@@ -8,14 +8,13 @@
 //! be written is reported at once, not after minutes of work.
 //!
 //! ```
-//! use rasterlab::output::{check_file, write_file};
-//! let dir = std::env::temp_dir();
-//! let path = dir.join(format!("rasterlab-doc-{}.svg", std::process::id()));
+//! use rasterlab::{check_file, write_file};
+//! let dir = tempfile::tempdir().unwrap();
+//! let path = dir.path().join("picture.svg");
 //! check_file(&path, &["svg"]).unwrap();
 //! write_file(&path, b"<svg/>").unwrap();
 //! assert_eq!(std::fs::read(&path).unwrap(), b"<svg/>");
-//! assert!(check_file(&dir.join("x.jpg"), &["svg", "png"]).is_err());
-//! # std::fs::remove_file(&path).unwrap();
+//! assert!(check_file(&dir.path().join("x.jpg"), &["svg", "png"]).is_err());
 //! ```
 
 use crate::error::{Error, Result};
@@ -186,8 +185,8 @@ mod tests {
 
     #[test]
     fn a_failed_write_leaves_no_file_behind() {
-        let dir = std::env::temp_dir().join(format!("rasterlab-output-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         // A path inside a missing folder: the write fails and nothing is left.
         let path = dir.join("missing").join("x.png");
         assert!(matches!(
@@ -199,7 +198,7 @@ mod tests {
         // Upper-case extensions are accepted.
         check_file(&dir.join("X.PNG"), &["png"]).unwrap();
         assert!(check_file(&dir.join("x.jpg"), &["png"]).is_err());
-        assert!(check_file(&dir, &["png"]).is_err());
+        assert!(check_file(dir, &["png"]).is_err());
         // A file where a folder is asked for says so.
         let file = dir.join("a-file");
         std::fs::write(&file, b"").unwrap();
@@ -208,15 +207,10 @@ mod tests {
             other => panic!("expected a write error, got {other:?}"),
         }
         std::fs::remove_file(&file).unwrap();
-        assert_eq!(
-            std::fs::read_dir(&dir).unwrap().count(),
-            0,
-            "probes removed"
-        );
+        assert_eq!(std::fs::read_dir(dir).unwrap().count(), 0, "probes removed");
         // A device is written in place, not replaced.
         check_file(Path::new("/dev/null"), &["png"]).unwrap();
         write_file(Path::new("/dev/null"), b"data").unwrap();
         assert!(is_special(Path::new("/dev/null")));
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -17,10 +17,9 @@
 mod common;
 
 use common::{chromium, HEADLESS};
-use rasterlab::geometry::scene::Scene2D;
-use rasterlab::raster::edge::FillRule;
-use rasterlab::teaching::grid_picture::DepthCells;
-use rasterlab::teaching::palette::Role;
+use rasterlab::geometry::Scene2D;
+use rasterlab::raster::FillRule;
+use rasterlab::teaching::{colour_hex, triangle_colour, triangle_mark, DepthCells, Role};
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
@@ -253,7 +252,9 @@ impl DevTools {
 struct Browser {
     chrome: Killed,
     dev: DevTools,
-    profile: std::path::PathBuf,
+    /// Chromium's profile folder, removed when the browser is dropped
+    /// (after Chromium has exited).
+    _profile: tempfile::TempDir,
 }
 
 impl Browser {
@@ -268,16 +269,15 @@ impl Browser {
             );
             return None;
         };
-        let profile = std::env::temp_dir().join(format!(
-            "rasterlab-lab-chromium-{}-{}",
-            std::process::id(),
-            test.replace(|c: char| !c.is_ascii_alphanumeric(), "-")
-        ));
+        let profile = tempfile::Builder::new()
+            .prefix("rasterlab-lab-chromium-")
+            .tempdir()
+            .unwrap();
         let mut chrome = Killed(
             Command::new(browser)
                 .args(HEADLESS)
                 .args(["--remote-debugging-port=0", "--window-size=1400,1000"])
-                .arg(format!("--user-data-dir={}", profile.display()))
+                .arg(format!("--user-data-dir={}", profile.path().display()))
                 .arg("about:blank")
                 .stdout(Stdio::null())
                 .stderr(Stdio::piped())
@@ -305,7 +305,7 @@ impl Browser {
         Some(Browser {
             chrome,
             dev,
-            profile,
+            _profile: profile,
         })
     }
 }
@@ -314,31 +314,35 @@ impl Drop for Browser {
     fn drop(&mut self) {
         let _ = self.dev.call("Browser.close", json!({}), false);
         let _ = self.chrome.0.wait();
-        let _ = std::fs::remove_dir_all(&self.profile);
     }
 }
 
 /// The keys of the legend's entries under `#legend`, after checking that
-/// it is the one palette's legend and that every role's swatch has the
-/// role's colour.
+/// it is the one palette's legend, that every role's swatch has the
+/// role's colour and draws it (the swatch's SVG uses the colour), and
+/// that each triangle's has its colour and line pattern.
 fn legend(dev: &mut DevTools) -> Vec<String> {
     let entries = dev.eval(
-        "[...document.querySelectorAll('#legend .legend[data-palette=\"okabe-ito\"] .entry')].map(e => [e.dataset.role, getComputedStyle(e.querySelector('.swatch')).backgroundColor, e.textContent])",
+        "[...document.querySelectorAll('#legend .legend[data-palette=\"okabe-ito\"] .entry')].map(e => [e.dataset.role, e.dataset.colour, e.textContent, e.dataset.mark, e.querySelector('svg.swatch').innerHTML])",
     );
     let entries = entries.as_array().expect("a legend under the grid");
     let mut keys = Vec::new();
     for e in entries {
-        let (key, colour, label) = (
+        let (key, colour, label, mark, swatch) = (
             e[0].as_str().unwrap(),
             e[1].as_str().unwrap(),
             e[2].as_str().unwrap(),
+            e[3].as_str().unwrap(),
+            e[4].as_str().unwrap(),
         );
+        assert!(swatch.contains(colour), "{key}: {swatch}");
         if let Some(role) = Role::ALL.iter().find(|r| r.key() == key) {
-            let [r, g, b] = role.rgb();
-            assert_eq!(colour, format!("rgb({r}, {g}, {b})"), "{key}");
+            assert_eq!(colour, role.hex(), "{key}");
             assert!(label.contains(role.label()), "{key}: {label}");
         } else {
-            assert!(key.starts_with("triangle-"), "{key}");
+            let i: usize = key.strip_prefix("triangle-").expect(key).parse().unwrap();
+            assert_eq!(colour, colour_hex(triangle_colour(i)), "{key}");
+            assert_eq!(mark, triangle_mark(i).key(), "{key}");
         }
         keys.push(key.to_string());
     }
@@ -410,7 +414,7 @@ fn a_dragged_vertex_updates_the_grid_the_trace_and_the_url() {
         .unwrap();
     assert_eq!(
         smalls,
-        rasterlab::triangle_backends().len() as u64,
+        rasterlab::raster::triangle_backends().len() as u64,
         "every triangle back-end side by side"
     );
     let same = dev.eval(
@@ -504,7 +508,7 @@ fn the_depth_view_shows_kept_and_hidden_fragments_not_double_draws() {
     // What the depth test did, as the library counts it.
     let cells = DepthCells::of_scene(
         &Scene2D::depth_example(true),
-        rasterlab::triangle_backend("bbox").unwrap(),
+        rasterlab::raster::triangle_backend("bbox").unwrap(),
         FillRule::TopLeft,
     )
     .unwrap();
@@ -540,6 +544,25 @@ fn the_depth_view_shows_kept_and_hidden_fragments_not_double_draws() {
     );
     let keys = legend(dev);
     assert!(keys.iter().any(|k| k == Role::Hidden.key()), "{keys:?}");
+    // The triangles told apart by their edges, as the legend draws them:
+    // colour, dash pattern and name.
+    let edges = dev.eval(
+        "[...document.querySelectorAll('#grid polygon.outline')].map(p => [p.getAttribute('stroke'), p.getAttribute('stroke-dasharray')])",
+    );
+    for i in 0..2 {
+        let dash = triangle_mark(i).dasharray().unwrap_or("none");
+        assert_eq!(
+            edges[i],
+            json!([colour_hex(triangle_colour(i)), dash]),
+            "{edges}"
+        );
+    }
+    assert_eq!(
+        dev.eval(
+            "[...document.querySelectorAll('#grid text.triangle-label')].map(t => t.textContent)"
+        ),
+        json!(["T1", "T2"])
+    );
     assert!(keys.iter().any(|k| k == "triangle-0") && keys.iter().any(|k| k == "triangle-1"));
     assert!(
         !keys.iter().any(|k| k == Role::DoubleDraw.key()),

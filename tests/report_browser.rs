@@ -10,9 +10,8 @@
 mod common;
 
 use common::{chromium, HEADLESS};
-use rasterlab::geometry::scene::Scene2D;
-use rasterlab::teaching::palette::Role;
-use rasterlab::teaching::report::{CompareInput, Report};
+use rasterlab::geometry::Scene2D;
+use rasterlab::teaching::{CompareInput, Report, Role};
 use std::path::Path;
 use std::process::Command;
 
@@ -55,7 +54,8 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
         );
         return;
     };
-    let dir = std::env::temp_dir().join(format!("rasterlab-report-{}", std::process::id()));
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
     let report = Report::compare(&CompareInput::Triangles(Scene2D::pinwheel()), 12, 12, 1).unwrap();
     let page = report.write(&dir.join("report")).unwrap();
     let profile = dir.join("profile");
@@ -65,8 +65,8 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
     // An image per back-end, a difference image per back-end but the
     // reference, and a heat map per fill rule for the input and for the
     // pinwheel.
-    let backends = rasterlab::triangle_backends().len();
-    let rules = rasterlab::FillRule::ALL.len();
+    let backends = rasterlab::raster::triangle_backends().len();
+    let rules = rasterlab::raster::FillRule::ALL.len();
     assert_eq!(images, backends + (backends - 1) + 2 * rules);
     assert_eq!(
         body_data(&dom, "images-loaded"),
@@ -88,9 +88,10 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
         Role::TestedOutside,
     ] {
         let swatch = format!(
-            "data-role=\"{}\"><span class=\"swatch\" style=\"background:{}\">",
+            "data-role=\"{}\" data-colour=\"{}\" data-mark=\"{}\"><svg class=\"swatch\"",
             role.key(),
-            role.hex()
+            role.hex(),
+            role.mark().key()
         );
         assert!(dom.contains(&swatch), "no legend entry for {role:?}");
         assert!(dom.contains(role.label()), "{role:?}");
@@ -120,7 +121,6 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
     );
     // The pinwheel's palette colour (first triangle) is on screen: the
     // images were painted, not just decoded.
-    let blue = rasterlab::raster::shader::to_rgba8(rasterlab::geometry::scene::palette(0));
+    let blue = rasterlab::raster::to_rgba8(rasterlab::geometry::scene_colour(0));
     assert!(img.pixels().any(|p| p.0 == [blue[0], blue[1], blue[2]]));
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,10 +1,45 @@
 //! Traces checked against answers worked by hand from the course notes.
 
+mod common;
+
 use proptest::prelude::*;
-use rasterlab::raster::edge::FillRule;
-use rasterlab::teaching::trace::{
-    bresenham_trace, line_trace, scanline_trace, triangle_trace, LineEnds,
-};
+use rasterlab::raster::line::LineRasterizer;
+use rasterlab::raster::triangle::TriangleRasterizer;
+use rasterlab::raster::{line_backend, triangle_backend, FillRule};
+use rasterlab::teaching::{trace_line, trace_triangle, LineEnds};
+use rasterlab::Result;
+
+/// A triangle back-end's trace as text, as `rasterlab explain` prints it.
+fn triangle_text(
+    backend: &dyn TriangleRasterizer,
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    trace_triangle(backend, vertices, rule, width, height).map(|t| t.to_text())
+}
+
+/// [`triangle_text`] of the back-end named `name`.
+fn triangle_trace(
+    name: &str,
+    vertices: [(f64, f64); 3],
+    rule: FillRule,
+    width: u32,
+    height: u32,
+) -> Result<String> {
+    triangle_text(triangle_backend(name)?, vertices, rule, width, height)
+}
+
+/// A line back-end's trace as text, as `rasterlab explain` prints it.
+fn line_text(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String> {
+    trace_line(backend, ends).map(|t| t.to_text())
+}
+
+/// [`line_text`] of the back-end named `name`.
+fn line_trace(name: &str, ends: &LineEnds) -> Result<String> {
+    line_text(line_backend(name)?, ends)
+}
 
 /// The line-drawing slides' midpoint loop on (0, 0) -> (7, 3): f(x, y) = -3 x + 7 y, so
 /// d starts at f(1, 1/2) = 0.5 and then adds -3 (keep y) or -3 + 7 (step).
@@ -24,10 +59,14 @@ bresenham (midpoint) from pixel (0, 0) to pixel (7, 3) (pixel indices: the line 
 d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame
 ";
     let ends = LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap();
-    assert_eq!(bresenham_trace(&ends), expected);
+    assert_eq!(line_trace("bresenham", &ends).unwrap(), expected);
     // The same line in screen coordinates draws the same table, and its
     // first line says how the endpoints were read.
-    let screen = bresenham_trace(&LineEnds::screen([0.5, 0.5, 7.5, 3.5]).unwrap());
+    let screen = line_trace(
+        "bresenham",
+        &LineEnds::screen([0.5, 0.5, 7.5, 3.5]).unwrap(),
+    )
+    .unwrap();
     assert_eq!(
         screen.lines().next().unwrap(),
         "bresenham (midpoint) from (0.5, 0.5) to (7.5, 3.5) in screen coordinates; first octant: no symmetry needed"
@@ -99,14 +138,6 @@ fn bbox_trace_counts_and_explains() {
         naive.ends_with("24 pixels tested, 9 fragments\n"),
         "{naive}"
     );
-    assert!(triangle_trace(
-        "scanline",
-        [(0., 0.), (1., 0.), (0., 1.)],
-        FillRule::TopLeft,
-        4,
-        4
-    )
-    .is_err());
 }
 
 /// Classic scanline on the right triangle (0.5, 0.5), (4.5, 0.5), (0.5, 3.5)
@@ -128,7 +159,8 @@ rows 0..=3: their sample lines y = row + 0.5 lie between top and bottom
 4 rows, 9 fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last
 ";
     assert_eq!(
-        scanline_trace(
+        triangle_trace(
+            "scanline",
             [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)],
             FillRule::TopLeft,
             6,
@@ -140,7 +172,7 @@ rows 0..=3: their sample lines y = row + 0.5 lie between top and bottom
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(300))]
+    #![proptest_config(crate::common::proptest_config(300, "tests/proptest-regressions/traces.txt"))]
     /// The scanline trace fills exactly the pixels the bbox trace finds
     /// inside, on any triangle and fill rule.
     #[test]
@@ -155,7 +187,7 @@ proptest! {
         ],
     ) {
         let triangle = [(v[0], v[1]), (v[2], v[3]), (v[4], v[5])];
-        let scan = scanline_trace(triangle, rule, 16, 16).unwrap();
+        let scan = triangle_trace("scanline", triangle, rule, 16, 16).unwrap();
         let bbox = triangle_trace("bbox", triangle, rule, 16, 16).unwrap();
         let count = |text: &str, marker: &str| -> Option<String> {
             let last = text.lines().last()?;
@@ -174,16 +206,14 @@ proptest! {
 }
 
 mod newer_traces {
+    use super::{line_trace, triangle_trace};
     use proptest::prelude::*;
-    use rasterlab::geometry::scene::setup_triangles;
-    use rasterlab::raster::backend::{line_backend, triangle_backend};
-    use rasterlab::raster::edge::{FillRule, PixelRect};
-    use rasterlab::raster::fixed::FixedPoint;
-    use rasterlab::raster::fragment::FragmentList;
+    use rasterlab::geometry::setup_triangles;
     use rasterlab::raster::line::{LineOptions, LineSetup};
-    use rasterlab::teaching::trace::{
-        diamond_trace, incremental_trace, tiled_trace, wu_trace, LineEnds,
+    use rasterlab::raster::{
+        line_backend, triangle_backend, FillRule, FixedPoint, FragmentList, PixelRect,
     };
+    use rasterlab::teaching::LineEnds;
     use std::collections::HashSet;
 
     fn fragments(name: &str, v: [(f64, f64); 3], size: u32) -> (HashSet<(i64, i64)>, u64) {
@@ -227,7 +257,7 @@ mod newer_traces {
     /// as the back-end counts, its drawn pixels in the order drawn.
     #[test]
     fn the_diamond_trace_is_the_walk_in_its_order() {
-        use rasterlab::teaching::trace::of_line;
+        use rasterlab::teaching::trace_line;
         for ends in [
             [7.0, 3.0, 0.0, 0.0],
             [2.0, 9.0, 4.0, 1.0],
@@ -235,7 +265,7 @@ mod newer_traces {
         ] {
             let ends = LineEnds::pixels(ends).unwrap();
             let backend = line_backend("diamond").unwrap();
-            let trace = of_line(backend, &ends).unwrap();
+            let trace = trace_line(backend, &ends).unwrap();
             let drawn: Vec<(i64, i64)> = trace
                 .rows
                 .iter()
@@ -260,7 +290,7 @@ mod newer_traces {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(200))]
+        #![proptest_config(crate::common::proptest_config(200, "tests/proptest-regressions/traces.txt"))]
         /// The incremental trace lists exactly the pixels the back-end tests
         /// and draws; every inside or outside block of the tiled trace is
         /// wholly drawn or wholly empty.
@@ -268,14 +298,14 @@ mod newer_traces {
         fn the_triangle_traces_agree_with_their_back_ends(v in proptest::array::uniform6(-2.0f64..34.0)) {
             let v = [(v[0], v[1]), (v[2], v[3]), (v[4], v[5])];
             let (drawn, tested) = fragments("incremental", v, 32);
-            let text = incremental_trace(v, FillRule::TopLeft, 32, 32).unwrap();
+            let text = triangle_trace("incremental", v, FillRule::TopLeft, 32, 32).unwrap();
             let rows: Vec<Vec<&str>> = text.lines().skip(3).map(|l| l.split_whitespace().collect()).filter(|w: &Vec<&str>| w.len() >= 6 && w[0].parse::<i64>().is_ok() && w[1].parse::<i64>().is_ok()).collect();
             let inside: HashSet<(i64, i64)> = rows.iter().filter(|w| w[5] == "inside").map(|w| (w[0].parse().unwrap(), w[1].parse().unwrap())).collect();
             prop_assert_eq!(&inside, &drawn);
             if !drawn.is_empty() {
                 prop_assert_eq!(rows.len() as u64, tested, "{}", text);
             }
-            let tiled = tiled_trace(v, FillRule::TopLeft, 32, 32).unwrap();
+            let tiled = triangle_trace("tiled", v, FillRule::TopLeft, 32, 32).unwrap();
             for l in tiled.lines().skip(2) {
                 let w: Vec<&str> = l.split_whitespace().collect();
                 if w.len() < 3 || !w[0].contains("..=") { continue; }
@@ -295,7 +325,7 @@ mod newer_traces {
         #[test]
         fn the_line_traces_agree_with_their_back_ends(c in proptest::array::uniform4(0i32..40)) {
             let ends = LineEnds::pixels(c.map(f64::from)).unwrap();
-            let text = wu_trace(&ends);
+            let text = line_trace("wu", &ends).unwrap();
             let mut listed = Vec::new();
             for l in text.lines().skip(2) {
                 let w: Vec<&str> = l.split_whitespace().collect();
@@ -312,7 +342,7 @@ mod newer_traces {
             listed.sort();
             wu.sort();
             prop_assert_eq!(listed, wu);
-            let text = diamond_trace(&ends).unwrap();
+            let text = line_trace("diamond", &ends).unwrap();
             let mut drawn: Vec<(i64, i64)> = text.lines().filter(|l| l.ends_with(": drawn")).map(|l| {
                 let (x, y) = l.split_whitespace().next().unwrap().split_once(',').unwrap();
                 (x.parse().unwrap(), y.parse().unwrap())
@@ -329,12 +359,13 @@ mod newer_traces {
 /// not looked up by its name.
 #[test]
 fn an_outside_back_end_is_traced_by_its_walk() {
-    use rasterlab::raster::descriptor::{CostClass, Role};
     use rasterlab::raster::triangle::bbox::BoundingBox;
     use rasterlab::raster::triangle::{
         TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver,
     };
-    use rasterlab::{FragmentSink, PixelRect, TriangleSetup, WorkCounters};
+    use rasterlab::raster::{
+        CostClass, FragmentSink, PixelRect, Role, TriangleSetup, WorkCounters,
+    };
 
     struct MyBox;
     impl TriangleAlgorithm for MyBox {
@@ -357,9 +388,7 @@ fn an_outside_back_end_is_traced_by_its_walk() {
         }
     }
     let triangle = [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)];
-    let mine =
-        rasterlab::teaching::trace::of_triangle_backend(&MyBox, triangle, FillRule::TopLeft, 6, 4)
-            .unwrap();
+    let mine = triangle_text(&MyBox, triangle, FillRule::TopLeft, 6, 4).unwrap();
     let bbox = triangle_trace("bbox", triangle, FillRule::TopLeft, 6, 4).unwrap();
     assert!(mine.starts_with("my-box, top-left rule"), "{mine}");
     assert_eq!(mine.replacen("my-box", "bbox", 1), bbox);
@@ -370,16 +399,17 @@ fn an_outside_back_end_is_traced_by_its_walk() {
 /// and benchmarked with no code but its algorithm, and a mutation of a
 /// walk shows in its trace.
 mod recordings {
+    use super::{triangle_text, triangle_trace};
     use rasterlab::check::{check, Builtin, CheckOptions, Property, Verdict};
-    use rasterlab::measure::workload;
-    use rasterlab::raster::descriptor::{CostClass, Role};
+    use rasterlab::geometry::Scene2D;
+    use rasterlab::measure::sized;
     use rasterlab::raster::triangle::bbox::BoundingBox;
     use rasterlab::raster::triangle::{
         emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver,
     };
-    use rasterlab::teaching::trace::{of_triangle_backend, triangle_trace};
-    use rasterlab::{
-        FillRule, FragmentSink, PixelRect, RenderTarget, Scene2D, TriangleSetup, WorkCounters,
+    use rasterlab::raster::{
+        CostClass, FillRule, FragmentSink, PixelRect, RenderTarget, Role, TriangleSetup,
+        WorkCounters,
     };
 
     /// The bounding box walked column by column, right to left: a walk no
@@ -450,13 +480,13 @@ mod recordings {
         // Drawn: the depth-buffer example, as every back-end draws it.
         let scene = Scene2D::depth_example(true);
         let rule = FillRule::TopLeft;
-        let flat = &rasterlab::raster::shader::Flat;
+        let flat = &rasterlab::raster::Flat;
         let mine = scene.render(&Columns, rule, flat).unwrap().0;
         let bbox = scene.render(&BoundingBox, rule, flat).unwrap().0;
         assert!(mine == bbox, "the images differ");
         // Traced: its own steps, in its own order (the rightmost column
         // first), the verdicts of the bounding-box loop.
-        let text = of_triangle_backend(&Columns, TRIANGLE, rule, 6, 4).unwrap();
+        let text = triangle_text(&Columns, TRIANGLE, rule, 6, 4).unwrap();
         let rows: Vec<&str> = text.lines().collect();
         assert!(rows[0].starts_with("columns, top-left rule"), "{text}");
         assert!(rows[1].starts_with("walk: the bounding box, column by column"));
@@ -482,7 +512,7 @@ mod recordings {
         let verdict = check(&options, &mut Builtin::triangles(&Columns, rule)).unwrap();
         assert!(matches!(verdict, Verdict::Pass { cases: 100 }));
         // Benchmarked: a workload runs it as it runs the built-in ones.
-        let work = workload::sized(128, 128, 16.0);
+        let work = sized(128, 128, 16.0);
         assert!(work.suits(&Columns));
         let mut target = RenderTarget::new(128, 128).unwrap();
         let fragments = work.run(&Columns, &mut target);
@@ -493,7 +523,7 @@ mod recordings {
     fn a_mutation_in_a_walk_changes_its_trace() {
         let rule = FillRule::TopLeft;
         let bbox = triangle_trace("bbox", TRIANGLE, rule, 6, 4).unwrap();
-        let mutant = of_triangle_backend(&ShortRows, TRIANGLE, rule, 6, 4).unwrap();
+        let mutant = triangle_text(&ShortRows, TRIANGLE, rule, 6, 4).unwrap();
         assert_ne!(mutant, bbox);
         // Column 4 is no longer tested: 16 pixels, the same 9 fragments.
         assert!(
@@ -510,16 +540,14 @@ mod recordings {
 /// as JSON.
 #[test]
 fn every_row_carries_the_pixels_it_is_about() {
-    use rasterlab::teaching::trace::{of_line, of_line_backend, of_triangle, of_triangle_backend};
-    use rasterlab::{line_backend, triangle_backend};
     let vertices = [(1.5, 1.25), (13.75, 4.5), (4.25, 13.5)];
     let rule = FillRule::TopLeft;
     for name in ["naive", "bbox", "incremental"] {
         let b = triangle_backend(name).unwrap();
-        let trace = of_triangle(b, vertices, rule, 16, 16).unwrap();
+        let trace = trace_triangle(b, vertices, rule, 16, 16).unwrap();
         assert_eq!(
             trace.to_text(),
-            of_triangle_backend(b, vertices, rule, 16, 16).unwrap()
+            triangle_text(b, vertices, rule, 16, 16).unwrap()
         );
         let tested: usize = trace.footer[0].split(' ').next().unwrap().parse().unwrap();
         assert_eq!(trace.rows.len(), tested, "{name}");
@@ -530,7 +558,7 @@ fn every_row_carries_the_pixels_it_is_about() {
         }
     }
     // Scanline: a row of the table is a row of pixels, the grid's width.
-    let trace = of_triangle(
+    let trace = trace_triangle(
         triangle_backend("scanline").unwrap(),
         vertices,
         rule,
@@ -545,8 +573,8 @@ fn every_row_carries_the_pixels_it_is_about() {
     // Bresenham: each column's pixel.
     let ends = LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap();
     let b = line_backend("bresenham").unwrap();
-    let trace = of_line(b, &ends).unwrap();
-    assert_eq!(trace.to_text(), of_line_backend(b, &ends).unwrap());
+    let trace = trace_line(b, &ends).unwrap();
+    assert_eq!(trace.to_text(), line_text(b, &ends).unwrap());
     for row in &trace.rows {
         let (x, y) = row.cells[2].split_once(',').unwrap();
         let (x, y): (i64, i64) = (x.parse().unwrap(), y.parse().unwrap());

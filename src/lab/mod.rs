@@ -15,13 +15,14 @@
 //! overlap is what the depth test resolves, not a fill-rule error, so
 //! instead of a heat map the answer has a [`DepthView`] (per pixel the
 //! depth stored, whose fragment was kept, how many were hidden) and the
-//! trace is the depth buffer's ([`trace::depth_buffer`], every
+//! trace is the depth buffer's ([`trace_depth_buffer`](crate::teaching::trace_depth_buffer), every
 //! triangle in turn), as `rasterlab explain --backend depth-buffer`
 //! prints it.
 //!
-//! The page draws with the one palette ([`crate::teaching::palette`]):
-//! [`page`] writes its colours, labels and legend style in, and the page
-//! shows a legend of everything it draws.
+//! The page draws with the one palette ([`crate::teaching::Role`]):
+//! [`page`] writes its colours, the triangles' line patterns and the
+//! legend style in, and each answer carries its legend
+//! ([`LabResponse::legend`]), which the page shows under the grid.
 //!
 //! Requests are input like any other: [`LabRequest::parse`] refuses a
 //! malformed, oversized or out-of-range request with a message (the server
@@ -29,7 +30,7 @@
 //! [`MAX_PRIMITIVES`].
 //!
 //! ```
-//! use rasterlab::lab::{LabRequest, answer};
+//! use rasterlab::lab::{answer, LabRequest};
 //! let request = LabRequest::parse(r#"{"width": 8, "height": 8, "kind": "triangles",
 //!     "triangles": [[[0.5, 0.5], [6.5, 1.5], [2.5, 6.5]]], "backends": ["bbox", "scanline"]}"#).unwrap();
 //! let response = answer(&request, None).unwrap();
@@ -42,16 +43,17 @@ use crate::check::judge::{cover, Cover};
 use crate::check::{Case, Program, Subject};
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
-use crate::raster::backend::{backend, line_backends, triangle_backends, Backend};
 use crate::raster::edge::{FillRule, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::line::LineOptions;
+use crate::raster::registry::{backend, line_backends, triangle_backends, Backend};
 use crate::teaching::explain::DEPTH_BUFFER;
 use crate::teaching::grid_picture::{
     is_fragment_green, DepthCells, GridPicture, INSIDE, TESTED_OUTSIDE,
 };
-use crate::teaching::palette;
-use crate::teaching::trace::{self, LineEnds, Trace};
+use crate::teaching::palette::{self, triangle_name, Legend, Mark, Role, MAX_TRIANGLES};
+use crate::teaching::trace::{self, LineEnds};
+use crate::teaching::trace_table::Trace;
 use serde::{Deserialize, Serialize};
 
 /// The page the lab serves, before [`page`] writes the registry's
@@ -78,7 +80,9 @@ pub fn page() -> String {
 }
 
 #[cfg(feature = "lab")]
-pub mod server;
+mod server;
+#[cfg(feature = "lab")]
+pub use server::LabServer;
 
 /// The largest grid side a request may ask for.
 pub const MAX_GRID: u32 = 128;
@@ -245,7 +249,7 @@ pub struct StudentView {
     /// An error running it, if any.
     pub error: Option<String>,
     /// The cause of its wrong pixels on this case, where the catalogue
-    /// has one that explains them all ([`crate::check::cause`]), or that
+    /// has one that explains them all ([`crate::check::Cause`]), or that
     /// none does.
     pub cause: Option<String>,
 }
@@ -319,6 +323,12 @@ pub struct LabResponse {
     pub depth: Option<DepthView>,
     /// The student's program, when asked for and available.
     pub student: Option<StudentView>,
+    /// What the answer draws: every (colour, mark) pair with its meaning
+    /// (the page leaves out the entries of layers it hides: the heat map
+    /// when switched off, pixel centres on cells too small to dot).
+    pub legend: Legend,
+    /// The same legend as HTML ([`Legend::to_html`]), as the page shows it.
+    pub legend_html: String,
 }
 
 /// Answers one request with the real back-ends (and `program`, when the
@@ -367,10 +377,12 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         .or_else(|| scene.as_ref().map(|_| DEPTH_BUFFER.to_string()))
         .or_else(|| request.backends.first().cloned())
         .unwrap_or_default();
-    let drawing = crate::raster::backend::default_triangle_backend();
+    let drawing = crate::raster::registry::default_triangle_backend();
     let trace = match &scene {
         _ if trace_backend.is_empty() => Ok(Trace::default()),
-        Some(scene) if trace_backend == DEPTH_BUFFER => trace::depth_buffer(scene, drawing, rule),
+        Some(scene) if trace_backend == DEPTH_BUFFER => {
+            trace::trace_depth_buffer(scene, drawing, rule)
+        }
         _ => trace_of(request, &trace_backend, rule),
     }
     .unwrap_or_else(|e| Trace::saying(e.to_string()));
@@ -390,6 +402,12 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         (true, Some(program)) => Some(student_view(request, rule, program)),
         _ => None,
     };
+    let legend = legend(
+        request,
+        (&gaps, &doubles),
+        depth.as_ref(),
+        student.is_some(),
+    );
     Ok(LabResponse {
         backends: views,
         trace,
@@ -398,7 +416,62 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         doubles,
         depth,
         student,
+        legend_html: legend.to_html(),
+        legend,
     })
+}
+
+/// The legend of an answer: what the page draws for it, in the one
+/// palette's pairs: the heat map's states that occur, and in the depth
+/// view the back-ends' fragments and tests too, which the page shows
+/// side by side.
+fn legend(
+    request: &LabRequest,
+    (gaps, doubles): (&[[i64; 2]], &[[i64; 3]]),
+    depth: Option<&DepthView>,
+    student: bool,
+) -> Legend {
+    let triangles = if request.kind == "triangles" {
+        request.triangles.len()
+    } else {
+        0
+    };
+    let names = |i: usize| match depth {
+        Some(_) => format!("{} (z = {})", triangle_name(i), request.depths[i]),
+        None => triangle_name(i),
+    };
+    let mut legend = if depth.is_some() {
+        Legend::new(&[Role::Kept, Role::Hidden])
+    } else if triangles > 0 {
+        Legend::new(&[Role::Drawn, Role::TestedOutside])
+    } else {
+        Legend::new(&[Role::Drawn])
+    };
+    if depth.is_some() {
+        legend = legend.with(Role::Drawn).with(Role::TestedOutside);
+    }
+    for (role, occurs) in [
+        (Role::Gap, !gaps.is_empty()),
+        (Role::DoubleDraw, doubles.iter().any(|d| d[2] == 2)),
+        (Role::DrawnTwiceMore, doubles.iter().any(|d| d[2] > 2)),
+    ] {
+        if occurs {
+            legend = legend.with(role);
+        }
+    }
+    legend = if (2..=MAX_TRIANGLES).contains(&triangles) {
+        legend.with_triangles(&(0..triangles).map(names).collect::<Vec<_>>())
+    } else {
+        legend.with(Role::Geometry)
+    };
+    legend = legend.with(Role::PixelCentre);
+    if student {
+        let mine = |role: Role, how: &str| format!("my rasterizer: {} ({how})", role.label());
+        legend = legend
+            .with_mark(Role::Missing, Mark::Frame, &mine(Role::Missing, "outlined"))
+            .with_mark(Role::Extra, Mark::Cross, &mine(Role::Extra, "crossed"));
+    }
+    legend
 }
 
 /// The tested and drawn cells of a grid picture.
@@ -426,13 +499,13 @@ fn view(name: &str, picture: &GridPicture) -> BackendView {
 /// The trace `rasterlab explain` prints for the first primitive.
 fn trace_of(request: &LabRequest, backend: &str, rule: FillRule) -> Result<Trace> {
     let (w, h) = (request.width, request.height);
-    match crate::raster::backend::backend(backend)? {
+    match crate::raster::registry::backend(backend)? {
         Backend::Line(b) => {
             let Some(l) = request.lines.first().filter(|_| request.kind == "lines") else {
                 return Ok(Trace::default());
             };
             let ends = LineEnds::screen([l[0][0], l[0][1], l[1][0], l[1][1]])?;
-            trace::of_line(b, &ends)
+            trace::trace_line(b, &ends)
         }
         Backend::Triangle(b) => {
             let Some(t) = request
@@ -442,7 +515,7 @@ fn trace_of(request: &LabRequest, backend: &str, rule: FillRule) -> Result<Trace
             else {
                 return Ok(Trace::default());
             };
-            trace::of_triangle(b, t.map(|p| (p[0], p[1])), rule, w, h)
+            trace::trace_triangle(b, t.map(|p| (p[0], p[1])), rule, w, h)
         }
     }
 }
@@ -582,7 +655,7 @@ mod tests {
     fn the_page_lists_every_back_end_of_the_registry() {
         let page = super::page();
         assert!(!page.contains("/*TRIANGLE_BACKENDS*/") && !page.contains("/*LINE_BACKENDS*/"));
-        for name in crate::raster::backend::all_backends()
+        for name in crate::raster::registry::all_backends()
             .iter()
             .map(|b| b.name)
         {

@@ -2,7 +2,7 @@
 //! report (see [`Report`]) and a table of their work and time.
 //!
 //! ```no_run
-//! use rasterlab::teaching::compare::{compare, CompareRequest};
+//! use rasterlab::teaching::{compare, CompareRequest};
 //! use std::path::Path;
 //!
 //! let summary = compare(&CompareRequest {
@@ -53,12 +53,12 @@ pub struct CompareSummary {
 /// fragments); for 2D triangles and lines, given in pixels, 64 x 64.
 ///
 /// ```
-/// use rasterlab::teaching::compare::default_size;
+/// use rasterlab::teaching::default_compare_size;
 /// use std::path::Path;
-/// assert_eq!(default_size(Path::new("dragon.ply.gz")), (320, 240));
-/// assert_eq!(default_size(Path::new("assets/polygon.txt")), (64, 64));
+/// assert_eq!(default_compare_size(Path::new("dragon.ply.gz")), (320, 240));
+/// assert_eq!(default_compare_size(Path::new("assets/polygon.txt")), (64, 64));
 /// ```
-pub fn default_size(input: &Path) -> (u32, u32) {
+pub fn default_compare_size(input: &Path) -> (u32, u32) {
     if Mesh::is_mesh_path(input) {
         (320, 240)
     } else {

@@ -5,10 +5,10 @@
 //! is compared, buffer for buffer, with the reference's.
 //!
 //! ```no_run
-//! use rasterlab::teaching::demo;
+//! use rasterlab::teaching::{bundled_assets, run_demo};
 //! use std::path::Path;
 //!
-//! let report = demo::run(Path::new("demo-output"), &demo::bundled_assets()).unwrap();
+//! let report = run_demo(Path::new("demo-output"), &bundled_assets()).unwrap();
 //! print!("{report}");
 //! assert!(report.all_identical());
 //! ```
@@ -18,8 +18,8 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::{CullMode, PipelineOptions};
 use crate::geometry::render::{MeshRenderer, RenderSettings};
 use crate::geometry::scene::Scene2D;
-use crate::raster::backend::triangle_backends;
 use crate::raster::edge::FillRule;
+use crate::raster::registry::triangle_backends;
 use crate::raster::shader::Flat;
 use crate::raster::target::RenderTarget;
 use serde::Serialize;
@@ -74,7 +74,7 @@ impl DemoReport {
 /// Draws every bundled scene and mesh (meshes read from `assets`) with
 /// every triangle back-end, compares each with the first (the reference)
 /// and writes the reference's pictures in `out`, one PNG per scene.
-pub fn run(out: &Path, assets: &Path) -> Result<DemoReport> {
+pub fn run_demo(out: &Path, assets: &Path) -> Result<DemoReport> {
     crate::output::check_dir(out)?;
     let mut rows = Vec::new();
     for name in Scene2D::BUILT_IN {

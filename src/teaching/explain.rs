@@ -6,7 +6,7 @@
 //! depth-buffer example.
 //!
 //! ```
-//! use rasterlab::teaching::explain::{explain, ExplainRequest};
+//! use rasterlab::teaching::{explain, ExplainRequest};
 //!
 //! let request = ExplainRequest::new("bresenham", vec![0.0, 0.0, 7.0, 3.0]);
 //! let explanation = explain(&request).unwrap();
@@ -15,9 +15,9 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
-use crate::raster::backend::{all_backends, backend, triangle_backend, Backend};
 use crate::raster::edge::FillRule;
 use crate::raster::line::LineOptions;
+use crate::raster::registry::{all_backends, backend, triangle_backend, Backend};
 use crate::raster::target::RenderTarget;
 use crate::teaching::grid_picture::GridPicture;
 use crate::teaching::trace::{self, LineEnds};
@@ -122,7 +122,7 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     let rule = request.rule;
     if request.backend == DEPTH_BUFFER {
         let scene = request.depth_scene()?;
-        let text = trace::depth_buffer_trace(&scene, triangle_backend("bbox")?, rule)?;
+        let text = trace::trace_depth_buffer(&scene, triangle_backend("bbox")?, rule)?.to_text();
         let picture = request
             .picture
             .then(|| GridPicture::depth_buffer(&scene, rule))
@@ -143,7 +143,7 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     let (text, picture) = match chosen {
         Backend::Triangle(b) => {
             let triangle = request.triangle()?;
-            let text = trace::of_triangle_backend(b, triangle, rule, width, height)?;
+            let text = trace::trace_triangle(b, triangle, rule, width, height)?.to_text();
             let picture = request
                 .picture
                 .then(|| GridPicture::of_triangles(b, &[triangle], rule, width, height))
@@ -152,7 +152,7 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
         }
         Backend::Line(b) => {
             let line = request.line()?;
-            let text = trace::of_line_backend(b, &line)?;
+            let text = trace::trace_line(b, &line)?.to_text();
             let picture = request
                 .picture
                 .then(|| GridPicture::of_lines(b, &[line], &LineOptions::DEFAULT, width, height))

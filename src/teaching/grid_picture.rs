@@ -23,9 +23,11 @@
 //! each pixel's fragment count against a watertight reference, so that
 //! the inclusive rule's double draws (vermillion) and the exclusive rule's
 //! gaps (orange) on shared edges stand out. [`GridPicture::depth_buffer`]
-//! draws the depth buffer: each pixel in the colour of the triangle whose
-//! fragment the depth test kept, labelled with the stored depth, and
-//! marked where a farther fragment was hidden.
+//! draws the depth buffer: each pixel where the depth test kept a
+//! fragment filled, labelled with the stored depth, and marked where a
+//! farther fragment was hidden; the triangles are told apart by their
+//! edges, each in its colour and line pattern and named `T1`, `T2`, ...
+//! (the palette's identities, never its states).
 //!
 //! Every picture carries its legend, pixel indices on its axes and a
 //! caption. Pictures are written as SVG (sharp at any zoom) or PNG (the
@@ -34,9 +36,8 @@
 //! [`MIN_SHORT_SIDE`] pixels.
 //!
 //! ```
-//! use rasterlab::raster::backend::triangle_backend;
-//! use rasterlab::raster::edge::FillRule;
-//! use rasterlab::teaching::grid_picture::GridPicture;
+//! use rasterlab::raster::{triangle_backend, FillRule};
+//! use rasterlab::teaching::GridPicture;
 //!
 //! let bbox = triangle_backend("bbox").unwrap();
 //! let triangle = [(1.0, 1.0), (9.0, 2.0), (3.0, 7.0)];
@@ -49,6 +50,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::scene::{setup_triangles, Scene2D};
+use crate::markup::Markup;
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fixed::FixedPoint;
 use crate::raster::fragment::{FragmentList, FragmentSink, LineFragment, TriangleFragment};
@@ -57,9 +59,9 @@ use crate::raster::shader::Flat;
 use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use crate::raster::triangle::{BlockClass, WalkStep};
-pub(crate) use crate::teaching::palette::escape;
-use crate::teaching::palette::{faded, hex, triangle_colour, Legend, Role};
-use std::fmt::Write;
+use crate::teaching::palette::{
+    colour_hex, triangle_colour, triangle_mark, triangle_name, Legend, Mark, Role, MAX_TRIANGLES,
+};
 use std::path::Path;
 
 /// A cell no back-end looked at ([`Role::Untested`]).
@@ -279,12 +281,12 @@ impl GridPicture {
                 _ => None,
             })
         }));
-        picture.legend = Legend::new(&[
-            Role::Drawn,
-            Role::TestedOutside,
-            Role::Untested,
-            Role::Geometry,
-        ]);
+        let names: Vec<String> = (0..triangles.len()).map(triangle_name).collect();
+        picture.legend = with_edges(
+            Legend::new(&[Role::Drawn, Role::TestedOutside, Role::Untested]),
+            &names,
+        )
+        .with(Role::PixelCentre);
         if !picture.blocks.is_empty() {
             picture.legend = picture
                 .legend
@@ -334,16 +336,22 @@ impl GridPicture {
             .iter()
             .map(|s| [s.from.to_f64(), s.to.to_f64()])
             .collect();
-        picture.legend = Legend::new(&[Role::Drawn, Role::Untested, Role::Geometry]);
+        picture.legend = Legend::new(&[
+            Role::Drawn,
+            Role::Untested,
+            Role::Geometry,
+            Role::PixelCentre,
+        ]);
         Ok(picture)
     }
 
     /// The rasterization slides' depth buffer after the whole scene: each
-    /// cell in the colour of the triangle whose fragment the depth test
-    /// kept, labelled with its depth (1.0 where nothing was drawn), and
-    /// marked where a farther fragment was hidden.
+    /// cell where the depth test kept a fragment filled ([`Role::Kept`]),
+    /// every cell labelled with its depth (1.0 where nothing was drawn),
+    /// marked where a farther fragment was hidden, and the triangles'
+    /// edges named `T1`, `T2`, ... in their colours and line patterns.
     pub fn depth_buffer(scene: &Scene2D, rule: FillRule) -> Result<GridPicture> {
-        let bbox = crate::raster::backend::triangle_backend("bbox")?;
+        let bbox = crate::raster::registry::triangle_backend("bbox")?;
         let cells = DepthCells::of_scene(scene, bbox, rule)?;
         let hidden: usize = cells.hidden.iter().map(Vec::len).sum();
         let kept: usize = cells.kept.iter().map(Vec::len).sum();
@@ -357,8 +365,8 @@ impl GridPicture {
         );
         picture.labels = cells.depth.iter().map(|z| format!("{z:.1}")).collect();
         for (i, kept) in cells.kept.iter().enumerate() {
-            if let Some(&t) = kept.last() {
-                picture.cells[i] = faded(triangle_colour(t as usize), 0.55);
+            if !kept.is_empty() {
+                picture.cells[i] = Role::Kept.rgb();
             }
             if !cells.hidden[i].is_empty() {
                 let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
@@ -370,9 +378,10 @@ impl GridPicture {
             .vertices
             .iter()
             .enumerate()
-            .map(|(i, v)| format!("triangle {} (z = {})", i + 1, v[0].depth))
+            .map(|(i, v)| format!("{} (z = {})", triangle_name(i), v[0].depth))
             .collect();
-        picture.legend = Legend::default().with_triangles(&labels).with(Role::Hidden);
+        picture.legend =
+            with_edges(Legend::new(&[Role::Kept, Role::Hidden]), &labels).with(Role::PixelCentre);
         Ok(picture)
     }
 
@@ -399,12 +408,6 @@ impl GridPicture {
             )));
         }
         let mut picture = Self::blank(width, height, caption);
-        picture.legend = Legend::new(&[
-            Role::AsReference,
-            Role::Gap,
-            Role::DoubleDraw,
-            Role::DrawnTwiceMore,
-        ]);
         for (i, &c) in coverage.iter().enumerate() {
             let lo = watertight.iter().map(|w| w[i]).min().unwrap_or(0);
             let hi = watertight.iter().map(|w| w[i]).max().unwrap_or(0);
@@ -420,6 +423,19 @@ impl GridPicture {
                 AS_REFERENCE
             };
         }
+        // The states that occur, and the pixel centres.
+        let roles = [
+            Role::AsReference,
+            Role::Gap,
+            Role::DoubleDraw,
+            Role::DrawnTwiceMore,
+        ];
+        let shown: Vec<Role> = roles
+            .into_iter()
+            .filter(|r| picture.cells.contains(&r.rgb()))
+            .chain([Role::PixelCentre])
+            .collect();
+        picture.legend = Legend::new(&shown);
         Ok(picture)
     }
 
@@ -472,8 +488,14 @@ impl GridPicture {
         let caption_height = if framed { 26.0 } else { 0.0 };
         let top = caption_height + 18.0;
         let legend_width = (w + left).max(420.0) - 8.0;
+        let dots = s >= 12.0;
         let (legend, legend_height) = if framed {
-            self.legend.to_svg(4.0, top + h + 8.0, legend_width)
+            // Pixel centres are dotted only where the cells are large enough.
+            let mut legend = self.legend.clone();
+            legend
+                .entries
+                .retain(|e| dots || e.key != Role::PixelCentre.key());
+            legend.to_svg(4.0, top + h + 8.0, legend_width)
         } else {
             (String::new(), 0.0)
         };
@@ -485,77 +507,133 @@ impl GridPicture {
         };
         let width = (left + w + 8.0).max(legend_width + 8.0).max(caption_width);
         let height = top + h + 8.0 + legend_height;
-        let mut out = String::new();
-        let _ = writeln!(
-            out,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="DejaVu Sans, sans-serif">"#,
-        );
-        let _ = writeln!(out, "<title>{}</title>", escape(&self.caption));
-        let _ = writeln!(out, r#"<path d="M0 0H{width}V{height}H0Z" fill="white"/>"#);
+        let mut m = Markup::new();
+        m.open(
+            "svg",
+            &[
+                ("xmlns", &"http://www.w3.org/2000/svg"),
+                ("width", &width),
+                ("height", &height),
+                ("viewBox", &format_args!("0 0 {width} {height}")),
+                ("font-family", &"DejaVu Sans, sans-serif"),
+            ],
+        )
+        .newline();
+        m.element("title", &[], &self.caption).newline();
+        m.empty(
+            "path",
+            &[
+                ("d", &format_args!("M0 0H{width}V{height}H0Z")),
+                ("fill", &"white"),
+            ],
+        )
+        .newline();
         if framed {
-            let _ = writeln!(
-                out,
-                r#"<text class="caption" x="4" y="18" font-size="15">{}</text>"#,
-                escape(&self.caption)
-            );
+            m.element(
+                "text",
+                &[
+                    ("class", &"caption"),
+                    ("x", &4),
+                    ("y", &18),
+                    ("font-size", &15),
+                ],
+                &self.caption,
+            )
+            .newline();
         }
         // Pixel indices: every one while they fit, else every 2nd, 5th, 10th ...
         let step = [1u32, 2, 5, 10, 20, 50, 100, 200, 500, 1000]
             .into_iter()
             .find(|&k| f64::from(k) * s >= 7.0 * digits + 4.0)
             .unwrap_or(1000);
-        let _ = write!(out, r##"<g class="axes" font-size="11" fill="#444">"##);
+        m.open(
+            "g",
+            &[("class", &"axes"), ("font-size", &11), ("fill", &"#444")],
+        );
         for x in (0..self.width).step_by(step as usize) {
-            let _ = write!(
-                out,
-                r#"<text x="{}" y="{}" text-anchor="middle">{x}</text>"#,
-                left + (f64::from(x) + 0.5) * s,
-                top - 5.0
+            m.element(
+                "text",
+                &[
+                    ("x", &(left + (f64::from(x) + 0.5) * s)),
+                    ("y", &(top - 5.0)),
+                    ("text-anchor", &"middle"),
+                ],
+                &x.to_string(),
             );
         }
         for y in (0..self.height).step_by(step as usize) {
-            let _ = write!(
-                out,
-                r#"<text x="{}" y="{}" text-anchor="end">{y}</text>"#,
-                left - 4.0,
-                top + (f64::from(y) + 0.5) * s + 4.0
+            m.element(
+                "text",
+                &[
+                    ("x", &(left - 4.0)),
+                    ("y", &(top + (f64::from(y) + 0.5) * s + 4.0)),
+                    ("text-anchor", &"end"),
+                ],
+                &y.to_string(),
             );
         }
-        out.push_str("</g>\n");
-        let _ = writeln!(
-            out,
-            r#"<g transform="translate({left} {top})"><clipPath id="grid-view"><path d="M0 0H{w}V{h}H0Z"/></clipPath>"#
+        m.close("g").newline();
+        m.open(
+            "g",
+            &[("transform", &format_args!("translate({left} {top})"))],
         );
-        let dots = s >= 12.0;
-        let label_size = (s / 2.9).min(13.0);
+        m.open("clipPath", &[("id", &"grid-view")])
+            .empty("path", &[("d", &format_args!("M0 0H{w}V{h}H0Z"))])
+            .close("clipPath")
+            .newline();
+        let label_size = format!("{:.1}", (s / 2.9).min(13.0));
+        let centre_colour = Role::PixelCentre.hex();
         for y in 0..self.height {
             for x in 0..self.width {
                 let i = (y * self.width + x) as usize;
-                let _ = writeln!(
-                    out,
-                    r##"<rect x="{}" y="{}" width="{s}" height="{s}" fill="{}" stroke="#9a9a9a" stroke-width="1"/>"##,
-                    f64::from(x) * s,
-                    f64::from(y) * s,
-                    hex(self.cells[i])
-                );
+                m.empty(
+                    "rect",
+                    &[
+                        ("x", &(f64::from(x) * s)),
+                        ("y", &(f64::from(y) * s)),
+                        ("width", &s),
+                        ("height", &s),
+                        ("fill", &colour_hex(self.cells[i])),
+                        ("stroke", &"#9a9a9a"),
+                        ("stroke-width", &1),
+                    ],
+                )
+                .newline();
                 let (cx, cy) = ((f64::from(x) + 0.5) * s, (f64::from(y) + 0.5) * s);
                 let label = self.labels.get(i).filter(|l| !l.is_empty());
                 if let Some(label) = label.filter(|_| s >= 20.0) {
                     // Below the centre, so the sample point stays visible.
-                    let _ = writeln!(
-                        out,
-                        r##"<text x="{cx}" y="{}" font-size="{label_size:.1}" text-anchor="middle">{}</text><circle cx="{cx}" cy="{}" r="1.8" fill="{}"/>"##,
-                        cy + s * 0.34,
-                        escape(label),
-                        cy - s * 0.12,
-                        Role::PixelCentre.hex()
+                    m.element(
+                        "text",
+                        &[
+                            ("x", &cx),
+                            ("y", &(cy + s * 0.34)),
+                            ("font-size", &label_size),
+                            ("text-anchor", &"middle"),
+                        ],
+                        label,
                     );
+                    m.empty(
+                        "circle",
+                        &[
+                            ("cx", &cx),
+                            ("cy", &(cy - s * 0.12)),
+                            ("r", &1.8),
+                            ("fill", &centre_colour),
+                        ],
+                    )
+                    .newline();
                 } else if dots {
-                    let _ = writeln!(
-                        out,
-                        r#"<circle cx="{cx}" cy="{cy}" r="2.2" fill="{}"/>"#,
-                        Role::PixelCentre.hex()
-                    );
+                    m.empty(
+                        "circle",
+                        &[
+                            ("cx", &cx),
+                            ("cy", &cy),
+                            ("r", &2.2),
+                            ("fill", &centre_colour),
+                        ],
+                    )
+                    .newline();
                 }
             }
         }
@@ -563,80 +641,144 @@ impl GridPicture {
             // A grey corner: a fragment hidden here, with how many.
             let (x0, y0) = (f64::from(x) * s, f64::from(y) * s);
             let k = s * 0.42;
-            let _ = writeln!(
-                out,
-                r#"<path class="hidden" d="M{} {y0}h{k}v{k}Z" fill="{}"/><text x="{}" y="{}" font-size="{:.1}" text-anchor="end" fill="white">{n}</text>"#,
-                x0 + s - k,
-                Role::Hidden.hex(),
-                x0 + s - 2.0,
-                y0 + k * 0.55,
-                k * 0.55
+            m.empty(
+                "path",
+                &[
+                    ("class", &"hidden"),
+                    ("d", &format_args!("M{} {y0}h{k}v{k}Z", x0 + s - k)),
+                    ("fill", &Role::Hidden.hex()),
+                ],
             );
+            m.element(
+                "text",
+                &[
+                    ("x", &(x0 + s - 2.0)),
+                    ("y", &(y0 + k * 0.55)),
+                    ("font-size", &format_args!("{:.1}", k * 0.55)),
+                    ("text-anchor", &"end"),
+                    ("fill", &"white"),
+                ],
+                &n.to_string(),
+            )
+            .newline();
         }
-        out.push_str("<g clip-path=\"url(#grid-view)\">\n");
-        let several = self.outlines.len() > 1;
+        m.open("g", &[("clip-path", &"url(#grid-view)")]).newline();
         for (t, outline) in self.outlines.iter().enumerate() {
-            let colour = if several {
-                hex(triangle_colour(t))
-            } else {
-                Role::Geometry.hex()
-            };
+            let (colour, mark) = self.edge_style(t);
             let points: Vec<String> = outline
                 .iter()
                 .map(|(x, y)| format!("{},{}", x * s, y * s))
                 .collect();
-            let _ = writeln!(
-                out,
-                r#"<polygon class="outline" points="{}" fill="none" stroke="{colour}" stroke-width="2.5"/>"#,
-                points.join(" ")
-            );
+            m.empty(
+                "polygon",
+                &[
+                    ("class", &"outline"),
+                    ("data-mark", &mark),
+                    ("points", &points.join(" ")),
+                    ("fill", &"none"),
+                    ("stroke", &colour_hex(colour)),
+                    ("stroke-width", &2.5),
+                    ("stroke-dasharray", &mark.dasharray().unwrap_or("none")),
+                ],
+            )
+            .newline();
         }
         for (r, class) in &self.blocks {
             let (role, letter) = block_style(*class);
             let colour = role.hex();
             let (x, y) = (r.x0 as f64 * s, r.y0 as f64 * s);
-            let _ = writeln!(
-                out,
-                r#"<rect class="block" x="{}" y="{}" width="{}" height="{}" fill="none" stroke="{colour}" stroke-width="3" stroke-dasharray="6 3"/><text x="{}" y="{}" font-size="12" font-weight="bold" fill="{colour}">{letter}</text>"#,
-                x + 2.5,
-                y + 2.5,
-                (r.x1 - r.x0 + 1) as f64 * s - 5.0,
-                (r.y1 - r.y0 + 1) as f64 * s - 5.0,
-                x + 5.0,
-                y + 15.0
+            m.empty(
+                "rect",
+                &[
+                    ("class", &"block"),
+                    ("x", &(x + 2.5)),
+                    ("y", &(y + 2.5)),
+                    ("width", &((r.x1 - r.x0 + 1) as f64 * s - 5.0)),
+                    ("height", &((r.y1 - r.y0 + 1) as f64 * s - 5.0)),
+                    ("fill", &"none"),
+                    ("stroke", &colour),
+                    ("stroke-width", &3),
+                    (
+                        "stroke-dasharray",
+                        &Mark::Block.dasharray().unwrap_or("none"),
+                    ),
+                ],
             );
+            m.element(
+                "text",
+                &[
+                    ("x", &(x + 5.0)),
+                    ("y", &(y + 15.0)),
+                    ("font-size", &12),
+                    ("font-weight", &"bold"),
+                    ("fill", &colour),
+                ],
+                &letter.to_string(),
+            )
+            .newline();
         }
         for [(x0, y0), (x1, y1)] in &self.segments {
-            let _ = writeln!(
-                out,
-                r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="2.5"/>"#,
-                x0 * s,
-                y0 * s,
-                x1 * s,
-                y1 * s,
-                Role::Geometry.hex()
-            );
+            m.empty(
+                "line",
+                &[
+                    ("x1", &(x0 * s)),
+                    ("y1", &(y0 * s)),
+                    ("x2", &(x1 * s)),
+                    ("y2", &(y1 * s)),
+                    ("stroke", &Role::Geometry.hex()),
+                    ("stroke-width", &2.5),
+                ],
+            )
+            .newline();
         }
-        out.push_str("</g>\n");
-        self.geometry_labels(&mut out, s, w, h);
-        out.push_str("</g>\n");
-        out.push_str(&legend);
-        out.push_str("</svg>\n");
-        out
+        m.close("g").newline();
+        self.geometry_labels(&mut m, s, w, h);
+        m.close("g").newline();
+        m.raw(&legend);
+        m.close("svg").newline();
+        m.finish()
     }
 
     /// The names the traces use, on a picture of one triangle: its
     /// vertices `v0`-`v2` and edges `E0`-`E2` (`Ek` opposite `vk`).
-    /// Several triangles are told apart by their colours instead.
-    fn geometry_labels(&self, out: &mut String, s: f64, w: f64, h: f64) {
-        let label = |out: &mut String, (x, y): (f64, f64), text: &str, colour: &str| {
+    /// Several triangles are named `T1`, `T2`, ... at their centres
+    /// instead, in their colours (up to [`MAX_TRIANGLES`]).
+    fn geometry_labels(&self, m: &mut Markup, s: f64, w: f64, h: f64) {
+        let label = |m: &mut Markup, (x, y): (f64, f64), text: &str, colour: &str| {
             // Kept inside the grid, on a white halo.
             let (x, y) = (x.clamp(8.0, w - 8.0), y.clamp(12.0, h - 4.0));
-            let _ = writeln!(
-                out,
-                r#"<text class="geometry-label" x="{x:.1}" y="{y:.1}" font-size="14" font-weight="bold" text-anchor="middle" fill="{colour}" stroke="white" stroke-width="3" paint-order="stroke">{text}</text>"#
-            );
+            m.element(
+                "text",
+                &[
+                    ("class", &"geometry-label"),
+                    ("x", &format_args!("{x:.1}")),
+                    ("y", &format_args!("{y:.1}")),
+                    ("font-size", &14),
+                    ("font-weight", &"bold"),
+                    ("text-anchor", &"middle"),
+                    ("fill", &colour),
+                    ("stroke", &"white"),
+                    ("stroke-width", &3),
+                    ("paint-order", &"stroke"),
+                ],
+                text,
+            )
+            .newline();
         };
+        if self.names_triangles() {
+            for (t, outline) in self.outlines.iter().enumerate() {
+                let n = outline.len() as f64;
+                let (x, y) = outline
+                    .iter()
+                    .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+                label(
+                    m,
+                    (x * s, y * s + 5.0),
+                    &triangle_name(t),
+                    &colour_hex(triangle_colour(t)),
+                );
+            }
+        }
         if let [outline] = self.outlines.as_slice() {
             let n = outline.len() as f64;
             let centre = outline
@@ -650,16 +792,21 @@ impl GridPicture {
             let colour = Role::Geometry.hex();
             for (k, &p) in outline.iter().enumerate() {
                 let (x, y) = p;
-                let _ = writeln!(
-                    out,
-                    r#"<circle class="vertex" cx="{}" cy="{}" r="4" fill="{colour}"/>"#,
-                    x * s,
-                    y * s
-                );
-                label(out, away(p, 14.0), &format!("v{k}"), &colour);
+                m.empty(
+                    "circle",
+                    &[
+                        ("class", &"vertex"),
+                        ("cx", &(x * s)),
+                        ("cy", &(y * s)),
+                        ("r", &4),
+                        ("fill", &colour),
+                    ],
+                )
+                .newline();
+                label(m, away(p, 14.0), &format!("v{k}"), &colour);
                 let (a, b) = (outline[(k + 1) % 3], outline[(k + 2) % 3]);
                 let mid = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
-                label(out, away(mid, 13.0), &format!("E{k}"), &colour);
+                label(m, away(mid, 13.0), &format!("E{k}"), &colour);
             }
         }
     }
@@ -688,34 +835,49 @@ impl GridPicture {
             image::Rgb(c)
         });
         let z = zoom as f64;
-        let mut stroke = |(x0, y0): (f64, f64), (x1, y1): (f64, f64), color: [u8; 3]| {
-            let steps = ((x1 - x0).abs().max((y1 - y0).abs()) * z * 2.0)
-                .ceil()
-                .max(1.0) as u32;
-            for i in 0..=steps {
-                let t = i as f64 / steps as f64;
-                let (x, y) = ((x0 + (x1 - x0) * t) * z, (y0 + (y1 - y0) * t) * z);
-                for (dx, dy) in [(0.0, 0.0), (-1.0, 0.0), (0.0, -1.0), (-1.0, -1.0)] {
-                    let (px, py) = ((x + dx).round(), (y + dy).round());
-                    if px >= 0.0 && py >= 0.0 && px < w as f64 && py < h as f64 {
-                        img.put_pixel(px as u32, py as u32, image::Rgb(color));
+        let mut stroke =
+            |(x0, y0): (f64, f64), (x1, y1): (f64, f64), color: [u8; 3], mark: Mark| {
+                let steps = ((x1 - x0).abs().max((y1 - y0).abs()) * z * 2.0)
+                    .ceil()
+                    .max(1.0) as u32;
+                // The dash pattern, in image pixels, as the SVG draws it.
+                let dashes: Vec<f64> = mark
+                    .dasharray()
+                    .map(|d| d.split(' ').filter_map(|v| v.parse().ok()).collect())
+                    .unwrap_or_default();
+                let period: f64 = dashes.iter().sum();
+                let length = (x1 - x0).hypot(y1 - y0) * z;
+                for i in 0..=steps {
+                    let t = i as f64 / steps as f64;
+                    if period > 0.0 {
+                        // In a gap: the odd entries of the pattern.
+                        let mut along = (t * length) % period;
+                        let mut k = 0;
+                        while along >= dashes[k] {
+                            along -= dashes[k];
+                            k += 1;
+                        }
+                        if k % 2 == 1 {
+                            continue;
+                        }
+                    }
+                    let (x, y) = ((x0 + (x1 - x0) * t) * z, (y0 + (y1 - y0) * t) * z);
+                    for (dx, dy) in [(0.0, 0.0), (-1.0, 0.0), (0.0, -1.0), (-1.0, -1.0)] {
+                        let (px, py) = ((x + dx).round(), (y + dy).round());
+                        if px >= 0.0 && py >= 0.0 && px < w as f64 && py < h as f64 {
+                            img.put_pixel(px as u32, py as u32, image::Rgb(color));
+                        }
                     }
                 }
-            }
-        };
-        let several = self.outlines.len() > 1;
-        for (t, outline) in self.outlines.iter().enumerate() {
-            let colour = if several {
-                triangle_colour(t)
-            } else {
-                Role::Geometry.rgb()
             };
+        for (t, outline) in self.outlines.iter().enumerate() {
+            let (colour, mark) = self.edge_style(t);
             for k in 0..outline.len() {
-                stroke(outline[k], outline[(k + 1) % outline.len()], colour);
+                stroke(outline[k], outline[(k + 1) % outline.len()], colour, mark);
             }
         }
         for &[a, b] in &self.segments {
-            stroke(a, b, Role::Geometry.rgb());
+            stroke(a, b, Role::Geometry.rgb(), Mark::Line);
         }
         for (r, class) in &self.blocks {
             let colour = block_style(*class).0.rgb();
@@ -729,10 +891,26 @@ impl GridPicture {
                 ((x1, y1), (x0, y1)),
                 ((x0, y1), (x0, y0)),
             ] {
-                stroke(a, b, colour);
+                stroke(a, b, colour, Mark::Block);
             }
         }
         Ok(img)
+    }
+
+    /// Whether the picture tells its triangles apart (2 to
+    /// [`MAX_TRIANGLES`] of them): each its colour, line pattern and name.
+    fn names_triangles(&self) -> bool {
+        (2..=MAX_TRIANGLES).contains(&self.outlines.len())
+    }
+
+    /// The colour and line pattern of outline `t`: its triangle's when
+    /// the picture tells triangles apart, else the true geometry's.
+    fn edge_style(&self, t: usize) -> ([u8; 3], Mark) {
+        if self.names_triangles() {
+            (triangle_colour(t), triangle_mark(t))
+        } else {
+            (Role::Geometry.rgb(), Role::Geometry.mark())
+        }
     }
 
     /// The file types [`GridPicture::save`] writes.
@@ -787,9 +965,9 @@ pub fn scale_for_people(width: u32, height: u32) -> u32 {
 /// [`MIN_SHORT_SIDE`] pixels.
 ///
 /// ```
-/// use rasterlab::geometry::scene::Scene2D;
-/// use rasterlab::raster::{backend::triangle_backend, edge::FillRule, shader::Flat};
-/// use rasterlab::teaching::grid_picture::{for_people, MIN_SHORT_SIDE};
+/// use rasterlab::geometry::Scene2D;
+/// use rasterlab::raster::{triangle_backend, FillRule, Flat};
+/// use rasterlab::teaching::{for_people, MIN_SHORT_SIDE};
 ///
 /// let scene = Scene2D::split_square();
 /// let (target, _) = scene.render(triangle_backend("bbox")?, FillRule::TopLeft, &Flat)?;
@@ -804,6 +982,17 @@ pub fn for_people(target: &RenderTarget) -> image::RgbaImage {
 /// The largest grid [`GridPicture::to_picture_png`] renders with its
 /// labels and legend (256 x 256 cells).
 pub const MAX_LABELLED_CELLS: u64 = 256 * 256;
+
+/// `legend` and the edges of `labels.len()` triangles: each triangle's
+/// swatch, named by `labels`, when a picture tells them apart (2 to
+/// [`MAX_TRIANGLES`]), else the true geometry's.
+fn with_edges(legend: Legend, labels: &[String]) -> Legend {
+    if (2..=MAX_TRIANGLES).contains(&labels.len()) {
+        legend.with_triangles(labels)
+    } else {
+        legend.with(Role::Geometry)
+    }
+}
 
 /// The frame's role and letter of a block class: inside (trivial accept)
 /// `I`, outside (trivial reject) `O`, partial (tested pixel by pixel) `P`.

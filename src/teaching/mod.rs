@@ -1,27 +1,59 @@
 //! Teaching: what makes each algorithm visible, step by step.
 //!
-//! * [`trace`]: step-by-step traces of every back-end, in the course's
-//!   terms (decision variables, edge values, active edges, blocks);
-//! * [`trace_table`]: a trace as data (header, columns, rows with their
-//!   pixels, totals), printed as text or sent to the lab as JSON;
-//! * [`grid_picture`]: zoomed pictures of the pixel grid and fill-rule
-//!   heat maps;
-//! * [`palette`]: the one colour-blind safe palette every picture, page
-//!   and legend uses, and the legends themselves;
-//! * [`report`]: the side-by-side HTML comparison of every back-end on
-//!   one input (images, differences, work and time);
-//! * [`ascii`]: pixel grids as text, one character a pixel;
-//! * [`compare`]: the `compare` command: an input file, every back-end, the report;
-//! * [`explain`]: one algorithm traced on a small input, as `explain` prints it;
-//! * [`demo`]: every back-end on the bundled scenes and meshes, its
-//!   images compared with the reference's.
+//! * step-by-step traces of every back-end, in the course's terms
+//!   (decision variables, edge values, active edges, blocks):
+//!   [`trace_triangle`], [`trace_line`], [`trace_depth_buffer`], each a
+//!   [`Trace`] (header, columns, rows with their pixels, totals) printed as
+//!   text or sent to the lab as JSON;
+//! * zoomed pictures of the pixel grid and fill-rule heat maps:
+//!   [`GridPicture`];
+//! * the one colour-blind safe palette every picture, page and legend
+//!   uses, and the legends themselves: [`Role`], [`Legend`];
+//! * the side-by-side HTML comparison of every back-end on one input
+//!   (images, differences, work and time): [`Report`], and the `compare`
+//!   command around it, [`compare`];
+//! * one algorithm traced on a small input, as `explain` prints it:
+//!   [`explain`];
+//! * every back-end on the bundled scenes and meshes, its images compared
+//!   with the reference's: [`run_demo`];
+//! * pixel grids as text, one character a pixel: [`ascii_rows`].
+//!
+//! ```
+//! use rasterlab::raster::{triangle_backend, FillRule};
+//! use rasterlab::teaching::trace_triangle;
+//!
+//! // The bounding-box loop on one triangle: every pixel of its box tested.
+//! let bbox = triangle_backend("bbox").unwrap();
+//! let trace = trace_triangle(bbox, [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)], FillRule::TopLeft, 6, 4).unwrap();
+//! assert!(trace.to_text().ends_with("20 pixels tested, 9 fragments\n"));
+//! ```
 
-pub mod ascii;
-pub mod compare;
-pub mod demo;
-pub mod explain;
-pub mod grid_picture;
-pub mod palette;
-pub mod report;
-pub mod trace;
-pub mod trace_table;
+pub(crate) mod ascii;
+pub(crate) mod compare;
+pub(crate) mod demo;
+pub(crate) mod explain;
+pub(crate) mod grid_picture;
+pub(crate) mod palette;
+pub(crate) mod report;
+pub(crate) mod trace;
+pub(crate) mod trace_table;
+
+pub use ascii::{ascii_count, ascii_framed, ascii_mark, ascii_rows};
+pub use compare::{compare, default_compare_size, CompareRequest, CompareSummary};
+pub use demo::{bundled_assets, run_demo, DemoReport, DemoRow};
+pub use explain::{explain, ExplainRequest, Explanation, DEFAULT_GRID, DEPTH_BUFFER};
+pub use grid_picture::{
+    for_people, is_fragment_green, scale_for_people, DepthCells, GridPicture, AS_REFERENCE, GAP,
+    INSIDE, MAX_CELLS, MAX_LABELLED_CELLS, MIN_SHORT_SIDE, OVERDRAWN, OVERDRAWN_MORE,
+    TESTED_OUTSIDE, UNTESTED,
+};
+pub use palette::{
+    colour_hex, triangle_colour, triangle_mark, triangle_name, Legend, LegendEntry, Mark, Role,
+    MAX_TRIANGLES, TRIANGLE_COLOURS, TRIANGLE_MARKS,
+};
+pub use report::{
+    BackendRun, CompareInput, Report, RulePicture, GRID_PICTURE_PIXELS, MAX_REPORT_BYTES,
+    REPORT_BYTES_PER_PIXEL,
+};
+pub use trace::{trace_depth_buffer, trace_line, trace_triangle, LineEnds, MAX_TRACE_LINES};
+pub use trace_table::{Column, Trace, TraceRow};

@@ -1,44 +1,68 @@
 //! The one palette every picture, page and legend uses.
 //!
-//! A colour means the same thing in every tool: the grid pictures, the
-//! fill-rule heat maps, the `compare` report, the lab, the depth-buffer
-//! picture and the check report. The colours are Okabe and Ito's
-//! colour-blind safe set (distinguishable with any of the common colour
-//! vision deficiencies), each given one [`Role`]:
+//! A picture says two kinds of things: **states** (this pixel was drawn,
+//! tested, left as a gap, drawn twice, hidden by the depth test...) and
+//! **identities** (this is triangle 3). Each is told by a pair: a colour
+//! and a [`Mark`], the way the colour is put on the picture. States fill
+//! a pixel's cell (or mark part of it: a corner, a frame, a cross, a
+//! dot); identities are edges, drawn as lines with a dash pattern and
+//! named `T1`, `T2`, ... at the triangle's centre. So a colour may serve
+//! a state and a triangle at once (vermillion fills a cell drawn once too
+//! often, and outlines triangle 2 in dashes), but a (colour, mark) pair
+//! has one meaning everywhere, and a picture's legend lists exactly the
+//! pairs it draws ([`Legend`]).
 //!
-//! | colour | roles |
-//! |---|---|
-//! | bluish green | a fragment drawn; a correct pixel; a fragment kept by the depth test |
-//! | sky blue | a sample tested and found outside |
-//! | orange | a gap (no triangle draws the pixel); a pixel missing from an answer |
-//! | vermillion | drawn once too often; an extra pixel in an answer; a pixel that differs from the reference |
-//! | reddish purple | drawn two or more times too often; a partially covered block |
-//! | grey | a fragment hidden by the depth test; a block outside the triangle |
-//! | light grey | a pixel off the target, shown around it |
-//! | blue | a block inside the triangle |
-//! | black | the true geometry: edges, vertices, the ideal line |
-//! | dark grey | a pixel centre, where the sample is taken |
+//! The colours are Okabe and Ito's colour-blind safe set. Two entries
+//! of one picture with the same mark must differ by colour for every
+//! reader: `tests/legends.rs` simulates protanopia, deuteranopia and
+//! tritanopia (Machado, Oliveira and Fernandes 2009) on every picture's
+//! legend and requires such colours to stay at least 15 CIELAB units
+//! (CIE76 ΔE) apart.
 //!
-//! Where two roles share a colour they mean the same thing seen from two
-//! tools (a gap in a heat map is a pixel missing from the answer). Each
-//! triangle of a picture with several has its own colour,
-//! [`triangle_colour`], in the same set.
+//! | legend entry | colour | mark |
+//! |---|---|---|
+//! | never looked at | white | fill |
+//! | fragment (drawn); correct | bluish green | fill |
+//! | tested, outside | sky blue | fill |
+//! | as a watertight rule | bluish green, faded 60 % towards white | fill |
+//! | gap; missing | orange | fill |
+//! | drawn once too often; extra; differs from the reference | vermillion | fill |
+//! | drawn twice or more too often | reddish purple | fill |
+//! | kept by the depth test | yellow | fill |
+//! | hidden by the depth test | grey | corner (with the count) |
+//! | off the target | light grey | fill |
+//! | my rasterizer: missing (lab) | orange | frame |
+//! | my rasterizer: extra (lab) | vermillion | cross |
+//! | pixel centre | dark grey | dot |
+//! | true edges and vertices | black | solid line |
+//! | block inside / outside / partly covered (`I`, `O`, `P`) | blue / grey / vermillion | block frame |
+//! | triangle `T1` ... `T16` | blue, vermillion, reddish purple, orange | solid, dashed, dotted, dash-dot line |
+//!
+//! Where two states share a pair they mean the same thing seen from two
+//! tools (a gap in a heat map is a pixel missing from the answer). The
+//! triangles' pairs ([`triangle_colour`], [`triangle_mark`]) form a
+//! Latin square: triangles 1-4 differ by colour *and* dash, and the 16
+//! pairs are all different. A picture of more than [`MAX_TRIANGLES`]
+//! triangles draws their edges as the true geometry, without names.
 //!
 //! Every picture carries its legend: [`Legend::to_svg`] draws one into an
 //! SVG picture (and so into the PNG rendered from it), [`Legend::to_html`]
-//! writes one into a page, styled by [`css`].
+//! writes one into a page, styled by [`css`]; both draw each swatch the
+//! way the picture draws its entry.
 //!
 //! ```
-//! use rasterlab::teaching::palette::{Legend, Role};
+//! use rasterlab::teaching::{triangle_mark, Legend, Mark, Role};
 //!
 //! assert_eq!(Role::Drawn.hex(), "#009e73");
 //! assert_eq!(Role::Gap.rgb(), Role::Missing.rgb());
+//! assert_eq!(triangle_mark(1), Mark::Dashed);
 //! let legend = Legend::new(&[Role::Drawn, Role::TestedOutside]);
 //! assert!(legend.to_html().contains("tested, outside"));
 //! let (svg, height) = legend.to_svg(0.0, 0.0, 400.0);
 //! assert!(svg.contains("#56b4e9") && height > 0.0);
 //! ```
 
+use crate::markup::Markup;
 use serde::Serialize;
 use std::fmt::Write;
 
@@ -66,6 +90,71 @@ const LIGHT_GREY: [u8; 3] = [224, 224, 224];
 const BLACK: [u8; 3] = [0, 0, 0];
 /// White: a pixel no one looked at.
 const WHITE: [u8; 3] = [255, 255, 255];
+
+/// How a colour is put on a picture: with the colour, it makes the pair
+/// that has one meaning.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Mark {
+    /// The pixel's cell filled with the colour.
+    Fill,
+    /// A triangle in the cell's top right corner, with a count.
+    Corner,
+    /// A frame just inside the cell.
+    Frame,
+    /// A diagonal stroke across the cell.
+    Cross,
+    /// A dot at the cell's centre.
+    Dot,
+    /// A block's dashed frame, with the block's letter.
+    Block,
+    /// A solid line: an edge.
+    Line,
+    /// A dashed line.
+    Dashed,
+    /// A dotted line.
+    Dotted,
+    /// A dash-dot line.
+    DashDot,
+}
+
+impl Mark {
+    /// The mark's name in pages and scripts (`dash-dot`).
+    pub fn key(self) -> &'static str {
+        match self {
+            Mark::Fill => "fill",
+            Mark::Corner => "corner",
+            Mark::Frame => "frame",
+            Mark::Cross => "cross",
+            Mark::Dot => "dot",
+            Mark::Block => "block",
+            Mark::Line => "line",
+            Mark::Dashed => "dashed",
+            Mark::Dotted => "dotted",
+            Mark::DashDot => "dash-dot",
+        }
+    }
+
+    /// The SVG `stroke-dasharray` of a line or frame mark (`None`: solid,
+    /// or not a line).
+    pub fn dasharray(self) -> Option<&'static str> {
+        match self {
+            Mark::Dashed => Some("9 5"),
+            Mark::Dotted => Some("2 4"),
+            Mark::DashDot => Some("10 4 2 4"),
+            Mark::Block => Some("6 3"),
+            _ => None,
+        }
+    }
+
+    /// Whether the mark is an edge: a line, solid or dashed.
+    pub fn is_line(self) -> bool {
+        matches!(
+            self,
+            Mark::Line | Mark::Dashed | Mark::Dotted | Mark::DashDot
+        )
+    }
+}
 
 /// What a colour says, the same in every picture and page.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -141,13 +230,16 @@ impl Role {
     pub const fn rgb(self) -> [u8; 3] {
         match self {
             Role::Untested => WHITE,
-            Role::Drawn | Role::Correct | Role::Kept => BLUISH_GREEN,
+            Role::Drawn | Role::Correct => BLUISH_GREEN,
             Role::TestedOutside => SKY_BLUE,
-            // Bluish green faded three quarters towards white: "as it must be".
-            Role::AsReference => [191, 231, 220],
+            // Bluish green faded 60 % towards white: "as it must be".
+            Role::AsReference => [153, 216, 199],
+            // Light, so the depth printed on it reads, and apart from the
+            // back-ends' drawn and tested cells shown beside it.
+            Role::Kept => YELLOW,
             Role::Gap | Role::Missing => ORANGE,
-            Role::DoubleDraw | Role::Extra | Role::Differs => VERMILLION,
-            Role::DrawnTwiceMore | Role::BlockPartial => REDDISH_PURPLE,
+            Role::DoubleDraw | Role::Extra | Role::Differs | Role::BlockPartial => VERMILLION,
+            Role::DrawnTwiceMore => REDDISH_PURPLE,
             Role::Hidden | Role::BlockOutside => GREY,
             Role::BlockInside => BLUE,
             Role::Geometry => BLACK,
@@ -156,9 +248,20 @@ impl Role {
         }
     }
 
+    /// How the role's colour is put on a picture.
+    pub const fn mark(self) -> Mark {
+        match self {
+            Role::Hidden => Mark::Corner,
+            Role::Geometry => Mark::Line,
+            Role::BlockInside | Role::BlockOutside | Role::BlockPartial => Mark::Block,
+            Role::PixelCentre => Mark::Dot,
+            _ => Mark::Fill,
+        }
+    }
+
     /// The colour as `#rrggbb`.
     pub fn hex(self) -> String {
-        hex(self.rgb())
+        colour_hex(self.rgb())
     }
 
     /// The role's name in pages and scripts (`tested-outside`).
@@ -200,7 +303,7 @@ impl Role {
             Role::Extra => "extra: drawn, not in the answer",
             Role::Correct => "correct",
             Role::Kept => "kept by the depth test",
-            Role::Hidden => "hidden by the depth test",
+            Role::Hidden => "hidden by the depth test (how many)",
             Role::Geometry => "true edges and vertices",
             Role::BlockInside => "block inside (I)",
             Role::BlockOutside => "block outside (O)",
@@ -212,43 +315,50 @@ impl Role {
     }
 }
 
-/// The colours of triangles 0, 1, 2, ... in a picture of several (after
-/// the eighth they repeat): blue and vermillion first, the course's blue
-/// and red triangles of the depth-buffer example.
-pub const TRIANGLE_COLOURS: [[u8; 3]; 8] = [
-    BLUE,
-    VERMILLION,
-    BLUISH_GREEN,
-    REDDISH_PURPLE,
-    ORANGE,
-    SKY_BLUE,
-    YELLOW,
-    GREY,
-];
+/// The most triangles a picture tells apart: four colours, each with
+/// four line patterns.
+pub const MAX_TRIANGLES: usize = 16;
 
-/// Triangle `index`'s colour.
+/// The triangles' colours: blue and vermillion first, the course's blue
+/// and red triangles of the depth-buffer example.
+pub const TRIANGLE_COLOURS: [[u8; 3]; 4] = [BLUE, VERMILLION, REDDISH_PURPLE, ORANGE];
+
+/// The triangles' line patterns.
+pub const TRIANGLE_MARKS: [Mark; 4] = [Mark::Line, Mark::Dashed, Mark::Dotted, Mark::DashDot];
+
+/// Triangle `index`'s colour (from 0; they repeat after
+/// [`MAX_TRIANGLES`]).
 pub fn triangle_colour(index: usize) -> [u8; 3] {
     TRIANGLE_COLOURS[index % TRIANGLE_COLOURS.len()]
 }
 
-/// A colour as `#rrggbb`.
-pub fn hex([r, g, b]: [u8; 3]) -> String {
-    format!("#{r:02x}{g:02x}{b:02x}")
+/// Triangle `index`'s line pattern: shifted by one for each round of
+/// the colours, so that no two of [`MAX_TRIANGLES`] triangles share
+/// colour and pattern, and the first four differ in both.
+pub fn triangle_mark(index: usize) -> Mark {
+    let n = TRIANGLE_MARKS.len();
+    TRIANGLE_MARKS[(index % n + index / n) % n]
 }
 
-/// `colour` faded towards white by `t` (0: unchanged, 1: white): cells
-/// filled with a colour that labels can be read on.
-pub fn faded(colour: [u8; 3], t: f32) -> [u8; 3] {
-    colour.map(|c| (f32::from(c) + (255.0 - f32::from(c)) * t.clamp(0.0, 1.0)).round() as u8)
+/// Triangle `index`'s name on pictures: `T1` for the first.
+pub fn triangle_name(index: usize) -> String {
+    format!("T{}", index + 1)
+}
+
+/// A colour as `#rrggbb`.
+pub fn colour_hex([r, g, b]: [u8; 3]) -> String {
+    format!("#{r:02x}{g:02x}{b:02x}")
 }
 
 /// One swatch of a legend.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LegendEntry {
-    /// The role's key (`drawn`), or `triangle-N`.
+    /// The role's key (`drawn`), or `triangle-N` (from 0).
     pub key: String,
     /// The colour.
     pub rgb: [u8; 3],
+    /// How the colour is drawn.
+    pub mark: Mark,
     /// What it says.
     pub label: String,
 }
@@ -264,6 +374,8 @@ pub struct Legend {
 const LEGEND_FONT: f64 = 13.0;
 /// Height of one legend row in SVG pictures.
 const LEGEND_ROW: f64 = 20.0;
+/// A swatch's side; line swatches are twice as wide, to show the dashes.
+const SWATCH: f64 = 14.0;
 
 impl Legend {
     /// A legend of `roles`.
@@ -276,22 +388,30 @@ impl Legend {
     }
 
     /// This legend and one more role's swatch.
-    pub fn with(mut self, role: Role) -> Legend {
+    pub fn with(self, role: Role) -> Legend {
+        self.with_mark(role, role.mark(), role.label())
+    }
+
+    /// This legend and a swatch of `role`'s colour drawn as `mark`, saying
+    /// `label` (the lab's "my rasterizer: missing", a frame).
+    pub fn with_mark(mut self, role: Role, mark: Mark, label: &str) -> Legend {
         self.entries.push(LegendEntry {
             key: role.key().to_string(),
             rgb: role.rgb(),
-            label: role.label().to_string(),
+            mark,
+            label: label.to_string(),
         });
         self
     }
 
-    /// This legend and a swatch per triangle, triangle `i` labelled
-    /// `labels[i]` (`triangle 0, z = 0.5`, say).
+    /// This legend and a swatch per triangle, in its colour and line
+    /// pattern, triangle `i` labelled `labels[i]` (`T1 (z = 0.5)`, say).
     pub fn with_triangles(mut self, labels: &[String]) -> Legend {
         for (i, label) in labels.iter().enumerate() {
             self.entries.push(LegendEntry {
                 key: format!("triangle-{i}"),
                 rgb: triangle_colour(i),
+                mark: triangle_mark(i),
                 label: label.clone(),
             });
         }
@@ -304,21 +424,37 @@ impl Legend {
     }
 
     /// The legend as HTML (`<div class="legend" data-palette="okabe-ito">`,
-    /// one `<span class="entry" data-role=...>` per swatch), styled by
-    /// [`css`].
+    /// one `<span class="entry" data-role=... data-colour=... data-mark=...>`
+    /// per swatch, the swatch a small SVG), styled by the palette's style
+    /// sheet.
     pub fn to_html(&self) -> String {
-        let mut h = String::from("<div class=\"legend\" data-palette=\"okabe-ito\">");
+        let mut m = Markup::new();
+        m.open(
+            "div",
+            &[("class", &"legend"), ("data-palette", &"okabe-ito")],
+        );
         for e in &self.entries {
-            let _ = write!(
-                h,
-                "<span class=\"entry\" data-role=\"{}\"><span class=\"swatch\" style=\"background:{}\"></span>{}</span>",
-                e.key,
-                hex(e.rgb),
-                escape(&e.label)
+            open_entry(&mut m, "span", e);
+            let width = swatch_width(e.mark);
+            m.open(
+                "svg",
+                &[
+                    ("class", &"swatch"),
+                    ("xmlns", &"http://www.w3.org/2000/svg"),
+                    ("width", &(width + 2.0)),
+                    ("height", &(SWATCH + 2.0)),
+                    (
+                        "viewBox",
+                        &format_args!("0 0 {} {}", width + 2.0, SWATCH + 2.0),
+                    ),
+                ],
             );
+            swatch(&mut m, e, 1.0, 1.0);
+            m.close("svg");
+            m.text(&e.label).close("span");
         }
-        h.push_str("</div>");
-        h
+        m.close("div");
+        m.finish()
     }
 
     /// The legend drawn into an SVG picture, its top left corner at `(x,
@@ -328,37 +464,171 @@ impl Legend {
         if self.entries.is_empty() {
             return (String::new(), 0.0);
         }
-        let mut svg = String::from("<g class=\"legend\" data-palette=\"okabe-ito\">");
+        let mut m = Markup::new();
+        m.open("g", &[("class", &"legend"), ("data-palette", &"okabe-ito")]);
         let (mut cx, mut row) = (x, 0.0);
         for e in &self.entries {
+            let sw = swatch_width(e.mark);
             // DejaVu Sans averages about 0.55 em per character.
-            let w = 18.0 + e.label.chars().count() as f64 * LEGEND_FONT * 0.56 + 14.0;
+            let w = sw + 5.0 + e.label.chars().count() as f64 * LEGEND_FONT * 0.56 + 14.0;
             if cx > x && cx + w > x + width {
                 cx = x;
                 row += LEGEND_ROW;
             }
             let top = y + row + 3.0;
-            let _ = write!(
-                svg,
-                "<path class=\"swatch\" d=\"M{cx} {top}h13v13h-13Z\" fill=\"{}\" stroke=\"#555\" stroke-width=\"1\"/><text x=\"{}\" y=\"{}\" font-size=\"{LEGEND_FONT}\">{}</text>",
-                hex(e.rgb),
-                cx + 18.0,
-                top + 11.5,
-                escape(&e.label)
+            open_entry(&mut m, "g", e);
+            swatch(&mut m, e, cx, top);
+            m.element(
+                "text",
+                &[
+                    ("x", &(cx + sw + 5.0)),
+                    ("y", &(top + 11.5)),
+                    ("font-size", &LEGEND_FONT),
+                ],
+                &e.label,
             );
+            m.close("g");
             cx += w;
         }
-        svg.push_str("</g>\n");
-        (svg, row + LEGEND_ROW + 4.0)
+        m.close("g").newline();
+        (m.finish(), row + LEGEND_ROW + 4.0)
     }
 }
 
-/// Text made safe for XML and HTML.
-pub(crate) fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+/// Opens element `name` of an entry, with the attributes that name its
+/// meaning and its pair, for pages, scripts and tests.
+fn open_entry(m: &mut Markup, name: &str, e: &LegendEntry) {
+    m.open(
+        name,
+        &[
+            ("class", &"entry"),
+            ("data-role", &e.key),
+            ("data-colour", &colour_hex(e.rgb)),
+            ("data-mark", &e.mark),
+        ],
+    );
+}
+
+impl std::fmt::Display for Mark {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.key())
+    }
+}
+
+/// How wide `mark`'s swatch is.
+fn swatch_width(mark: Mark) -> f64 {
+    if mark.is_line() {
+        2.0 * SWATCH
+    } else {
+        SWATCH
+    }
+}
+
+/// One swatch, its top left corner at `(x, y)`, drawn as the picture
+/// draws the entry.
+fn swatch(m: &mut Markup, e: &LegendEntry, x: f64, y: f64) {
+    let colour = colour_hex(e.rgb);
+    let s = SWATCH;
+    let frame = |m: &mut Markup, fill: &str| {
+        m.empty(
+            "rect",
+            &[
+                ("x", &x),
+                ("y", &y),
+                ("width", &s),
+                ("height", &s),
+                ("fill", &fill),
+                ("stroke", &"#555"),
+                ("stroke-width", &1),
+            ],
+        );
+    };
+    match e.mark {
+        Mark::Fill => frame(m, &colour),
+        Mark::Corner => {
+            frame(m, "white");
+            m.empty(
+                "path",
+                &[
+                    (
+                        "d",
+                        &format_args!("M{} {y}h{}v{}Z", x + s * 0.4, s * 0.6, s * 0.6),
+                    ),
+                    ("fill", &colour),
+                ],
+            );
+        }
+        Mark::Frame => {
+            frame(m, "white");
+            m.empty(
+                "rect",
+                &[
+                    ("x", &(x + 2.5)),
+                    ("y", &(y + 2.5)),
+                    ("width", &(s - 5.0)),
+                    ("height", &(s - 5.0)),
+                    ("fill", &"none"),
+                    ("stroke", &colour),
+                    ("stroke-width", &2.5),
+                ],
+            );
+        }
+        Mark::Cross => {
+            frame(m, "white");
+            m.empty(
+                "line",
+                &[
+                    ("x1", &(x + 2.0)),
+                    ("y1", &(y + 2.0)),
+                    ("x2", &(x + s - 2.0)),
+                    ("y2", &(y + s - 2.0)),
+                    ("stroke", &colour),
+                    ("stroke-width", &2.5),
+                ],
+            );
+        }
+        Mark::Dot => {
+            frame(m, "white");
+            m.empty(
+                "circle",
+                &[
+                    ("cx", &(x + s / 2.0)),
+                    ("cy", &(y + s / 2.0)),
+                    ("r", &2.5),
+                    ("fill", &colour),
+                ],
+            );
+        }
+        Mark::Block => {
+            m.empty(
+                "rect",
+                &[
+                    ("x", &(x + 1.0)),
+                    ("y", &(y + 1.0)),
+                    ("width", &(s - 2.0)),
+                    ("height", &(s - 2.0)),
+                    ("fill", &"none"),
+                    ("stroke", &colour),
+                    ("stroke-width", &2.5),
+                    ("stroke-dasharray", &"4 2"),
+                ],
+            );
+        }
+        Mark::Line | Mark::Dashed | Mark::Dotted | Mark::DashDot => {
+            m.empty(
+                "line",
+                &[
+                    ("x1", &x),
+                    ("y1", &(y + s / 2.0)),
+                    ("x2", &(x + 2.0 * s)),
+                    ("y2", &(y + s / 2.0)),
+                    ("stroke", &colour),
+                    ("stroke-width", &2.5),
+                    ("stroke-dasharray", &e.mark.dasharray().unwrap_or("none")),
+                ],
+            );
+        }
+    }
 }
 
 /// The palette for pages: CSS custom properties (`--drawn: #009e73;`, one
@@ -369,16 +639,18 @@ pub fn css() -> String {
         let _ = write!(css, " --{}: {};", role.key(), role.hex());
     }
     for (i, &c) in TRIANGLE_COLOURS.iter().enumerate() {
-        let _ = write!(css, " --triangle-{i}: {};", hex(c));
+        let _ = write!(css, " --triangle-{i}: {};", colour_hex(c));
     }
     css.push_str(" }\n");
-    css.push_str(".legend { display: flex; flex-wrap: wrap; gap: .3em 1.2em; margin: .4em 0; font-size: .95em; }\n.legend .swatch { display: inline-block; width: 1em; height: 1em; margin-right: .35em; vertical-align: middle; border: 1px solid #555; }\n");
+    css.push_str(".legend { display: flex; flex-wrap: wrap; gap: .3em 1.2em; margin: .4em 0; font-size: .95em; }\n.legend .swatch { display: inline-block; margin-right: .35em; vertical-align: middle; }\n");
     css
 }
 
-/// The palette for scripts: every role's colour by key, and the triangle
-/// colours, as JSON (`{"roles": {"drawn": "#009e73", ...}, "labels": {...},
-/// "triangles": [...]}`).
+/// The palette for scripts, as JSON: every role's colour and label by
+/// key, each triangle's colour and line pattern (its `stroke-dasharray`,
+/// `null` for solid), up to [`MAX_TRIANGLES`] (`{"roles": {"drawn":
+/// "#009e73", ...}, "labels": {...}, "triangles": [{"colour": "#0072b2",
+/// "dash": null}, ...]}`).
 pub fn json() -> String {
     let roles: serde_json::Map<String, serde_json::Value> = Role::ALL
         .iter()
@@ -388,7 +660,14 @@ pub fn json() -> String {
         .iter()
         .map(|r| (r.key().to_string(), r.label().into()))
         .collect();
-    let triangles: Vec<String> = TRIANGLE_COLOURS.iter().map(|&c| hex(c)).collect();
+    let triangles: Vec<serde_json::Value> = (0..MAX_TRIANGLES)
+        .map(|i| {
+            serde_json::json!({
+                "colour": colour_hex(triangle_colour(i)),
+                "dash": triangle_mark(i).dasharray(),
+            })
+        })
+        .collect();
     serde_json::json!({ "roles": roles, "labels": labels, "triangles": triangles }).to_string()
 }
 
@@ -397,27 +676,41 @@ mod tests {
     use super::*;
 
     #[test]
-    fn roles_that_share_a_colour_mean_the_same_thing() {
-        // Every pair of roles with one colour is a pair listed here.
+    fn roles_that_share_a_colour_and_mark_mean_the_same_thing() {
+        // Every pair of roles drawn alike is a pair listed here.
         let same = [
             [Role::Drawn, Role::Correct],
-            [Role::Drawn, Role::Kept],
-            [Role::Correct, Role::Kept],
             [Role::Gap, Role::Missing],
             [Role::DoubleDraw, Role::Extra],
             [Role::DoubleDraw, Role::Differs],
             [Role::Extra, Role::Differs],
-            [Role::DrawnTwiceMore, Role::BlockPartial],
-            [Role::Hidden, Role::BlockOutside],
         ];
         for a in Role::ALL {
             for b in Role::ALL {
-                if a != b && a.rgb() == b.rgb() {
+                if a != b && (a.rgb(), a.mark()) == (b.rgb(), b.mark()) {
                     assert!(
                         same.contains(&[a, b]) || same.contains(&[b, a]),
                         "{a:?} {b:?}"
                     );
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn no_two_of_sixteen_triangles_and_no_role_are_drawn_alike() {
+        let pairs: std::collections::HashSet<([u8; 3], Mark)> = (0..MAX_TRIANGLES)
+            .map(|i| (triangle_colour(i), triangle_mark(i)))
+            .collect();
+        assert_eq!(pairs.len(), MAX_TRIANGLES);
+        for r in Role::ALL {
+            assert!(!pairs.contains(&(r.rgb(), r.mark())), "{r:?}");
+        }
+        // The first four differ in colour and in pattern.
+        for i in 0..4 {
+            for j in 0..i {
+                assert_ne!(triangle_colour(i), triangle_colour(j));
+                assert_ne!(triangle_mark(i), triangle_mark(j));
             }
         }
     }
@@ -435,6 +728,10 @@ mod tests {
                 "{r:?}"
             );
         }
+        assert!(
+            json.contains("{\"colour\":\"#d55e00\",\"dash\":\"9 5\"}"),
+            "{json}"
+        );
     }
 
     #[test]

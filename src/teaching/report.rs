@@ -25,8 +25,8 @@
 //! self-contained: pictures are embedded as PNG or SVG.
 //!
 //! ```
-//! use rasterlab::teaching::report::{CompareInput, Report};
-//! use rasterlab::geometry::scene::Scene2D;
+//! use rasterlab::geometry::Scene2D;
+//! use rasterlab::teaching::{CompareInput, Report};
 //!
 //! let report = Report::compare(&CompareInput::Triangles(Scene2D::split_square()), 8, 8, 1).unwrap();
 //! assert!(report.runs.iter().all(|r| r.differing_pixels == 0));
@@ -37,23 +37,23 @@ use crate::error::{Error, Result};
 use crate::geometry::mesh::Mesh;
 use crate::geometry::render::{MeshRenderer, RenderSettings};
 use crate::geometry::scene::Scene2D;
+use crate::markup::Markup;
 use crate::measure::benchmark::median_time;
 use crate::measure::workload::LineWorkload;
-use crate::raster::backend::{
-    default_triangle_backend, fallback_triangle_backend, line_backends, reference_triangle_backend,
-    triangle_backends,
-};
 use crate::raster::descriptor::{within_budget, WorkBudget};
 use crate::raster::edge::FillRule;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::LineSetup;
+use crate::raster::registry::{
+    default_triangle_backend, fallback_triangle_backend, line_backends, reference_triangle_backend,
+    triangle_backends,
+};
 use crate::raster::shader::Flat;
 use crate::raster::target::RenderTarget;
 use crate::raster::triangle::TriangleRasterizer;
-use crate::teaching::grid_picture::{escape, GridPicture, GAP, OVERDRAWN, OVERDRAWN_MORE};
+use crate::teaching::grid_picture::{GridPicture, GAP, OVERDRAWN, OVERDRAWN_MORE};
 use crate::teaching::palette::{self, Legend, Role};
 use base64::Engine;
-use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -413,13 +413,15 @@ impl Report {
     pub fn to_html(&self) -> String {
         let zoom = (288 / self.width.max(self.height)).clamp(1, 16);
         let shown = |w: u32| w * zoom;
-        let mut h = String::new();
-        let _ = write!(
-            h,
-            r#"<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>rasterlab compare: {input}</title>
-<style>
-body {{ font-family: sans-serif; margin: 1.5em; color: #222; }}
+        let mut m = Markup::new();
+        m.raw("<!DOCTYPE html>\n");
+        m.open("html", &[("lang", &"en")]).open("head", &[]);
+        m.empty("meta", &[("charset", &"utf-8")]);
+        m.element("title", &[], &format!("rasterlab compare: {}", self.input))
+            .newline();
+        m.open("style", &[]).newline();
+        m.raw(&format!(
+            r#"body {{ font-family: sans-serif; margin: 1.5em; color: #222; }}
 .row {{ display: flex; flex-wrap: wrap; gap: 1.2em; }}
 figure {{ margin: 0; }}
 figcaption {{ font-size: 0.9em; max-width: {cap}px; }}
@@ -431,130 +433,165 @@ td:first-child, th:first-child {{ text-align: left; }}
 figure.grid figcaption {{ font-size: 1.05em; max-width: none; }}
 figure.grid figcaption b {{ font-size: 1.1em; }}
 figure.grid svg {{ max-width: 100%; height: auto; }}
-{palette}</style></head><body>
-<h1>rasterlab compare</h1>
-<p>Input: {input}, drawn on a {w} x {h} target {how} through the shared fragment stage. Reference: <b>{reference}</b>.</p>
-"#,
-            input = escape(&self.input),
+{palette}"#,
             cap = shown(self.width).max(240),
-            w = self.width,
-            h = self.height,
-            how = if self.lines {
+            ok = Role::Drawn.hex(),
+            bad = Role::Differs.hex(),
+            palette = palette::css(),
+        ));
+        m.close("style").close("head").open("body", &[]).newline();
+        m.element("h1", &[], "rasterlab compare").newline();
+        m.open("p", &[]).text(&format!(
+            "Input: {}, drawn on a {} x {} target {} through the shared fragment stage. Reference: ",
+            self.input,
+            self.width,
+            self.height,
+            if self.lines {
                 "by every line back-end"
             } else {
                 "with the top-left fill rule"
             },
-            reference = escape(&self.reference_note),
-            ok = Role::Drawn.hex(),
-            bad = Role::Differs.hex(),
-            palette = palette::css(),
-        );
+        ));
+        m.element("b", &[], &self.reference_note)
+            .text(".")
+            .close("p")
+            .newline();
 
-        h.push_str("<h2>Work</h2>\n<table id=\"work\"><tr><th>back-end</th><th>fragments</th><th>samples tested</th><th>tests per fragment</th><th>rows / blocks</th><th>time (median)</th><th>pixels differing from the reference</th></tr>\n");
+        m.element("h2", &[], "Work").newline();
+        m.open("table", &[("id", &"work")]).open("tr", &[]);
+        for head in [
+            "back-end",
+            "fragments",
+            "samples tested",
+            "tests per fragment",
+            "rows / blocks",
+            "time (median)",
+            "pixels differing from the reference",
+        ] {
+            m.element("th", &[], head);
+        }
+        m.close("tr").newline();
         for run in &self.runs {
-            let differ = match run.differing_pixels {
-                0 => r#"<span class="ok">0 (identical)</span>"#.to_string(),
-                n => format!(r#"<span class="bad">{n}</span>"#),
-            };
-            let _ = writeln!(
-                h,
-                "<tr><td title=\"{}\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.3} ms</td><td>{differ}</td></tr>",
-                escape(run.description),
-                run.name,
-                run.work.fragments,
-                run.work.samples_tested,
+            m.open("tr", &[]);
+            m.element("td", &[("title", &run.description)], run.name);
+            for cell in [
+                run.work.fragments.to_string(),
+                run.work.samples_tested.to_string(),
                 run.tests_per_fragment_text(),
                 // Rows or blocks only mean something to the back-ends
                 // that hand spans to the stage.
-                if run.work.spans == 0 { "—".to_string() } else { run.work.spans.to_string() },
-                run.time.as_secs_f64() * 1e3
-            );
+                if run.work.spans == 0 {
+                    "—".to_string()
+                } else {
+                    run.work.spans.to_string()
+                },
+                format!("{:.3} ms", run.time.as_secs_f64() * 1e3),
+            ] {
+                m.element("td", &[], &cell);
+            }
+            m.open("td", &[]);
+            match run.differing_pixels {
+                0 => m.element("span", &[("class", &"ok")], "0 (identical)"),
+                n => m.element("span", &[("class", &"bad")], &n.to_string()),
+            };
+            m.close("td").close("tr").newline();
         }
-        h.push_str("</table>\n<p>Times are for a rough idea; <code>rasterlab bench</code> and <code>cargo bench</code> measure properly.</p>\n");
+        m.close("table").newline();
+        m.open("p", &[]).text("Times are for a rough idea; ");
+        m.element("code", &[], "rasterlab bench")
+            .text(" and ")
+            .element("code", &[], "cargo bench")
+            .text(" measure properly.")
+            .close("p")
+            .newline();
 
-        h.push_str("<h2>Images</h2>\n<div class=\"row\">\n");
+        m.element("h2", &[], "Images").newline();
+        m.open("div", &[("class", &"row")]).newline();
         for run in &self.runs {
             figure(
-                &mut h,
+                &mut m,
                 &png_data(&run.target.to_image()),
                 shown(self.width),
                 &format!("{}: {}", run.name, run.description),
             );
         }
-        h.push_str("</div>\n<h2>Differences from the reference</h2>\n<p>Colour, depth or coverage compared with ");
-        h.push_str(self.reference);
-        h.push_str("'s, pixel by pixel.</p>\n");
-        h.push_str(&Legend::new(&[Role::Differs]).to_html());
-        h.push_str("\n<div class=\"row\">\n");
+        m.close("div").newline();
+        m.element("h2", &[], "Differences from the reference")
+            .newline();
+        m.element(
+            "p",
+            &[],
+            &format!(
+                "Colour, depth or coverage compared with {}'s, pixel by pixel.",
+                self.reference
+            ),
+        )
+        .newline();
+        m.raw(&Legend::new(&[Role::Differs]).to_html()).newline();
+        m.open("div", &[("class", &"row")]).newline();
         for run in self.runs.iter().skip(1) {
             figure(
-                &mut h,
+                &mut m,
                 &png_data(&self.difference_image(run)),
                 shown(self.width),
                 &format!("{}: {} pixels differ", run.name, run.differing_pixels),
             );
         }
-        h.push_str("</div>\n");
+        m.close("div").newline();
 
-        let legend = Legend::new(&[
-            Role::AsReference,
-            Role::Gap,
-            Role::DoubleDraw,
-            Role::DrawnTwiceMore,
-            Role::Untested,
-        ])
-        .to_html()
-            + "\n";
         if !self.rules.is_empty() {
-            h.push_str("<h2>Fill rules</h2>\n");
-            h.push_str(&legend);
-            rule_table(&mut h, "rules", &self.rules);
-            h.push_str("<div class=\"row\">\n");
+            m.element("h2", &[], "Fill rules").newline();
+            m.raw(&heat_map_legend(zoom.min(24)).to_html()).newline();
+            rule_table(&mut m, "rules", &self.rules);
+            m.open("div", &[("class", &"row")]).newline();
             for r in &self.rules {
-                heat_figure(&mut h, r, zoom);
+                heat_figure(&mut m, r, zoom);
             }
-            h.push_str("</div>\n");
+            m.close("div").newline();
         }
         if !self.lines {
-            h.push_str("<h2>The line-drawing slides' edge-drawing problem</h2>\n<p>Eight triangles around one pixel centre, every shared edge through pixel centres. Drawing every edge (inclusive) draws them twice; drawing none (exclusive) leaves holes; the top-left, bottom-right and off-screen point rules give each edge pixel to exactly one triangle.</p>\n");
-            h.push_str(&legend);
-            rule_table(&mut h, "pinwheel", &self.pinwheel_rules);
-            h.push_str("<div class=\"row\">\n");
+            m.element("h2", &[], "The line-drawing slides' edge-drawing problem")
+                .newline();
+            m.element("p", &[], "Eight triangles around one pixel centre, every shared edge through pixel centres. Drawing every edge (inclusive) draws them twice; drawing none (exclusive) leaves holes; the top-left, bottom-right and off-screen point rules give each edge pixel to exactly one triangle.").newline();
+            m.raw(&heat_map_legend(24).to_html()).newline();
+            rule_table(&mut m, "pinwheel", &self.pinwheel_rules);
+            m.open("div", &[("class", &"row")]).newline();
             for r in &self.pinwheel_rules {
-                heat_figure(&mut h, r, 24);
+                heat_figure(&mut m, r, 24);
             }
-            h.push_str("</div>\n");
+            m.close("div").newline();
         }
 
         if let Some((_, first)) = self.grids.first() {
-            h.push_str("<h2>Pixels tested and emitted</h2>\n<p>Which pixel centres each back-end tested, and which became fragments; pixel indices on the axes.</p>\n");
-            h.push_str(&first.legend.to_html());
-            h.push_str("\n<div class=\"row\">\n");
+            m.element("h2", &[], "Pixels tested and emitted").newline();
+            m.element("p", &[], "Which pixel centres each back-end tested, and which became fragments; pixel indices on the axes.").newline();
+            m.raw(&first.legend.to_html()).newline();
+            m.open("div", &[("class", &"row")]).newline();
             for (name, grid) in &self.grids {
-                let _ = writeln!(
-                    h,
-                    "<figure class=\"grid\"><figcaption><b>{name}</b>: {}</figcaption>{}</figure>",
-                    escape(&grid.caption),
-                    grid.to_svg_bare()
-                );
+                m.open("figure", &[("class", &"grid")])
+                    .open("figcaption", &[]);
+                m.element("b", &[], name)
+                    .text(&format!(": {}", grid.caption))
+                    .close("figcaption");
+                m.raw(&grid.to_svg_bare()).close("figure").newline();
             }
-            h.push_str("</div>\n");
+            m.close("div").newline();
         }
-        h.push_str(
-            r#"<script>
+        m.open("script", &[]).raw(
+            r#"
 window.addEventListener('load', () => {
   const images = [...document.images];
   document.body.dataset.images = images.length;
   document.body.dataset.imagesLoaded = images.filter(i => i.complete && i.naturalWidth > 0).length;
   document.body.dataset.tables = document.querySelectorAll('table').length;
-  document.body.dataset.svgs = document.querySelectorAll('svg').length;
+  document.body.dataset.svgs = document.querySelectorAll('figure svg').length;
   document.body.dataset.legends = document.querySelectorAll('.legend[data-palette]').length;
 });
-</script>
-</body></html>
 "#,
         );
-        h
+        m.close("script").newline();
+        m.close("body").close("html").newline();
+        m.finish()
     }
 
     /// Writes `index.html` into `dir` (created if missing) and returns
@@ -564,6 +601,23 @@ window.addEventListener('load', () => {
         let path = dir.join("index.html");
         crate::output::write_file(&path, self.to_html().as_bytes())?;
         Ok(path)
+    }
+}
+
+/// The legend of fill-rule heat maps drawn at `zoom` ([`GridPicture::to_png`]
+/// dots the pixel centres from a zoom of 6).
+fn heat_map_legend(zoom: u32) -> Legend {
+    let legend = Legend::new(&[
+        Role::AsReference,
+        Role::Gap,
+        Role::DoubleDraw,
+        Role::DrawnTwiceMore,
+        Role::Untested,
+    ]);
+    if zoom >= 6 {
+        legend.with(Role::PixelCentre)
+    } else {
+        legend
     }
 }
 
@@ -585,39 +639,54 @@ where
     )
 }
 
-fn figure(h: &mut String, src: &str, width: u32, caption: &str) {
-    let _ = writeln!(
-        h,
-        "<figure><img class=\"px\" src=\"{src}\" width=\"{width}\" alt=\"{0}\"><figcaption>{0}</figcaption></figure>",
-        escape(caption)
+fn figure(m: &mut Markup, src: &str, width: u32, caption: &str) {
+    m.open("figure", &[]);
+    m.empty(
+        "img",
+        &[
+            ("class", &"px"),
+            ("src", &src),
+            ("width", &width),
+            ("alt", &caption),
+        ],
     );
+    m.element("figcaption", &[], caption)
+        .close("figure")
+        .newline();
 }
 
-fn heat_figure(h: &mut String, r: &RulePicture, zoom: u32) {
+fn heat_figure(m: &mut Markup, r: &RulePicture, zoom: u32) {
     let png = r
         .picture
         .to_png(zoom.min(24))
         .expect("a heat map of a checked target size can be drawn");
     let src = png_data(&png);
-    figure(h, &src, png.width(), &r.picture.caption);
+    figure(m, &src, png.width(), &r.picture.caption);
 }
 
-fn rule_table(h: &mut String, id: &str, rules: &[RulePicture]) {
-    let _ = writeln!(
-        h,
-        "<table id=\"{id}\"><tr><th>fill rule</th><th>gap pixels</th><th>overdrawn pixels</th><th>watertight here</th></tr>"
-    );
+fn rule_table(m: &mut Markup, id: &str, rules: &[RulePicture]) {
+    m.open("table", &[("id", &id)]).open("tr", &[]);
+    for head in [
+        "fill rule",
+        "gap pixels",
+        "overdrawn pixels",
+        "watertight here",
+    ] {
+        m.element("th", &[], head);
+    }
+    m.close("tr").newline();
     for r in rules {
         let ok = r.gaps == 0 && r.overdrawn == 0;
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"{}\">{}</td></tr>",
-            r.rule.name(),
-            r.gaps,
-            r.overdrawn,
-            if ok { "ok" } else { "bad" },
-            if ok { "yes" } else { "no" }
-        );
+        m.open("tr", &[]);
+        m.element("td", &[], r.rule.name())
+            .element("td", &[], &r.gaps.to_string())
+            .element("td", &[], &r.overdrawn.to_string())
+            .element(
+                "td",
+                &[("class", &if ok { "ok" } else { "bad" })],
+                if ok { "yes" } else { "no" },
+            );
+        m.close("tr").newline();
     }
-    h.push_str("</table>\n");
+    m.close("table").newline();
 }

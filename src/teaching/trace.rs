@@ -4,24 +4,23 @@
 //! `rasterlab explain` prints. The triangle traces are recordings of the
 //! back-ends' real walks.
 //!
-//! * [`bresenham_trace`]: the line-drawing slides' midpoint loop, each column's `x`, `y`,
-//!   decision variable `d = f(x + 1, y + 1/2)` and the choice it makes;
-//! * [`line_trace`] for `direct` and `dda`: each column's exact `y` and
-//!   the row it rounds to;
-//! * [`triangle_trace`] for `bbox` and `naive`: every pixel tested, its
-//!   three edge values, its barycentric coordinates, inside or not, and
-//!   why (which edge rejected it, or which tie rule decided);
-//! * [`scanline_trace`]: the vertices sorted by y, then each row's sample
-//!   line, where each active edge crosses it and the span filled;
-//! * [`incremental_trace`]: the edge values at the box's first sample,
-//!   the steps added per pixel and per row, every pixel the walk tests;
-//! * [`tiled_trace`]: every 8 x 8 block of the box and its class from the
-//!   corner test (trivial reject, trivial accept, partial);
-//! * [`wu_trace`]: each column's two pixels and their weights;
-//! * [`diamond_trace`]: the candidate pixels around the line the
+//! * [`trace_line`] on `bresenham`: the line-drawing slides' midpoint
+//!   loop, each column's `x`, `y`, decision variable `d = f(x + 1, y + 1/2)`
+//!   and the choice it makes; on `direct` and `dda`: each column's exact
+//!   `y` and the row it rounds to; on `wu`: each column's two pixels and
+//!   their weights; on `diamond`: the candidate pixels around the line the
 //!   back-end's walk tests, in its order, and whether the segment leaves
 //!   each one's diamond;
-//! * [`depth_buffer_trace`]: the rasterization slides' depth buffer, printed as the
+//! * [`trace_triangle`] on `bbox` and `naive`: every pixel tested, its
+//!   three edge values, its barycentric coordinates, inside or not, and
+//!   why (which edge rejected it, or which tie rule decided); on
+//!   `scanline`: the vertices sorted by y, then each row's sample line,
+//!   where each active edge crosses it and the span filled; on
+//!   `incremental`: the edge values at the box's first sample, the steps
+//!   added per pixel and per row, every pixel the walk tests; on `tiled`:
+//!   every 8 x 8 block of the box and its class from the corner test
+//!   (trivial reject, trivial accept, partial);
+//! * [`trace_depth_buffer`]: the rasterization slides' depth buffer, printed as the
 //!   slides' matrix after each triangle.
 //!
 //! Line endpoints are given as [`LineEnds`]: pixel indices, as in the
@@ -33,16 +32,16 @@
 //! square pixels (the fixed-point value divided by 256^2).
 //!
 //! ```
-//! use rasterlab::teaching::trace::{bresenham_trace, LineEnds};
+//! use rasterlab::raster::line_backend;
+//! use rasterlab::teaching::{trace_line, LineEnds};
 //! let ends = LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap();
-//! let text = bresenham_trace(&ends);
+//! let text = trace_line(line_backend("bresenham").unwrap(), &ends).unwrap().to_text();
 //! assert!(text.lines().nth(2).unwrap().contains("0.500"));
 //! assert_eq!(ends, LineEnds::screen([0.5, 0.5, 7.5, 3.5]).unwrap().snapped_only());
 //! ```
 
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
-use crate::raster::backend::{line_backend, triangle_backend};
 use crate::raster::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::fragment::FragmentList;
@@ -52,11 +51,10 @@ use crate::raster::line::direct::Direct;
 use crate::raster::line::{LineRasterizer, LineWalk, OctantFrame};
 use crate::raster::shader::Flat;
 use crate::raster::target::{DepthState, DepthTest, RenderTarget};
-use crate::raster::triangle::incremental::Incremental;
-use crate::raster::triangle::scanline::{row_range, sorted_by_y, Scanline};
-use crate::raster::triangle::tiled::{Tiled, BLOCK};
+use crate::raster::triangle::scanline::{row_range, sorted_by_y};
+use crate::raster::triangle::tiled::BLOCK;
 use crate::raster::triangle::{BlockClass, Bound, TriangleRasterizer, TriangleWalk, WalkStep};
-pub use crate::teaching::trace_table::{Column, Trace, TraceRow};
+use crate::teaching::trace_table::{Column, Trace, TraceRow};
 
 /// The most pixel lines a triangle trace prints, and the most depth-buffer
 /// cells the depth-buffer trace prints (about 5 MB of text): a trace is
@@ -158,15 +156,9 @@ fn frame_note(frame: &OctantFrame) -> String {
     }
 }
 
-/// The line-drawing slides' midpoint / Bresenham loop on one line, as
-/// text ([`bresenham`]).
-pub fn bresenham_trace(ends: &LineEnds) -> String {
-    bresenham(ends).to_text()
-}
-
 /// The line-drawing slides' midpoint / Bresenham loop on one line: each
 /// column's `x`, `y`, pixel, decision variable and choice.
-pub fn bresenham(ends: &LineEnds) -> Trace {
+fn bresenham(ends: &LineEnds) -> Trace {
     let frame = OctantFrame::new(ends.from, ends.to);
     let mut out = Trace::saying(format!(
         "bresenham (midpoint) {}; {}",
@@ -206,24 +198,13 @@ pub fn bresenham(ends: &LineEnds) -> Trace {
     out
 }
 
-/// [`of_triangle`] as text, as `rasterlab explain` prints it.
-pub fn of_triangle_backend(
-    backend: &dyn TriangleRasterizer,
-    vertices: [(f64, f64); 3],
-    rule: FillRule,
-    width: u32,
-    height: u32,
-) -> Result<String> {
-    of_triangle(backend, vertices, rule, width, height).map(|t| t.to_text())
-}
-
 /// The step-by-step trace of a triangle back-end on one triangle given in
 /// screen pixels, on a `width` x `height` grid: the recording of its
 /// real walk ([`TriangleRasterizer::record`]), every step it reported
 /// (samples tested, rows' crossings and spans, blocks' classes), in the
 /// form its [walk](crate::raster::descriptor::Descriptor::walk) is taught
 /// in, each row with the pixels it is about.
-pub fn of_triangle(
+pub fn trace_triangle(
     backend: &dyn TriangleRasterizer,
     vertices: [(f64, f64); 3],
     rule: FillRule,
@@ -612,15 +593,10 @@ impl Recorded<'_> {
     }
 }
 
-/// [`of_line`] as text, as `rasterlab explain` prints it.
-pub fn of_line_backend(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<String> {
-    of_line(backend, ends).map(|t| t.to_text())
-}
-
 /// The step-by-step trace of a line back-end on one segment: the trace of
 /// the way it [chooses](crate::raster::descriptor::Descriptor::walk) its
 /// pixels, each row with the pixels it is about.
-pub fn of_line(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> {
+pub fn trace_line(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> {
     match backend.descriptor().walk {
         LineWalk::DirectEvaluation | LineWalk::Incremental => column_trace(backend, ends),
         LineWalk::Midpoint => Ok(bresenham(ends)),
@@ -629,14 +605,7 @@ pub fn of_line(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> {
     }
 }
 
-/// Direct evaluation (`y = m x + b`, rounded) or DDA (`y += m`, rounded)
-/// on one line, by the name of its back-end (`direct` or `dda`): each
-/// column's exact and rounded `y`.
-pub fn line_trace(backend: &str, ends: &LineEnds) -> Result<String> {
-    column_trace(line_backend(backend)?, ends).map(|t| t.to_text())
-}
-
-/// [`line_trace`] of a back-end that walks by direct evaluation or the DDA.
+/// [`trace_line`] of a back-end that walks by direct evaluation or the DDA.
 fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> {
     let name = backend.name();
     let frame = OctantFrame::new(ends.from, ends.to);
@@ -696,56 +665,11 @@ fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> 
     Ok(out)
 }
 
-/// The bounding-box (`bbox`) or every-pixel (`naive`) loop on one
-/// triangle given in screen pixels, on a `width` x `height` grid, by the
-/// name of its back-end.
-pub fn triangle_trace(
-    backend: &str,
-    vertices: [(f64, f64); 3],
-    rule: FillRule,
-    width: u32,
-    height: u32,
-) -> Result<String> {
-    let backend = triangle_backend(backend)?;
-    match backend.descriptor().walk {
-        TriangleWalk::EveryPixel | TriangleWalk::BoundingBox => {
-            of_triangle_backend(backend, vertices, rule, width, height)
-        }
-        _ => Err(Error::InvalidArgument(format!(
-            "no per-pixel trace for `{}` (it is for the loops that test pixels one by one)",
-            backend.name()
-        ))),
-    }
-}
-
-/// The classic scanline loop on one triangle given in screen pixels: the
-/// vertices sorted by y, then for each row its sample line, where each
-/// active edge crosses it (exact x), the pixel bound that crossing gives
-/// under the fill rule, and the span filled.
-pub fn scanline_trace(
-    vertices: [(f64, f64); 3],
-    rule: FillRule,
-    width: u32,
-    height: u32,
-) -> Result<String> {
-    of_triangle_backend(&Scanline, vertices, rule, width, height)
-}
-
-/// [`depth_buffer`] as text, as `rasterlab explain --backend
-/// depth-buffer` prints it.
-pub fn depth_buffer_trace(
-    scene: &Scene2D,
-    backend: &dyn TriangleRasterizer,
-    rule: FillRule,
-) -> Result<String> {
-    depth_buffer(scene, backend, rule).map(|t| t.to_text())
-}
-
 /// The rasterization slides' depth-buffer loop on a scene: each triangle in turn drawn by
 /// `backend` through the shared stage (`if f.z < depthBuffer[f.xy]: draw
 /// f, depthBuffer[f.xy] = f.z`), and the depth buffer after each, as the
 /// slides' matrix: one row of the trace per row of pixels.
-pub fn depth_buffer(
+pub fn trace_depth_buffer(
     scene: &Scene2D,
     backend: &dyn TriangleRasterizer,
     rule: FillRule,
@@ -820,40 +744,9 @@ fn snapped_or_say(
     Ok(t)
 }
 
-/// The incremental (Pineda) walk on one triangle: the edge values at the
-/// first sample of the box, the steps added per pixel right and per row
-/// down, and every pixel the walk tests with its stepped edge values; a
-/// row's walk stops at the first outside pixel past its span.
-pub fn incremental_trace(
-    vertices: [(f64, f64); 3],
-    rule: FillRule,
-    width: u32,
-    height: u32,
-) -> Result<String> {
-    of_triangle_backend(&Incremental, vertices, rule, width, height)
-}
-
-/// The tiled back-end's walk on one triangle: every block or stretch of
-/// blocks of the bounding box with its class from the corner test
-/// (outside: skipped; inside: filled untested; partial: each pixel
-/// tested), and the pixels it tested.
-pub fn tiled_trace(
-    vertices: [(f64, f64); 3],
-    rule: FillRule,
-    width: u32,
-    height: u32,
-) -> Result<String> {
-    of_triangle_backend(&Tiled, vertices, rule, width, height)
-}
-
-/// [`wu`] as text.
-pub fn wu_trace(ends: &LineEnds) -> String {
-    wu(ends).to_text()
-}
-
 /// Xiaolin Wu's anti-aliased line: each column's two pixels around the
 /// ideal line, with their weights `1 - frac(y)` and `frac(y)`.
-pub fn wu(ends: &LineEnds) -> Trace {
+fn wu(ends: &LineEnds) -> Trace {
     use crate::raster::line::{wu::Wu, LineOptions, LineSetup};
     let frame = OctantFrame::new(ends.from, ends.to);
     let line = LineSetup {
@@ -913,16 +806,11 @@ pub fn wu(ends: &LineEnds) -> Trace {
     out
 }
 
-/// [`diamond`] as text.
-pub fn diamond_trace(ends: &LineEnds) -> Result<String> {
-    diamond(ends).map(|t| t.to_text())
-}
-
 /// The diamond-exit rule, recorded from the back-end's walk
 /// ([`Diamond::walk`](crate::raster::line::diamond::Diamond::walk)): for each column (row, for steep lines) in the order
 /// of travel, the three candidate pixels around the line, and whether the
 /// segment leaves each pixel's diamond (then the pixel is drawn).
-pub fn diamond(ends: &LineEnds) -> Result<Trace> {
+fn diamond(ends: &LineEnds) -> Result<Trace> {
     use crate::raster::line::{diamond::Diamond, LineSetup};
     let (a, b) = (ends.from, ends.to);
     let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());

@@ -5,7 +5,7 @@
 //! a row by its pixels when the student points at one.
 //!
 //! ```
-//! use rasterlab::teaching::trace_table::{Column, Trace, TraceRow};
+//! use rasterlab::teaching::{Column, Trace, TraceRow};
 //!
 //! let mut trace = Trace::default();
 //! trace.header.push("two pixels".to_string());
