@@ -5,14 +5,12 @@
 
 use glam::Vec4;
 use proptest::prelude::*;
-use rasterlab::geometry::pipeline::clip::ClipVertex;
-use rasterlab::geometry::pipeline::{draw, process_triangles, Geometry, PipelineOptions, Viewport};
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::fragment::FragmentList;
-use rasterlab::raster::primitive::Varyings;
-use rasterlab::raster::shader::Flat;
-use rasterlab::raster::stage::Interpolation;
-use rasterlab::raster::target::{DepthState, RenderTarget};
+use rasterlab::geometry::{
+    draw, process_triangles, ClipVertex, Geometry, PipelineOptions, Viewport,
+};
+use rasterlab::raster::{
+    triangle_backends, DepthState, Flat, FragmentList, Interpolation, RenderTarget, Varyings,
+};
 
 /// A triangle in clip space, as `(x, y, z, w)` per vertex.
 pub type ClipTriangle = [(f32, f32, f32, f32); 3];
@@ -45,7 +43,7 @@ pub fn clipping_draws_exactly_the_visible_part(t: ClipTriangle) -> Result<(), Te
     let mut list = FragmentList::default();
     triangle_backends()[2].rasterize(
         &geometry.setups,
-        rasterlab::raster::edge::PixelRect::of_target(w, h),
+        rasterlab::raster::PixelRect::of_target(w, h),
         &mut list,
     );
     let mut covered = vec![false; (w * h) as usize];
@@ -64,28 +62,8 @@ pub fn clipping_draws_exactly_the_visible_part(t: ClipTriangle) -> Result<(), Te
     }
     for y in 0..h {
         for x in 0..w {
-            // The oracle at the pixel centre and 1/50 px around it: a
-            // pixel is checked only when all five agree, so snapping
-            // (1/512 px) cannot decide it.
-            let probe = |dx: f64, dy: f64| {
-                oracle(
-                    &tri,
-                    (
-                        (x as f64 + 0.5 + dx) / w as f64 * 2. - 1.,
-                        1. - (y as f64 + 0.5 + dy) / h as f64 * 2.,
-                    ),
-                )
-            };
-            let d = 0.02;
-            let probes = [
-                probe(0., 0.),
-                probe(d, 0.),
-                probe(-d, 0.),
-                probe(0., d),
-                probe(0., -d),
-            ];
-            if probes.iter().all(|p| *p == probes[0]) {
-                let Some(inside) = probes[0] else { continue };
+            let centre = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+            if let Some(inside) = oracle(&tri, centre, (w, h)) {
                 prop_assert_eq!(
                     covered[(y * w + x) as usize],
                     inside,
@@ -120,45 +98,70 @@ pub fn extreme_coordinates_never_fail(t: ClipTriangle) -> Result<(), TestCaseErr
     Ok(())
 }
 
-/// Solves for the clip-space barycentrics of the point of the triangle that
-/// projects to `ndc`, and says whether it is in the triangle and in the
-/// frustum; `None` when the pixel is too close to a border to decide, or
-/// when f64 cannot solve for the point accurately enough to say.
-fn oracle(t: &[Vec4; 3], ndc: (f64, f64)) -> Option<bool> {
+/// Pixels nearer than this to a border of the visible part are not
+/// judged: snapping moves a vertex by up to 1/512 px, and the clipper's
+/// `f32` vertices, up to 16,384 px from the origin, are off by up to
+/// about 1/1000 px.
+const UNDECIDED_PX: f64 = 0.01;
+
+/// Says whether the pixel centre `centre` (in pixels, on a `size` target)
+/// sees the clip-space triangle `t` inside the frustum; `None` when a
+/// border of the visible part passes within [`UNDECIDED_PX`] of it.
+///
+/// The point of the triangle seen at normalized device coordinates
+/// `(nx, ny)` has barycentrics `b` with `sum b_i (x_i - nx w_i) = 0`,
+/// `sum b_i (y_i - ny w_i) = 0` and `sum b_i = 1`. By Cramer's rule
+/// `b_i = A_i / D`, where `A_i = r1_j r2_k - r1_k r2_j` (`i, j, k` in
+/// cyclic order, `r1 = x - nx w`, `r2 = y - ny w`) and `D = sum A_i`;
+/// the `nx ny` terms cancel, so every `A_i` is affine in the pixel
+/// position. Each condition of visibility (`b_i > 0`, `w > W_MIN`,
+/// `z > -w`, `z < w`) is linear in `b`, so it holds where an affine
+/// function `N` has the sign of `D`: every border, the horizon `D = 0`
+/// included, is a straight line on the screen, and the distance to it is
+/// `|N| / |grad N|`, with no system to solve. The coefficients are
+/// differences of exact products of `f32` inputs, so they are accurate
+/// whatever the magnitudes.
+pub fn oracle(t: &[Vec4; 3], centre: (f64, f64), size: (u32, u32)) -> Option<bool> {
     let p = t.map(|v| v.as_dvec4());
-    // sum b_i (x_i - nx w_i) = 0, sum b_i (y_i - ny w_i) = 0, sum b_i = 1.
-    let row = |f: &dyn Fn(glam::DVec4) -> f64| glam::DVec3::new(f(p[0]), f(p[1]), f(p[2]));
-    let m = glam::DMat3::from_cols(
-        row(&|v| v.x - ndc.0 * v.w),
-        row(&|v| v.y - ndc.1 * v.w),
-        glam::DVec3::ONE,
-    )
-    .transpose();
-    if m.determinant().abs() < 1e-9 {
-        return None;
-    }
-    let b = m.inverse() * glam::DVec3::new(0., 0., 1.);
-    let q = p[0] * b.x + p[1] * b.y + p[2] * b.z;
-    // An ill-conditioned system (w of 10^5 beside x of 10^-7) loses the
-    // answer to cancellation even in f64: the point found must really
-    // project to `ndc`, or the oracle cannot decide.
-    let off = (q.x - ndc.0 * q.w).abs().max((q.y - ndc.1 * q.w).abs());
-    // (NaN, from entries that overflow, abstains too.)
-    if off.is_nan() || off > 1e-6 * q.w.abs() {
-        return None;
-    }
-    // Inside the triangle, beyond the w >= W_MIN plane, between near and far.
-    let w_min = f64::from(rasterlab::geometry::pipeline::clip::W_MIN);
-    let margins = [
-        b.x,
-        b.y,
-        b.z,
-        (q.w - w_min) / w_min,
-        (q.z + q.w) / q.w.abs().max(1e-300),
-        (q.w - q.z) / q.w.abs().max(1e-300),
+    // A_i = a0_i + ax_i nx + ay_i ny.
+    let a = [0, 1, 2].map(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        [
+            p[j].x * p[k].y - p[k].x * p[j].y,
+            p[k].w * p[j].y - p[j].w * p[k].y,
+            p[k].x * p[j].w - p[j].x * p[k].w,
+        ]
+    });
+    let w_min = f64::from(rasterlab::geometry::W_MIN);
+    // Each condition as its coefficients on b; the horizon D = sum A_i last.
+    let conditions: [[f64; 3]; 7] = [
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        p.map(|v| v.w - w_min),
+        p.map(|v| v.z + v.w),
+        p.map(|v| v.w - v.z),
+        [1.0, 1.0, 1.0],
     ];
-    if margins.iter().any(|m| m.abs() < 1e-3) {
-        return None;
+    let (width, height) = (f64::from(size.0), f64::from(size.1));
+    let (nx, ny) = (centre.0 / width * 2.0 - 1.0, 1.0 - centre.1 / height * 2.0);
+    let mut values = [0.0f64; 7];
+    for (value, c) in values.iter_mut().zip(conditions) {
+        let n = |term: usize| (0..3).map(|i| c[i] * a[i][term]).sum::<f64>();
+        let (n0, n_x, n_y) = (n(0), n(1), n(2));
+        *value = n0 + n_x * nx + n_y * ny;
+        let magnitude = (0..3)
+            .map(|i| c[i].abs() * (a[i][0].abs() + (a[i][1] * nx).abs() + (a[i][2] * ny).abs()))
+            .sum::<f64>();
+        // The gradient in pixels: nx = 2 px / width - 1, ny = 1 - 2 py / height.
+        let gradient = (n_x * 2.0 / width).hypot(n_y * 2.0 / height);
+        if !value.is_finite()
+            || value.abs() <= 1e-12 * magnitude
+            || value.abs() < UNDECIDED_PX * gradient
+        {
+            return None;
+        }
     }
-    Some(margins.iter().all(|m| *m > 0.0))
+    let horizon = values[6];
+    Some(values[..6].iter().all(|v| v.signum() == horizon.signum()))
 }
