@@ -5,12 +5,11 @@
 //! `cargo bench --bench rasterizers`
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use rasterlab::raster::backend::{line_backends, triangle_backends};
-use rasterlab::raster::descriptor::{within_budget, WorkBudget};
-use rasterlab::raster::edge::{FillRule, PixelRect, TriangleSetup};
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::fragment::{FragmentSink, LineFragment, TriangleFragment};
 use rasterlab::raster::line::{LineOptions, LineSetup};
+use rasterlab::raster::{
+    line_backends, triangle_backends, within_budget, FillRule, FixedPoint, FragmentSink,
+    LineFragment, PixelRect, TriangleFragment, TriangleSetup, WorkBudget,
+};
 use std::hint::black_box;
 
 /// Counts fragments, so only the rasterizers are measured.
@@ -34,7 +33,7 @@ fn p(x: f32, y: f32) -> FixedPoint {
 }
 
 fn setups(tris: &[[FixedPoint; 3]]) -> Vec<TriangleSetup> {
-    rasterlab::geometry::scene::setup_triangles(tris, FillRule::TopLeft)
+    rasterlab::geometry::setup_triangles(tris, FillRule::TopLeft)
 }
 
 /// A grid of right triangles of side `size` covering about 200,000 pixels.

@@ -55,19 +55,18 @@ mod cores;
 mod gl;
 
 use glam::{Mat4, Vec3};
-use rasterlab::geometry::mesh::Mesh;
-use rasterlab::geometry::pipeline::CullMode;
-use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
-use rasterlab::measure::context::Context;
-use rasterlab::measure::data::{self, Skipped};
-use rasterlab::measure::rounds::{ratio_header, Contender, Side, Workload, WorkloadResult};
-use rasterlab::measure::workload::{self, LineWorkload, TriangleWorkload};
-use rasterlab::raster::backend::{line_backends, triangle_backend, triangle_backends};
-use rasterlab::raster::descriptor::{within_budget, WorkBudget};
-use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::geometry::{CullMode, Mesh, MeshRenderer, RenderSettings, Shading};
+use rasterlab::measure::{
+    fill, find, long_lines, ratio_header, short_lines, sized, slivers, Contender, Context,
+    LineWorkload, Side, Skipped, TriangleWorkload, Workload, WorkloadResult, DRAGON_RES2,
+    FULL_DRAGON,
+};
 use rasterlab::raster::line::pixel_containing;
-use rasterlab::raster::target::RenderTarget;
 use rasterlab::raster::triangle::TriangleRasterizer;
+use rasterlab::raster::{
+    line_backends, triangle_backend, triangle_backends, within_budget, FixedPoint, RenderTarget,
+    WorkBudget,
+};
 use std::cell::RefCell;
 use std::path::PathBuf;
 
@@ -220,8 +219,8 @@ fn dragons(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
     let bundled = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/dragon_vrip_res4.ply.gz");
     let models = [
         ("dragon_res4", Ok(bundled), vec![1.0]),
-        ("dragon_res2", data::find(data::DRAGON_RES2), vec![1.0]),
-        ("dragon", data::find(data::FULL_DRAGON), vec![1.0, 2.5]),
+        ("dragon_res2", find(DRAGON_RES2), vec![1.0]),
+        ("dragon", find(FULL_DRAGON), vec![1.0, 2.5]),
     ];
     let mut results = Vec::new();
     for (name, path, zooms) in models {
@@ -403,12 +402,12 @@ fn gl_triangles(work: &TriangleWorkload) -> (Vec<gl::Vertex>, Vec<u32>) {
 }
 
 fn triangles(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
-    let mut workloads = vec![workload::fill(W, H, 1), workload::fill(W, H, 4)];
+    let mut workloads = vec![fill(W, H, 1), fill(W, H, 4)];
     for size in [1.0, 4.0, 16.0, 64.0, 250.0, 500.0] {
-        workloads.push(workload::sized(W, H, size));
+        workloads.push(sized(W, H, size));
     }
     for angle in [0.0, 45.0, 90.0] {
-        workloads.push(workload::slivers(W, H, angle));
+        workloads.push(slivers(W, H, angle));
     }
     let target = RefCell::new(RenderTarget::without_coverage(W, H).unwrap());
     let pixmap = RefCell::new(tiny_skia::Pixmap::new(W, H).unwrap());
@@ -517,9 +516,9 @@ fn lines(options: &Options) -> Vec<WorkloadResult> {
             continue;
         }
         let lines = if short {
-            workload::short_lines(W, H, count)
+            short_lines(W, H, count)
         } else {
-            workload::long_lines(W, H, count)
+            long_lines(W, H, count)
         };
         let work = LineWorkload::new(name, lines);
         let ints: Vec<(i32, i32, i32, i32)> = work

@@ -214,32 +214,28 @@ open(page, "w").write("\n".join(lines))
 print(f"{page}: the side_by_side table rewritten; update the prose that quotes it")
 PYTHON
 
-    # The survey of docs/check.md: each rasterizer's `--rule any` table,
-    # and the shrunk failure's picture.
-    cargo build --release --example peer_adapters
+    # The survey of docs/check.md: every subject's row, in one command,
+    # then each shrunk failure's picture that a page shows.
+    sh examples/adapters/survey.sh
     mkdir "$tmp/survey"
     ln -s "$PWD/examples" "$tmp/survey/examples"
     peers=$target/release/examples/peer_adapters
-    survey() { # NAME PROGRAM: the program's `--rule any` table, and its picture where a page shows one
+    picture() { # NAME CHECK-ARGS...: the shrunk failure's picture of docs/survey-NAME.svg
         rm -rf "$tmp/survey/check-output"
-        (cd "$tmp/survey" && "$bin" check --rule any --jobs 2 --cases 150 --timeout 30 --exec "$2") || true
-        if [ -f "docs/survey-$1.svg" ] && [ -f "$tmp/survey/check-output/counterexample.svg" ]; then
-            cp "$tmp/survey/check-output/counterexample.svg" "docs/survey-$1.svg"
-            echo "docs/survey-$1.svg"
+        name=$1
+        shift
+        (cd "$tmp/survey" && "$bin" check --rule any --jobs 2 --cases 150 --timeout 30 "$@" >/dev/null) || true
+        if [ -f "docs/survey-$name.svg" ] && [ -f "$tmp/survey/check-output/counterexample.svg" ]; then
+            cp "$tmp/survey/check-output/counterexample.svg" "docs/survey-$name.svg"
+            echo "docs/survey-$name.svg"
         fi
     }
     for adapter in rasterio_gdal scikit_image matplotlib_path skia_path pillow opencv; do
-        survey "$adapter" "python3 examples/adapters/$adapter.py {input} {width} {height}"
+        picture "$adapter" --persistent --exec "python3 examples/adapters/$adapter.py"
     done
-    survey opencv-noshift "python3 examples/adapters/opencv.py {input} {width} {height} noshift"
+    picture opencv-noshift --persistent --exec "python3 examples/adapters/opencv.py noshift"
     for peer in opengl tiny-skia euc embedded-graphics; do
-        survey "$peer" "$peers $peer {input} {width} {height}"
-    done
-    # The line drawers: each one's `--convention any` table.
-    for line_subject in "skimage_line.py" "pillow_line.py" "opencv_line.py" "opencv_line.py --line-type 4"; do
-        set -- $line_subject
-        (cd "$tmp/survey" && "$bin" check --kind lines --convention any --keep-going \
-            --exec "python3 examples/adapters/$1 {input} {width} {height} ${2:-} ${3:-}") || true
+        picture "$peer" --exec "$peers $peer {input} {width} {height}"
     done
     echo "the survey's tables are above: update docs/check.md's tables from them"
 fi

@@ -14,14 +14,11 @@
 //!
 //! `cargo run --release --example blue_triangle`
 
-use rasterlab::geometry::pipeline::assembly::{assemble, Topology};
-use rasterlab::geometry::pipeline::vertex::{positions_from_floats, Transform};
-use rasterlab::geometry::pipeline::{draw, process_triangles, PipelineOptions, Viewport};
-use rasterlab::geometry::scene::BLUE;
-use rasterlab::raster::backend::triangle_backend;
-use rasterlab::raster::shader::Constant;
-use rasterlab::raster::stage::Interpolation;
-use rasterlab::raster::target::{DepthState, RenderTarget};
+use rasterlab::geometry::{
+    assemble, draw, positions_from_floats, process_triangles, PipelineOptions, Topology, Transform,
+    Viewport, BLUE,
+};
+use rasterlab::raster::{triangle_backend, Constant, DepthState, Interpolation, RenderTarget};
 
 fn main() -> rasterlab::Result<()> {
     // Step 1: the vertex array, three floats (x, y, z) per vertex.
@@ -69,8 +66,8 @@ fn main() -> rasterlab::Result<()> {
         work.samples_tested, work.fragments
     );
     // Enlarged to 256 x 256, each pixel a framed cell, so it can be seen.
-    rasterlab::output::write_png(
+    rasterlab::write_png(
         std::path::Path::new("blue_triangle.png"),
-        &rasterlab::teaching::grid_picture::for_people(&target),
+        &rasterlab::teaching::for_people(&target),
     )
 }

@@ -13,9 +13,9 @@
 //!
 //! `cargo run --release --example bresenham`
 
-use rasterlab::raster::fixed::{FixedPoint, SUBPIXEL_SCALE};
 use rasterlab::raster::line::bresenham::Bresenham;
 use rasterlab::raster::line::OctantFrame;
+use rasterlab::raster::{FixedPoint, SUBPIXEL_SCALE};
 
 fn main() -> rasterlab::Result<()> {
     // Pixel (i, j) has its centre at (i + 0.5, j + 0.5).

@@ -5,10 +5,8 @@
 //!
 //! `cargo run --release --example depth_buffer`
 
-use rasterlab::geometry::scene::Scene2D;
-use rasterlab::raster::backend::triangle_backend;
-use rasterlab::raster::edge::FillRule;
-use rasterlab::raster::shader::Flat;
+use rasterlab::geometry::Scene2D;
+use rasterlab::raster::{triangle_backend, FillRule, Flat};
 
 fn print_depth(title: &str, depth: &[f32]) {
     println!("{title}");

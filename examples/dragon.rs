@@ -7,10 +7,8 @@
 //!
 //! `cargo run --release --example dragon`
 
-use rasterlab::geometry::mesh::Mesh;
-use rasterlab::geometry::pipeline::CullMode;
-use rasterlab::geometry::render::{MeshRenderer, RenderSettings};
-use rasterlab::raster::backend::triangle_backends;
+use rasterlab::geometry::{CullMode, Mesh, MeshRenderer, RenderSettings};
+use rasterlab::raster::triangle_backends;
 use std::path::Path;
 
 fn main() -> rasterlab::Result<()> {

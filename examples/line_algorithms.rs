@@ -6,11 +6,8 @@
 //!
 //! `cargo run --release --example line_algorithms`
 
-use rasterlab::raster::backend::line_backends;
-use rasterlab::raster::edge::PixelRect;
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::fragment::FragmentList;
 use rasterlab::raster::line::{LineOptions, LineSetup};
+use rasterlab::raster::{line_backends, FixedPoint, FragmentList, PixelRect};
 
 fn main() -> rasterlab::Result<()> {
     let (width, height) = (15u32, 8u32);

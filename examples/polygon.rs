@@ -7,12 +7,8 @@
 //!
 //! `cargo run --release --example polygon`
 
-use rasterlab::geometry::polygon::Polygon;
-use rasterlab::geometry::scene::Scene2D;
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::FillRule;
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::shader::Flat;
+use rasterlab::geometry::{Polygon, Scene2D};
+use rasterlab::raster::{triangle_backends, FillRule, FixedPoint, Flat};
 
 fn main() -> rasterlab::Result<()> {
     let p = |x: f32, y: f32| FixedPoint::snap(x, y);

@@ -30,33 +30,43 @@
 //! | [`check`] | checking any rasterizer (a back-end, a closure, another program) against the rules, with shrunk counterexamples |
 //! | [`lab`] | the interactive lab's requests, answers and server |
 //!
-//! Beside them: [`Error`] and [`Result`], and [`output`] (files checked
-//! before the work and written whole). The names most uses need are
-//! re-exported here, at the root.
+//! Beside them, at the root: [`Error`] and [`Result`], and the file
+//! writers every command uses ([`check_file`], [`check_dir`] before the
+//! work, [`write_file`] and [`write_png`] to write whole files); inside
+//! the crate, the one writer every SVG picture and HTML page goes
+//! through (one escaping of text for all of them).
+//!
+//! Every public name has one path: its room's (`rasterlab::raster::FillRule`,
+//! `rasterlab::check::Property`). The modules inside a room are private,
+//! except the algorithms' own: each back-end's module under
+//! [`raster::triangle`] and [`raster::line`](mod@raster::line) is a page
+//! of the course. [`prelude`] re-exports the names most uses need.
 //!
 //! ## Where to start
 //!
-//! * **Studying an algorithm**: its file under [`raster::triangle`] or
-//!   [`raster::line`](mod@raster::line) explains it in the course's terms; its trace in
-//!   [`teaching::trace`] prints each step; [`teaching::grid_picture`] draws
-//!   the pixel grid. [`Scene2D`] holds the course's examples (the
-//!   depth-buffer example, the blue triangle).
+//! * **Studying an algorithm**: its module under [`raster::triangle`] or
+//!   [`raster::line`](mod@raster::line) explains it in the course's terms;
+//!   [`teaching::trace_triangle`] and [`teaching::trace_line`] print each
+//!   step; [`teaching::GridPicture`] draws the pixel grid.
+//!   [`geometry::Scene2D`] holds the course's examples (the depth-buffer
+//!   example, the blue triangle).
 //! * **Checking a rasterizer**: [`check`] runs generated cases against the
 //!   rules and shrinks a failure; wrap yours as a [`check::Subject`] (or a
 //!   closure), or run `rasterlab check --exec` on a program in any language.
-//! * **Comparing performance**: [`measure::workload`] prepares the inputs,
-//!   [`measure::benchmark`] times every back-end; meshes are drawn by
-//!   [`MeshRenderer`].
+//! * **Comparing performance**: [`measure::TriangleWorkload`] prepares the
+//!   inputs, [`measure::run`] times every back-end; meshes are drawn by
+//!   [`geometry::MeshRenderer`].
 //! * **Adding a back-end**: implement
 //!   [`TriangleAlgorithm`](raster::triangle::TriangleAlgorithm) (or
 //!   [`AliasedLine`](raster::line::AliasedLine)) in a file of its own under `raster/triangle/`
-//!   (or `raster/line/`), declare it there with one `pub mod` line, and
-//!   list it in [`raster::backend`]; every command, check, report,
+//!   (or `raster/line/`), declare it in that folder's `mod.rs` with one `pub mod` line, and
+//!   list it in the registry, `raster/registry.rs` ([`raster::triangle_backends`]);
+//!   every command, check, report,
 //!   benchmark, trace and test picks it up from there.
 //!
 //! ```
-//! use rasterlab::raster::shader::Flat;
-//! use rasterlab::{triangle_backends, FillRule, Scene2D};
+//! use rasterlab::geometry::Scene2D;
+//! use rasterlab::raster::{triangle_backends, FillRule, Flat};
 //!
 //! // The rasterization slides' depth-buffer example, drawn by every triangle back-end.
 //! let scene = Scene2D::depth_example(true);
@@ -76,27 +86,32 @@ pub mod check;
 mod error;
 pub mod geometry;
 pub mod lab;
+pub(crate) mod markup;
 pub mod measure;
-pub mod output;
+mod output;
 pub mod raster;
 pub mod teaching;
+#[cfg(test)]
+mod test_support;
 
 pub use error::{Error, Result};
-pub use geometry::mesh::Mesh;
-pub use geometry::pipeline::{Geometry, PipelineOptions, Viewport};
-pub use geometry::polygon::Polygon;
-pub use geometry::render::{MeshRenderer, RenderSettings};
-pub use geometry::scene::Scene2D;
-pub use measure::render_request::{RenderInput, RenderReport, RenderRequest};
-pub use raster::backend::{
-    backend, line_backend, line_backends, triangle_backend, triangle_backends, Backend,
-};
-pub use raster::edge::{FillRule, PixelRect, TriangleSetup};
-pub use raster::fixed::{Fixed, FixedPoint};
-pub use raster::fragment::{FragmentSink, LineFragment, TriangleFragment, WorkCounters};
-pub use raster::line::{LineOptions, LineRasterizer, LineSetup};
-pub use raster::primitive::ShadedVertex;
-pub use raster::shader::FragmentShader;
-pub use raster::stage::FragmentStage;
-pub use raster::target::RenderTarget;
-pub use raster::triangle::{TriangleRasterizer, TriangleSelection};
+pub use output::{check_dir, check_file, write_file, write_png};
+
+/// The names most uses need, for `use rasterlab::prelude::*;`.
+///
+/// Each is its room's name, re-exported: `prelude::FillRule` is
+/// [`raster::FillRule`], documented there.
+pub mod prelude {
+    pub use crate::geometry::{
+        process_triangles, Geometry, Mesh, MeshRenderer, PipelineOptions, Polygon, RenderSettings,
+        Scene2D, Viewport,
+    };
+    pub use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
+    pub use crate::raster::triangle::{TriangleRasterizer, TriangleSelection};
+    pub use crate::raster::{
+        backend, line_backend, line_backends, triangle_backend, triangle_backends, Backend,
+        FillRule, FixedPoint, FragmentShader, FragmentSink, FragmentStage, PixelRect, RenderTarget,
+        TriangleSetup,
+    };
+    pub use crate::{Error, Result};
+}

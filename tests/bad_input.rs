@@ -1,10 +1,9 @@
 //! Bad input gets a clear error or a documented discard, never a panic.
 
-use rasterlab::raster::backend::{triangle_backend, triangle_backends};
-use rasterlab::raster::edge::{FillRule, PixelRect, TriangleSetup};
-use rasterlab::raster::fixed::{Fixed, FixedPoint};
-use rasterlab::raster::fragment::FragmentList;
-use rasterlab::raster::target::RenderTarget;
+use rasterlab::raster::{
+    triangle_backend, triangle_backends, FillRule, Fixed, FixedPoint, FragmentList, PixelRect,
+    RenderTarget, TriangleSetup,
+};
 use rasterlab::Error;
 
 #[test]
@@ -100,8 +99,7 @@ fn triangles_spanning_the_whole_guard_band_do_not_overflow() {
 
 #[test]
 fn rendering_into_a_target_of_another_size_is_an_error() {
-    use rasterlab::geometry::mesh::Mesh;
-    use rasterlab::geometry::render::{MeshRenderer, RenderSettings};
+    use rasterlab::geometry::{Mesh, MeshRenderer, RenderSettings};
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bunny.ply");
     let settings = RenderSettings {
         width: 32,

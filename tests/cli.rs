@@ -16,9 +16,9 @@ fn success_stdout(out: Output) -> String {
     String::from_utf8(out.stdout).unwrap()
 }
 
-fn temp_file(name: &str, text: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("rasterlab-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+/// Writes `text` to the file `name` in `dir` (a test's own temporary
+/// folder, removed when the test ends, whether it passes or panics).
+fn temp_file(dir: &std::path::Path, name: &str, text: &str) -> std::path::PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path
@@ -44,7 +44,12 @@ fn backends_lists_name_kind_and_description() {
 
 #[test]
 fn fragments_prints_x_y_t_in_emission_order() {
-    let soup = temp_file("split.txt", "# split square\n0 0 5 0 5 5\n\n0 5 0 0 5 5\n");
+    let tmp = tempfile::tempdir().unwrap();
+    let soup = temp_file(
+        tmp.path(),
+        "split.txt",
+        "# split square\n0 0 5 0 5 5\n\n0 5 0 0 5 5\n",
+    );
     let out = rasterlab(&[
         "fragments",
         "--backend",
@@ -81,7 +86,8 @@ fn fragments_prints_x_y_t_in_emission_order() {
 
 #[test]
 fn fragments_clips_to_the_target() {
-    let soup = temp_file("big.txt", "-10 -10 100 -10 -10 100\n");
+    let tmp = tempfile::tempdir().unwrap();
+    let soup = temp_file(tmp.path(), "big.txt", "-10 -10 100 -10 -10 100\n");
     let out = rasterlab(&[
         "fragments",
         "--backend",
@@ -95,7 +101,12 @@ fn fragments_clips_to_the_target() {
 
 #[test]
 fn malformed_input_names_the_file_and_line_exits_2_and_prints_nothing() {
-    let soup = temp_file("bad.txt", "0 0 5 0 5 5\n# ok so far\n0 0 5 zero 5 5\n");
+    let tmp = tempfile::tempdir().unwrap();
+    let soup = temp_file(
+        tmp.path(),
+        "bad.txt",
+        "0 0 5 0 5 5\n# ok so far\n0 0 5 zero 5 5\n",
+    );
     let out = rasterlab(&[
         "fragments",
         "--backend",
@@ -112,7 +123,7 @@ fn malformed_input_names_the_file_and_line_exits_2_and_prints_nothing() {
         "{err}"
     );
 
-    let nan = temp_file("nan.txt", "0 0 5 0 NaN 5\n");
+    let nan = temp_file(tmp.path(), "nan.txt", "0 0 5 0 NaN 5\n");
     let out = rasterlab(&[
         "fragments",
         "--backend",
@@ -142,7 +153,8 @@ fn malformed_input_names_the_file_and_line_exits_2_and_prints_nothing() {
 
 #[test]
 fn unknown_backends_rules_and_zero_sizes_fail_cleanly() {
-    let soup = temp_file("ok.txt", "0 0 5 0 5 5\n");
+    let tmp = tempfile::tempdir().unwrap();
+    let soup = temp_file(tmp.path(), "ok.txt", "0 0 5 0 5 5\n");
     for args in [
         vec!["fragments", "--backend", "zbuffer", "--size", "8x8"],
         vec!["fragments", "--backend", "naive", "--size", "0x8"],
@@ -169,8 +181,8 @@ fn unknown_backends_rules_and_zero_sizes_fail_cleanly() {
 
 #[test]
 fn render_draws_a_bundled_mesh() {
-    let out_png =
-        std::env::temp_dir().join(format!("rasterlab-cli-bunny-{}.png", std::process::id()));
+    let tmp = tempfile::tempdir().unwrap();
+    let out_png = tmp.path().join("bunny.png");
     let bunny = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bunny.ply");
     let out = rasterlab(&[
         "render",
@@ -202,8 +214,8 @@ fn render_culls_back_faces_by_default() {
         env!("CARGO_MANIFEST_DIR"),
         "/assets/dragon_vrip_res4.ply.gz"
     );
-    let out_png =
-        std::env::temp_dir().join(format!("rasterlab-cli-cull-{}.png", std::process::id()));
+    let tmp = tempfile::tempdir().unwrap();
+    let out_png = tmp.path().join("cull.png");
     let culled = |extra: &[&str]| -> String {
         let mut args = vec!["render", dragon, "--size", "320x240", "--azimuth", "30"];
         args.extend_from_slice(extra);
@@ -224,6 +236,7 @@ fn render_culls_back_faces_by_default() {
 /// no panic.
 #[test]
 fn malformed_meshes_name_file_and_line() {
+    let tmp = tempfile::tempdir().unwrap();
     let header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
     let cases = [
         ("short.ply", format!("{header}0 0 0\n1 0 0\n"), ":12"),
@@ -250,7 +263,7 @@ fn malformed_meshes_name_file_and_line() {
         ("number.obj", "v 0 0 0\nv 1 0 zero\n".to_string(), ":2:"),
     ];
     for (name, text, line) in cases {
-        let path = temp_file(name, &text);
+        let path = temp_file(tmp.path(), name, &text);
         let out = rasterlab(&["render", path.to_str().unwrap(), "--out", "/dev/null"]);
         let stderr = String::from_utf8(out.stderr).unwrap();
         assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
@@ -276,7 +289,8 @@ fn malformed_meshes_name_file_and_line() {
 
 #[test]
 fn bench_prints_a_table_and_writes_json_and_charts() {
-    let dir = std::env::temp_dir().join(format!("rasterlab-bench-{}", std::process::id()));
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("bench");
     let out = rasterlab(&[
         "--threads",
         "1",
@@ -297,7 +311,6 @@ fn bench_prints_a_table_and_writes_json_and_charts() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("bench.json")).unwrap()).unwrap();
     assert_eq!(written["results"].as_array().unwrap().len(), rows.len());
     assert!(image::open(dir.join("bench.png")).is_ok());
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -309,6 +322,7 @@ fn zero_threads_is_an_error() {
 
 #[test]
 fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
+    let tmp = tempfile::tempdir().unwrap();
     let out = rasterlab(&[
         "explain",
         "--backend",
@@ -323,7 +337,7 @@ fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
     let text = success_stdout(out);
     assert!(text.ends_with("6 rows, 24 fragments; a left edge (E rising to the right) gives the first pixel, a right edge the last\n"), "{text}");
 
-    let svg = temp_file("depth.svg", "");
+    let svg = temp_file(tmp.path(), "depth.svg", "");
     let out = rasterlab(&[
         "explain",
         "--backend",
@@ -345,7 +359,7 @@ fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
     );
 
     // Back-ends without a text trace still draw their picture.
-    let png = temp_file("tiled.png", "");
+    let png = temp_file(tmp.path(), "tiled.png", "");
     let out = rasterlab(&[
         "explain",
         "--backend",
@@ -439,15 +453,17 @@ fn explain_scanline_and_depth_buffer_print_their_tables_and_pictures() {
 
 #[test]
 fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
+    let tmp = tempfile::tempdir().unwrap();
     let polygon = temp_file(
+        tmp.path(),
         "polygon.txt",
         "# a pentagon with a hole\npolygon 2 2 30 3 28 20 16 28 3 22\nhole 10 8 20 9 14 16\n",
     );
-    let lines = temp_file("lines.txt", "0 0 30 11\n5 30 25 2\n");
+    let lines = temp_file(tmp.path(), "lines.txt", "0 0 30 11\n5 30 25 2\n");
     let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bunny.ply");
     let (triangle_rows, line_rows) = (
-        rasterlab::triangle_backends().len(),
-        rasterlab::line_backends().len(),
+        rasterlab::raster::triangle_backends().len(),
+        rasterlab::raster::line_backends().len(),
     );
     for (i, (input, size, rows)) in [
         (polygon.to_str().unwrap(), "32x32", triangle_rows),
@@ -457,7 +473,7 @@ fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
     .into_iter()
     .enumerate()
     {
-        let out_dir = temp_file("unused", "").with_file_name(format!("report-{i}"));
+        let out_dir = temp_file(tmp.path(), "unused", "").with_file_name(format!("report-{i}"));
         let out = rasterlab(&[
             "compare",
             input,
@@ -483,7 +499,7 @@ fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
             assert_eq!(html.matches("0 (identical)").count(), rows, "{input}");
         }
     }
-    let bad = temp_file("bad.txt", "polygon 0 0 1 0\n");
+    let bad = temp_file(tmp.path(), "bad.txt", "polygon 0 0 1 0\n");
     let out = rasterlab(&["compare", bad.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8(out.stderr)
@@ -497,8 +513,8 @@ fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
 /// are few), on one thread or two; each still counts as one primitive.
 #[test]
 fn render_counts_each_triangle_once_whatever_the_bands() {
-    let dir = std::env::temp_dir().join(format!("rasterlab-cli-bands-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
     let soup = dir.join("two.txt");
     std::fs::write(&soup, "0 0 1920 0 0 1080\n1920 0 1920 1080 0 1080\n").unwrap();
     let out = dir.join("two.png");
@@ -518,5 +534,4 @@ fn render_counts_each_triangle_once_whatever_the_bands() {
             "{threads} threads: {text}"
         );
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }

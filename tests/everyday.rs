@@ -6,9 +6,9 @@
 mod common;
 use common::rasterlab;
 
-fn temp(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("rasterlab-everyday-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+/// The path of `name` in `dir` (a test's own temporary folder, removed
+/// when the test ends, whether it passes or panics), as text.
+fn temp(dir: &std::path::Path, name: &str) -> String {
     dir.join(name).to_str().unwrap().to_string()
 }
 
@@ -18,7 +18,8 @@ const BUNNY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/bunny.ply");
 
 #[test]
 fn a_line_set_renders_the_pixels_fragments_lists() {
-    let png = temp("lines.png");
+    let tmp = tempfile::tempdir().unwrap();
+    let png = temp(tmp.path(), "lines.png");
     let out = rasterlab(&["render", LINES, "--size", "32x32", "--out", &png]);
     assert!(
         out.status.success(),
@@ -86,7 +87,8 @@ fn a_line_set_renders_the_pixels_fragments_lists() {
 
 #[test]
 fn scale_enlarges_a_scene_pixel_by_pixel() {
-    let png = temp("pinwheel.png");
+    let tmp = tempfile::tempdir().unwrap();
+    let png = temp(tmp.path(), "pinwheel.png");
     let out = rasterlab(&[
         "render", "--scene", "pinwheel", "--scale", "32", "--out", &png,
     ]);
@@ -96,7 +98,7 @@ fn scale_enlarges_a_scene_pixel_by_pixel() {
         String::from_utf8_lossy(&out.stderr)
     );
     let big = image::open(&png).unwrap().to_rgba8();
-    let small_png = temp("pinwheel-1.png");
+    let small_png = temp(tmp.path(), "pinwheel-1.png");
     assert!(
         rasterlab(&["render", "--scene", "pinwheel", "--out", &small_png])
             .status
@@ -117,7 +119,8 @@ fn scale_enlarges_a_scene_pixel_by_pixel() {
 
 #[test]
 fn options_that_do_not_apply_are_refused_not_ignored() {
-    let png = temp("x.png");
+    let tmp = tempfile::tempdir().unwrap();
+    let png = temp(tmp.path(), "x.png");
     for args in [
         vec![
             "render", POLYGON, "--size", "32x32", "--zoom", "2", "--out", &png,
@@ -172,6 +175,7 @@ fn options_that_do_not_apply_are_refused_not_ignored() {
 
 #[test]
 fn compare_says_which_reference_it_uses_and_why() {
+    let tmp = tempfile::tempdir().unwrap();
     let dragon = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/assets/dragon_vrip_res4.ply.gz"
@@ -184,14 +188,14 @@ fn compare_says_which_reference_it_uses_and_why() {
         "--samples",
         "1",
         "--out",
-        &temp("cd"),
+        &temp(tmp.path(), "cd"),
     ]);
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(
         text.starts_with("reference: bbox: naive was left out"),
         "{text}"
     );
-    let dir = temp("cl");
+    let dir = temp(tmp.path(), "cl");
     let out = rasterlab(&[
         "compare",
         LINES,

@@ -2,13 +2,9 @@
 //! pattern on a triangle with pixel centres on all three edges, and seed
 //! 002's depth-buffer example.
 
-use rasterlab::geometry::scene::{collect_fragments, setup_triangles, Scene2D, BLUE, RED};
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::FillRule;
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::shader::to_rgba8;
-use rasterlab::raster::shader::Flat;
-use rasterlab::teaching::ascii;
+use rasterlab::geometry::{collect_fragments, setup_triangles, Scene2D, BLUE, RED};
+use rasterlab::raster::{to_rgba8, triangle_backends, FillRule, FixedPoint, Flat};
+use rasterlab::teaching::{ascii_count, ascii_rows};
 
 fn snap(x: f32, y: f32) -> FixedPoint {
     FixedPoint::snap(x, y).unwrap()
@@ -29,8 +25,8 @@ fn pattern(
     for f in &list.triangles {
         counts[(f.y * w + f.x) as usize] += 1;
     }
-    ascii::rows(0..i64::from(w), 0..i64::from(h), |x, y| {
-        ascii::count(counts[(y * i64::from(w) + x) as usize])
+    ascii_rows(0..i64::from(w), 0..i64::from(h), |x, y| {
+        ascii_count(counts[(y * i64::from(w) + x) as usize])
     })
 }
 
@@ -220,13 +216,14 @@ fn seed_002_depth_buffer_example_matches_the_slides_in_both_drawing_orders() {
 /// blue are hidden and 8 reach the buffer at 0.8).
 #[test]
 fn seed_002_depth_buffer_trace_prints_the_slides_matrices() {
-    let bbox = rasterlab::raster::backend::triangle_backend("bbox").unwrap();
-    let text = rasterlab::teaching::trace::depth_buffer_trace(
+    let bbox = rasterlab::raster::triangle_backend("bbox").unwrap();
+    let text = rasterlab::teaching::trace_depth_buffer(
         &Scene2D::depth_example(true),
         bbox,
         FillRule::TopLeft,
     )
-    .unwrap();
+    .unwrap()
+    .to_text();
     let mut expected = vec![
         "depth buffer, 14 x 9, initialised with 1.0; each fragment f is kept if f.z < depthBuffer[f.xy]"
             .to_string(),

@@ -3,11 +3,10 @@
 //! polylines, direct = bresenham, the diamond rule against brute force and
 //! Vulkan's tolerance, and `line_drawing` as an outside oracle.
 
+mod common;
+
 use proptest::prelude::*;
-use rasterlab::measure::workload::LineWorkload;
-use rasterlab::raster::edge::PixelRect;
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::fragment::FragmentList;
+use rasterlab::measure::LineWorkload;
 use rasterlab::raster::line::bresenham::Bresenham;
 use rasterlab::raster::line::dda::Dda;
 use rasterlab::raster::line::diamond::{exits_diamond, Diamond};
@@ -16,8 +15,8 @@ use rasterlab::raster::line::wu::Wu;
 use rasterlab::raster::line::{
     AliasedLine, Connectivity, Endpoints, LineOptions, LineRasterizer, LineSetup, OctantFrame,
 };
-use rasterlab::raster::target::RenderTarget;
-use rasterlab::teaching::ascii;
+use rasterlab::raster::{FixedPoint, FragmentList, PixelRect, RenderTarget};
+use rasterlab::teaching::{ascii_mark, ascii_rows};
 use std::collections::BTreeSet;
 
 type Pixels = Vec<(i64, i64)>;
@@ -106,7 +105,7 @@ fn minor_distance(line: &LineSetup, (x, y): (i64, i64)) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(4000))]
+    #![proptest_config(crate::common::proptest_config(4000, "tests/proptest-regressions/lines.txt"))]
 
     #[test]
     fn aliased_lines_have_the_properties_their_options_promise(a in endpoint(), b in endpoint(), opt in options()) {
@@ -261,7 +260,7 @@ fn line_drawing_crate_bresenham_is_our_midpoint_rule_moved_half_a_pixel() {
 }
 
 fn ascii(pixels: &[(i64, i64)], w: i64, h: i64) -> Vec<String> {
-    ascii::rows(0..w, 0..h, |x, y| ascii::mark(pixels.contains(&(x, y))))
+    ascii_rows(0..w, 0..h, |x, y| ascii_mark(pixels.contains(&(x, y))))
 }
 
 #[test]
@@ -351,7 +350,7 @@ fn a_tie_shows_the_asymmetry_and_the_symmetric_variant_removes_it() {
 fn line_backends_clip_to_the_viewport_and_reject_options_they_cannot_honour() {
     let line = seg(snap(-50.0, 2.5), snap(50.0, 2.5));
     let vp = PixelRect::of_target(10, 5);
-    for &b in rasterlab::line_backends() {
+    for &b in rasterlab::raster::line_backends() {
         let mut list = FragmentList::default();
         b.rasterize(&[line], &LineOptions::DEFAULT, vp, &mut list);
         assert_eq!(list.lines.len(), 10, "{}", b.name());
@@ -369,13 +368,11 @@ fn line_backends_clip_to_the_viewport_and_reject_options_they_cannot_honour() {
 #[test]
 fn lines_are_depth_tested_against_triangles_in_the_shared_stage() {
     use glam::Vec4;
-    use rasterlab::geometry::scene::Scene2D;
-    use rasterlab::raster::backend::triangle_backends;
-    use rasterlab::raster::edge::FillRule;
-    use rasterlab::raster::primitive::{ShadedLine, ShadedVertex};
-    use rasterlab::raster::shader::Gouraud;
-    use rasterlab::raster::stage::FragmentStage;
-    use rasterlab::raster::target::{DepthState, RenderTarget};
+    use rasterlab::geometry::Scene2D;
+    use rasterlab::raster::{
+        triangle_backends, DepthState, FillRule, FragmentStage, Gouraud, RenderTarget, ShadedLine,
+        ShadedVertex,
+    };
 
     // A square at depth 0.5, and a horizontal line across it whose depth
     // goes from 0.2 (left, in front) to 0.8 (right, behind).
@@ -428,9 +425,8 @@ fn lines_are_depth_tested_against_triangles_in_the_shared_stage() {
 
 #[test]
 fn the_cli_prints_line_fragments_and_wu_weights() {
-    let dir = std::env::temp_dir().join(format!("rasterlab-lines-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("lines.txt");
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("lines.txt");
     std::fs::write(&file, "# the line-drawing slides\n0.5 0.5 7.5 3.5\n").unwrap();
     let run = |args: &[&str]| {
         std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
@@ -477,7 +473,7 @@ fn the_cli_prints_line_fragments_and_wu_weights() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(3000))]
+    #![proptest_config(crate::common::proptest_config(3000, "tests/proptest-regressions/lines.txt"))]
 
     /// The fast path writes exactly the pixels the `bresenham` back-end
     /// sends through the stage (colour and coverage), lines partly or wholly

@@ -8,21 +8,14 @@ mod properties;
 use glam::{Mat4, Vec3, Vec4};
 use properties::soup_geometry;
 use proptest::prelude::*;
-use rasterlab::geometry::mesh::Mesh;
-use rasterlab::geometry::pipeline::draw_binned;
-use rasterlab::geometry::pipeline::vertex::Transform;
-use rasterlab::geometry::pipeline::{
-    draw, draw_clearing, process_triangles, process_triangles_into, CullMode, Geometry,
-    PipelineOptions, Viewport,
+use rasterlab::geometry::{
+    draw, draw_binned, draw_clearing, process_triangles, process_triangles_into, CullMode,
+    Geometry, Mesh, MeshRenderer, PipelineOptions, RenderSettings, Shading, Transform, Viewport,
 };
-use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::PixelRect;
-use rasterlab::raster::fragment::{FragmentList, FragmentSink};
-use rasterlab::raster::shader::FragmentShader;
-use rasterlab::raster::shader::{Constant, Flat, Gouraud};
-use rasterlab::raster::stage::{FragmentStage, Interpolation};
-use rasterlab::raster::target::{Clear, DepthState, DepthTest, RenderTarget};
+use rasterlab::raster::{
+    triangle_backends, Clear, Constant, DepthState, DepthTest, Flat, FragmentList, FragmentShader,
+    FragmentSink, FragmentStage, Gouraud, Interpolation, PixelRect, RenderTarget,
+};
 use std::path::Path;
 
 fn pool(threads: usize) -> rayon::ThreadPool {
@@ -243,7 +236,7 @@ fn replay(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(600))]
+    #![proptest_config(crate::common::proptest_config(600, "tests/proptest-regressions/parallel.txt"))]
 
     /// Soups drawn in bands on 2 and 3 threads (8-row bands on this small
     /// target, so triangles cross bands) equal the single-threaded draw.
@@ -251,7 +244,7 @@ proptest! {
     fn binned_soups_equal_the_single_threaded_draw(
         soup in common::triangle_soup(24),
         depths in proptest::collection::vec(0.0f32..1.0, 1..8),
-        backend in 0..rasterlab::triangle_backends().len(),
+        backend in 0..rasterlab::raster::triangle_backends().len(),
     ) {
         let geometry = soup_geometry(&soup, &depths);
         let b = triangle_backends()[backend];
@@ -274,7 +267,7 @@ proptest! {
     fn clears_folded_into_the_draw_equal_a_clear_then_the_draw(
         soup in common::triangle_soup(12),
         depths in proptest::collection::vec(0.0f32..1.0, 1..8),
-        backend in 0..rasterlab::triangle_backends().len(),
+        backend in 0..rasterlab::raster::triangle_backends().len(),
         counts in any::<bool>(),
     ) {
         properties::clears_folded_into_the_draw_equal_a_clear_then_the_draw(&soup, &depths, backend, counts)?;
@@ -288,7 +281,7 @@ proptest! {
     fn few_triangles_drawn_band_by_band_equal_triangle_by_triangle(
         soup in common::triangle_soup(24),
         depths in proptest::collection::vec(0.0f32..1.0, 1..8),
-        backend in 0..rasterlab::triangle_backends().len(),
+        backend in 0..rasterlab::raster::triangle_backends().len(),
     ) {
         let geometry = soup_geometry(&soup, &depths);
         let b = triangle_backends()[backend];
@@ -316,7 +309,7 @@ proptest! {
     fn no_depth_buffer_equals_a_test_every_fragment_passes(
         soup in common::triangle_soup(16),
         depths in proptest::collection::vec(0.0f32..1.0, 1..8),
-        backend in 0..rasterlab::triangle_backends().len(),
+        backend in 0..rasterlab::raster::triangle_backends().len(),
     ) {
         let geometry = soup_geometry(&soup, &depths);
         let b = triangle_backends()[backend];

@@ -9,8 +9,7 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
-use rasterlab::geometry::input::parse_shapes;
-use rasterlab::geometry::mesh::{obj, ply};
+use rasterlab::geometry::{parse_obj, parse_shapes, read_ply};
 use std::collections::BTreeSet;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -234,11 +233,11 @@ fn small_plys() -> (Vec<u8>, Vec<u8>) {
 #[test]
 fn ply_files_survive_mutation() {
     let (ascii, binary) = small_plys();
-    assert!(ply::read(std::io::Cursor::new(&ascii), Path::new("a.ply")).is_ok());
-    assert!(ply::read(std::io::Cursor::new(&binary), Path::new("b.ply")).is_ok());
+    assert!(read_ply(std::io::Cursor::new(&ascii), Path::new("a.ply")).is_ok());
+    assert!(read_ply(std::io::Cursor::new(&binary), Path::new("b.ply")).is_ok());
     let parse = |file: &'static str| {
         move |d: &[u8]| {
-            ply::read(std::io::Cursor::new(d), Path::new(file))
+            read_ply(std::io::Cursor::new(d), Path::new(file))
                 .err()
                 .map(|e| e.to_string())
         }
@@ -254,17 +253,15 @@ fn gzip_compressed_ply_files_survive_mutation() {
     let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
     e.write_all(&ascii).unwrap();
     let packed = e.finish().unwrap();
-    let dir = std::env::temp_dir().join(format!("rasterlab-fuzz-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("m.ply.gz");
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("m.ply.gz");
     let file = path.to_str().unwrap().to_string();
     fuzz("ply.gz", &packed, &file, false, 800, |d| {
         std::fs::write(&path, d).unwrap();
-        rasterlab::geometry::mesh::Mesh::load(&path)
+        rasterlab::geometry::Mesh::load(&path)
             .err()
             .map(|e| e.to_string())
     });
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -272,7 +269,7 @@ fn obj_files_survive_mutation() {
     let obj = b"# an L and a quad\nv 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/1/1 5/2/1 6/3/1\nf 1 2 3\nf -1 -2 -3\n";
     fuzz("obj", obj, "m.obj", true, 2000, |d| {
         let text = std::str::from_utf8(d).ok()?;
-        obj::parse(text, Path::new("m.obj"))
+        parse_obj(text, Path::new("m.obj"))
             .err()
             .map(|e| e.to_string())
     });

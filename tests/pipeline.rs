@@ -7,22 +7,16 @@ mod properties;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use proptest::prelude::*;
-use rasterlab::geometry::mesh::Mesh;
-use rasterlab::geometry::pipeline::assembly::{assemble, Topology};
-use rasterlab::geometry::pipeline::clip::ClipVertex;
-use rasterlab::geometry::pipeline::vertex::{positions_from_floats, Transform};
-use rasterlab::geometry::pipeline::{
-    draw, process_triangles, CullMode, FrontFace, PipelineOptions, Viewport,
+use rasterlab::geometry::{
+    assemble, draw, positions_from_floats, process_triangles, ClipVertex, CullMode, FrontFace,
+    Mesh, MeshRenderer, PipelineOptions, RenderSettings, Scene2D, Shading, Topology, Transform,
+    Viewport,
 };
-use rasterlab::geometry::render::{MeshRenderer, RenderSettings, Shading};
-use rasterlab::geometry::scene::Scene2D;
-use rasterlab::raster::backend::{triangle_backend, triangle_backends};
-use rasterlab::raster::edge::FillRule;
-use rasterlab::raster::primitive::{ShadedVertex, Varyings};
-use rasterlab::raster::shader::{Constant, Filter, Flat, Texture, Textured};
-use rasterlab::raster::stage::Interpolation;
-use rasterlab::raster::target::{DepthState, RenderTarget};
-use rasterlab::teaching::ascii;
+use rasterlab::raster::{
+    triangle_backend, triangle_backends, Constant, DepthState, FillRule, Filter, Flat,
+    Interpolation, RenderTarget, ShadedVertex, Texture, Textured, Varyings,
+};
+use rasterlab::teaching::{ascii_mark, ascii_rows};
 use rasterlab::Error;
 use std::path::Path;
 
@@ -37,8 +31,8 @@ fn asset(name: &str) -> Mesh {
 
 fn ascii(target: &RenderTarget) -> Vec<String> {
     let (w, h) = (i64::from(target.width()), i64::from(target.height()));
-    ascii::rows(0..w, 0..h, |x, y| {
-        ascii::mark(target.coverage[target.index(x as u32, y as u32)] > 0)
+    ascii_rows(0..w, 0..h, |x, y| {
+        ascii_mark(target.coverage[target.index(x as u32, y as u32)] > 0)
     })
 }
 
@@ -339,7 +333,7 @@ fn golden_images() {
                 width: 160,
                 height: 120,
                 zoom: 2.0,
-                wireframe: Some(rasterlab::raster::backend::line_backend("bresenham").unwrap()),
+                wireframe: Some(rasterlab::raster::line_backend("bresenham").unwrap()),
                 ..small_settings(Shading::Flat)
             },
         ),
@@ -505,7 +499,7 @@ fn extreme_coordinate() -> impl Strategy<Value = f32> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(4000))]
+    #![proptest_config(crate::common::proptest_config(4000, "tests/proptest-regressions/pipeline.txt"))]
 
     /// Triangles anywhere in clip space (across the near plane, behind the
     /// camera, huge, with w near zero): no error, every fragment lies where
@@ -537,7 +531,7 @@ proptest! {
         let n = soup.len();
         let vertex = |i: usize| {
             // Distinct constant depths, distinct colours.
-            [ShadedVertex::flat((i as f32 + 1.0) / 16.0, rasterlab::geometry::scene::palette(i)); 3]
+            [ShadedVertex::flat((i as f32 + 1.0) / 16.0, rasterlab::geometry::scene_colour(i)); 3]
         };
         let order: Vec<usize> = order.into_iter().filter(|&i| i < n).collect();
         let scene = |idx: &[usize]| Scene2D {
@@ -628,6 +622,58 @@ fn regression_edge_to_a_point_at_infinity_passes_a_hair_above_a_pixel_centre() {
     );
     assert_eq!(target.coverage[target.index(9, 10)], 1);
     assert_eq!(target.coverage[target.index(9, 11)], 0);
+}
+
+/// The clipping property's oracle is no check that cannot fail: on a
+/// triangle in front of the camera it decides every pixel but those
+/// within 1/100 px of an edge (here, the centres the edges pass through),
+/// and agrees with the 2D triangle drawn at the projected vertices;
+/// beyond the far plane it says "not visible".
+#[test]
+fn the_clipping_oracle_decides_what_it_can_and_is_right() {
+    // Projected: (6, 4), (20, 6), (8, 14) on a 24 x 16 target, w = 2.
+    let to_clip = |(x, y): (f64, f64), z: f32| {
+        Vec4::new(
+            ((x / 24.0 * 2.0 - 1.0) * 2.0) as f32,
+            ((1.0 - y / 16.0 * 2.0) * 2.0) as f32,
+            z,
+            2.0,
+        )
+    };
+    let corners = [(6.0, 4.0), (20.0, 6.0), (8.0, 14.0)];
+    let tri = corners.map(|c| to_clip(c, 0.5));
+    // The signed distance in pixels to the edge from a to b.
+    let edge = |a: (f64, f64), b: (f64, f64), p: (f64, f64)| {
+        ((b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0)) / (b.0 - a.0).hypot(b.1 - a.1)
+    };
+    let mut undecided = Vec::new();
+    for y in 0..16 {
+        for x in 0..24 {
+            let centre = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+            let distances = [0, 1, 2].map(|i| edge(corners[i], corners[(i + 1) % 3], centre));
+            let near_an_edge = distances.iter().any(|d| d.abs() < 0.01);
+            match properties::oracle(&tri, centre, (24, 16)) {
+                Some(answer) => {
+                    assert!(!near_an_edge, "pixel ({x}, {y}) decided on an edge");
+                    assert_eq!(
+                        answer,
+                        distances.iter().all(|d| *d > 0.0),
+                        "pixel ({x}, {y})"
+                    );
+                }
+                None => {
+                    assert!(near_an_edge, "pixel ({x}, {y}) undecided");
+                    undecided.push((x, y));
+                }
+            }
+        }
+    }
+    assert_eq!(undecided.len(), 7, "{undecided:?}");
+    let beyond_far = corners.map(|c| to_clip(c, 3.0));
+    assert_eq!(
+        properties::oracle(&beyond_far, (10.5, 7.5), (24, 16)),
+        Some(false)
+    );
 }
 
 /// Shrunk from `clipping_draws_exactly_the_visible_part`: one vertex

@@ -1,7 +1,8 @@
 //! Failures the property tests found and shrank, each kept as a named
 //! test of the property it broke, so that it runs on every build whatever
-//! proptest's seed files hold. Coordinates are in the subpixel units of
-//! the snapping grid (1/256 px), as the shrunk cases were printed.
+//! proptest's seed files hold (those are kept beside this file, in
+//! `tests/proptest-regressions/`). Coordinates are in the subpixel units
+//! of the snapping grid (1/256 px), as the shrunk cases were printed.
 
 mod common;
 #[path = "properties/parallel.rs"]
@@ -12,9 +13,8 @@ mod pictures;
 mod pipeline;
 
 use common::*;
-use rasterlab::raster::edge::FillRule;
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::Polygon;
+use rasterlab::geometry::Polygon;
+use rasterlab::raster::{FillRule, FixedPoint};
 use std::collections::BTreeSet;
 
 fn raw(x: i64, y: i64) -> FixedPoint {
@@ -153,6 +153,19 @@ mod clipping {
             (0.0, -0.5772273, 0.0, 59688.594),
             (-0.638286, -0.050384615, 0.0, 0.52742136),
             (0.0, 0.0, 0.0, -1.3590423),
+        ])
+        .unwrap();
+    }
+
+    /// A vertex behind the camera with z = -245262, far beyond the far
+    /// plane in the other direction: the part in front is cut by all
+    /// three planes at once.
+    #[test]
+    fn a_vertex_behind_the_camera_with_a_huge_negative_z() {
+        clipping_draws_exactly_the_visible_part([
+            (-1.953988, -0.06673906, 1.3433396, 0.13046871),
+            (2.3196874, 0.0, 0.19172992, 1.574061),
+            (0.0, 0.0, -245262.08, -0.9012618),
         ])
         .unwrap();
     }

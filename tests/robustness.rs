@@ -22,14 +22,10 @@ fn expect(out: &Output, code: i32, message: &str) {
     assert!(err.contains(message), "wanted `{message}` in: {err}");
 }
 
-fn dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rasterlab-robust-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn temp_file(name: &str, bytes: &[u8]) -> PathBuf {
-    let path = dir().join(name);
+/// Writes `bytes` to the file `name` in `dir` (a test's own temporary
+/// folder, removed when the test ends, whether it passes or panics).
+fn temp_file(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let path = dir.join(name);
     std::fs::write(&path, bytes).unwrap();
     path
 }
@@ -48,6 +44,7 @@ const DRAGON: &str = concat!(
 /// with exit 3, and a full disk is reported with exit 3; no panic.
 #[test]
 fn closed_and_full_standard_output_exit_3_without_a_panic() {
+    let tmp = tempfile::tempdir().unwrap();
     for args in [
         vec![
             "explain",
@@ -67,7 +64,7 @@ fn closed_and_full_standard_output_exit_3_without_a_panic() {
     ] {
         let mut args: Vec<String> = args.iter().map(|a| a.to_string()).collect();
         if args.last().map(String::as_str) == Some("--out") {
-            args.push(s(&dir().join("pipe.png")).to_string());
+            args.push(s(&tmp.path().join("pipe.png")).to_string());
         }
         // A pipe whose reading end is already closed.
         let (reader, writer) = std::io::pipe().unwrap();
@@ -96,6 +93,7 @@ fn closed_and_full_standard_output_exit_3_without_a_panic() {
 /// 100.50195313, snaps to 100.50390625; in f32 it used to snap to 100.5).
 #[test]
 fn explain_and_fragments_snap_the_same_coordinates() {
+    let tmp = tempfile::tempdir().unwrap();
     let coords = ["100.50195313", "0", "100.50195313", "10", "105", "5"];
     let mut args = vec!["explain", "--backend", "bbox", "--size", "128x16"];
     args.extend(coords);
@@ -103,7 +101,7 @@ fn explain_and_fragments_snap_the_same_coordinates() {
     expect(&out, 0, "");
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.trim_end().ends_with("20 fragments"), "{text}");
-    let file = temp_file("snap.txt", coords.join(" ").as_bytes());
+    let file = temp_file(tmp.path(), "snap.txt", coords.join(" ").as_bytes());
     let out = rasterlab(&[
         "fragments",
         "--backend",
@@ -119,7 +117,8 @@ fn explain_and_fragments_snap_the_same_coordinates() {
 /// reads them as `fragments` does: the same pixels.
 #[test]
 fn explain_screen_coordinates_draw_what_fragments_draws() {
-    let file = temp_file("line.txt", b"0.7 0.2 9.3 4.9\n");
+    let tmp = tempfile::tempdir().unwrap();
+    let file = temp_file(tmp.path(), "line.txt", b"0.7 0.2 9.3 4.9\n");
     let out = rasterlab(&[
         "fragments",
         "--backend",
@@ -173,7 +172,9 @@ fn explain_screen_coordinates_draw_what_fragments_draws() {
 /// at the hole's line.
 #[test]
 fn misplaced_holes_are_errors_at_their_line() {
+    let tmp = tempfile::tempdir().unwrap();
     let outside = temp_file(
+        tmp.path(),
         "hole-out.txt",
         b"polygon 0 0 10 0 10 10 0 10\nhole 20 20 30 20 20 30\n",
     );
@@ -187,6 +188,7 @@ fn misplaced_holes_are_errors_at_their_line() {
     ]);
     expect(&out, 2, "hole-out.txt:2: hole 1 lies outside its polygon");
     let nested = temp_file(
+        tmp.path(),
         "hole-in-hole.txt",
         b"polygon 0 0 10 0 10 10 0 10\nhole 2 2 8 2 8 8 2 8\n# nested\nhole 3 3 5 3 5 5\n",
     );
@@ -200,6 +202,7 @@ fn misplaced_holes_are_errors_at_their_line() {
     ]);
     expect(&out, 2, "hole-in-hole.txt:4: hole 2 lies inside hole 1");
     let good = temp_file(
+        tmp.path(),
         "hole-ok.txt",
         b"polygon 0 0 10 0 10 10 0 10\nhole 2 2 8 2 8 8\n",
     );
@@ -219,14 +222,20 @@ fn misplaced_holes_are_errors_at_their_line() {
 /// error at its line.
 #[test]
 fn concave_obj_faces_are_triangulated_not_fanned() {
+    let tmp = tempfile::tempdir().unwrap();
     let corners = "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\n";
-    let l_face = temp_file("l.obj", format!("{corners}f 1 2 3 4 5 6\n").as_bytes());
+    let l_face = temp_file(
+        tmp.path(),
+        "l.obj",
+        format!("{corners}f 1 2 3 4 5 6\n").as_bytes(),
+    );
     let by_hand = temp_file(
+        tmp.path(),
         "l-split.obj",
         format!("{corners}f 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 6\n").as_bytes(),
     );
     let render = |path: &Path| {
-        let png = dir().join(format!(
+        let png = tmp.path().join(format!(
             "{}.png",
             path.file_stem().unwrap().to_str().unwrap()
         ));
@@ -247,10 +256,11 @@ fn concave_obj_faces_are_triangulated_not_fanned() {
     };
     assert_eq!(render(&l_face), render(&by_hand));
     let bow = temp_file(
+        tmp.path(),
         "bow.obj",
         b"v 0 0 0\nv 3 2 0\nv 3 0 0\nv 0 1 0\n\nf 1 2 3 4\n",
     );
-    let out = rasterlab(&["render", s(&bow), "--out", s(&dir().join("bow.png"))]);
+    let out = rasterlab(&["render", s(&bow), "--out", s(&tmp.path().join("bow.png"))]);
     expect(&out, 2, "bow.obj:6: the face crosses itself");
 }
 
@@ -258,6 +268,7 @@ fn concave_obj_faces_are_triangulated_not_fanned() {
 /// exit 2 for an argument out of range) before any work.
 #[test]
 fn requests_beyond_the_bounds_are_refused_with_an_estimate() {
+    let tmp = tempfile::tempdir().unwrap();
     let out = rasterlab(&["--threads", "100000", "backends"]);
     expect(&out, 2, "--threads must be between 1 and 256");
     let out = rasterlab(&[
@@ -301,7 +312,7 @@ fn requests_beyond_the_bounds_are_refused_with_an_estimate() {
         "--size",
         "16384x16384",
         "--out",
-        s(&dir().join("n.png")),
+        s(&tmp.path().join("n.png")),
     ]);
     expect(&out, 4, "give --force");
     let polygon = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/polygon.txt");
@@ -311,7 +322,7 @@ fn requests_beyond_the_bounds_are_refused_with_an_estimate() {
         "--size",
         "16384x16384",
         "--out",
-        s(&dir().join("big")),
+        s(&tmp.path().join("big")),
     ]);
     expect(&out, 4, "64.0 GiB");
 }
@@ -321,6 +332,7 @@ fn requests_beyond_the_bounds_are_refused_with_an_estimate() {
 /// finds a crossing between the first and last edges of such a polygon.
 #[test]
 fn large_polygons_are_checked_and_triangulated() {
+    let tmp = tempfile::tempdir().unwrap();
     let n = 20_000;
     let ring: Vec<String> = (0..n)
         .map(|i| {
@@ -333,6 +345,7 @@ fn large_polygons_are_checked_and_triangulated() {
         })
         .collect();
     let circle = temp_file(
+        tmp.path(),
         "circle.txt",
         format!("polygon {}\n", ring.join(" ")).as_bytes(),
     );
@@ -348,6 +361,7 @@ fn large_polygons_are_checked_and_triangulated() {
     let mut crossed = ring.clone();
     crossed.swap(0, n / 2);
     let crossed = temp_file(
+        tmp.path(),
         "crossed.txt",
         format!("polygon {}\n", crossed.join(" ")).as_bytes(),
     );
@@ -372,17 +386,15 @@ fn gzip(bytes: &[u8]) -> Vec<u8> {
 /// and a bad CRC are errors.
 #[test]
 fn gzip_members_are_all_read_and_their_trailers_checked() {
+    let tmp = tempfile::tempdir().unwrap();
     let bunny = std::fs::read(BUNNY).unwrap();
     let (a, b) = bunny.split_at(bunny.len() / 2);
-    let whole = rasterlab::geometry::mesh::Mesh::load(Path::new(BUNNY)).unwrap();
-    let multi = temp_file("multi.ply.gz", &[gzip(a), gzip(b)].concat());
-    assert_eq!(
-        rasterlab::geometry::mesh::Mesh::load(&multi).unwrap(),
-        whole
-    );
+    let whole = rasterlab::geometry::Mesh::load(Path::new(BUNNY)).unwrap();
+    let multi = temp_file(tmp.path(), "multi.ply.gz", &[gzip(a), gzip(b)].concat());
+    assert_eq!(rasterlab::geometry::Mesh::load(&multi).unwrap(), whole);
     let packed = gzip(&bunny);
-    let cut = temp_file("cut.ply.gz", &packed[..packed.len() - 3]);
-    let err = rasterlab::geometry::mesh::Mesh::load(&cut)
+    let cut = temp_file(tmp.path(), "cut.ply.gz", &packed[..packed.len() - 3]);
+    let err = rasterlab::geometry::Mesh::load(&cut)
         .unwrap_err()
         .to_string();
     assert!(
@@ -392,8 +404,8 @@ fn gzip_members_are_all_read_and_their_trailers_checked() {
     let mut bad = packed.clone();
     let at = bad.len() - 6;
     bad[at] ^= 0xff;
-    let crc = temp_file("crc.ply.gz", &bad);
-    let err = rasterlab::geometry::mesh::Mesh::load(&crc)
+    let crc = temp_file(tmp.path(), "crc.ply.gz", &bad);
+    let err = rasterlab::geometry::Mesh::load(&crc)
         .unwrap_err()
         .to_string();
     assert!(
@@ -405,11 +417,12 @@ fn gzip_members_are_all_read_and_their_trailers_checked() {
 /// Items 8 and 11: messages that say what is wrong, where.
 #[test]
 fn errors_name_the_real_cause() {
-    let huge = temp_file(
+    let tmp = tempfile::tempdir().unwrap();
+    let huge = temp_file(tmp.path(),
         "huge.ply",
         b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1e20 0 0\n0 1 0\n3 0 1 2\n",
     );
-    let out = rasterlab(&["render", s(&huge), "--out", s(&dir().join("h.png"))]);
+    let out = rasterlab(&["render", s(&huge), "--out", s(&tmp.path().join("h.png"))]);
     expect(
         &out,
         2,
@@ -421,7 +434,7 @@ fn errors_name_the_real_cause() {
         "--zoom",
         "nan",
         "--out",
-        s(&dir().join("z.png")),
+        s(&tmp.path().join("z.png")),
     ]);
     expect(&out, 2, "zoom must be > 0");
     // A negative zoom is a value out of range, not an unknown flag.
@@ -431,17 +444,17 @@ fn errors_name_the_real_cause() {
         "--zoom",
         "-1",
         "--out",
-        s(&dir().join("z.png")),
+        s(&tmp.path().join("z.png")),
     ]);
     expect(&out, 2, "zoom must be > 0 and at most 1000000, not -1");
-    let bom = temp_file("bom.txt", "\u{feff}0 0 5 0 5 5\n".as_bytes());
+    let bom = temp_file(tmp.path(), "bom.txt", "\u{feff}0 0 5 0 5 5\n".as_bytes());
     let out = rasterlab(&["fragments", "--backend", "bbox", "--size", "8x8", s(&bom)]);
     expect(&out, 0, "");
     assert_eq!(String::from_utf8(out.stdout).unwrap().lines().count(), 15);
     let out = rasterlab(&["fragments", "--backend", "bbox", "--size", "8x8", BUNNY]);
     expect(&out, 2, "this is a mesh");
     // A 2D file with nothing to draw is refused, as an empty mesh is.
-    let empty = temp_file("empty.txt", b"# nothing here\n\n");
+    let empty = temp_file(tmp.path(), "empty.txt", b"# nothing here\n\n");
     for command in [
         vec!["fragments", "--backend", "bbox", "--size", "8x8", s(&empty)],
         vec![
@@ -450,7 +463,7 @@ fn errors_name_the_real_cause() {
             "--size",
             "8x8",
             "--out",
-            s(&dir().join("empty.png")),
+            s(&tmp.path().join("empty.png")),
         ],
     ] {
         let out = rasterlab(&command);
@@ -460,11 +473,18 @@ fn errors_name_the_real_cause() {
             "empty.txt: no triangle, polygon or line segment in it (only blank lines and comments)",
         );
     }
-    assert!(!dir().join("empty.png").exists(), "no picture of nothing");
+    assert!(
+        !tmp.path().join("empty.png").exists(),
+        "no picture of nothing"
+    );
     // Faces beyond the header's count are an error, not dropped.
     let bunny = std::fs::read(BUNNY).unwrap();
-    let extra = temp_file("extra.ply", &[bunny.as_slice(), b"3 0 1 2\n"].concat());
-    let out = rasterlab(&["render", s(&extra), "--out", s(&dir().join("e.png"))]);
+    let extra = temp_file(
+        tmp.path(),
+        "extra.ply",
+        &[bunny.as_slice(), b"3 0 1 2\n"].concat(),
+    );
+    let out = rasterlab(&["render", s(&extra), "--out", s(&tmp.path().join("e.png"))]);
     expect(&out, 2, "extra.ply:5524: data after the last element");
     // `-` reads standard input.
     let mut child = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
@@ -487,14 +507,15 @@ fn errors_name_the_real_cause() {
 /// written whole or not at all, and `.PNG` is a PNG everywhere.
 #[test]
 fn outputs_are_checked_first_and_never_left_half_written() {
-    let jpg = dir().join("x.jpg");
+    let tmp = tempfile::tempdir().unwrap();
+    let jpg = tmp.path().join("x.jpg");
     let out = rasterlab(&["render", BUNNY, "--out", s(&jpg)]);
     expect(&out, 3, "written as .png");
     assert!(!jpg.exists(), "no empty file is left behind");
     let out = rasterlab(&["bench", "--out", "/proc/b"]);
     expect(&out, 3, "/proc/b");
     assert!(out.stdout.is_empty(), "refused before the benchmark ran");
-    let upper = dir().join("grid.PNG");
+    let upper = tmp.path().join("grid.PNG");
     let out = rasterlab(&[
         "explain",
         "--backend",
@@ -537,7 +558,8 @@ fn outputs_are_checked_first_and_never_left_half_written() {
 /// is left behind (exit 2: "nothing was done").
 #[test]
 fn compare_with_bad_input_leaves_no_output_directory() {
-    let dir = std::env::temp_dir().join(format!("rasterlab-compare-{}", std::process::id()));
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
     let out = dir.join("report");
     let out_arg = out.to_str().unwrap();
     let missing = dir.join("missing.txt");
@@ -567,7 +589,6 @@ fn compare_with_bad_input_leaves_no_output_directory() {
     ]);
     assert_eq!(good.status.code(), Some(0), "{}", stderr(&good));
     assert!(out.join("index.html").is_file());
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The README's exit-code table, one row each: 0 done, 2 bad input or
@@ -576,6 +597,7 @@ fn compare_with_bad_input_leaves_no_output_directory() {
 /// `exit_codes_follow_the_kind_of_error`.
 #[test]
 fn exit_codes_follow_the_readme_table() {
+    let tmp = tempfile::tempdir().unwrap();
     expect(&rasterlab(&["backends"]), 0, "");
     expect(
         &rasterlab(&["fragments", "--backend", "nope", "--size", "4x4", "x"]),
@@ -592,7 +614,7 @@ fn exit_codes_follow_the_readme_table() {
             "render",
             "/nonexistent.ply",
             "--out",
-            s(&dir().join("a.png")),
+            s(&tmp.path().join("a.png")),
         ]),
         2,
         "/nonexistent.ply",
@@ -638,6 +660,7 @@ fn exit_codes_follow_the_kind_of_error() {
 /// values in every option.
 #[test]
 fn no_hostile_argument_panics_any_subcommand() {
+    let tmp = tempfile::tempdir().unwrap();
     let hostile = [
         "nan",
         "inf",
@@ -704,7 +727,7 @@ fn no_hostile_argument_panics_any_subcommand() {
             ],
         ),
     ];
-    let check_out = dir().join("check-hostile");
+    let check_out = tmp.path().join("check-hostile");
     let check_out = s(&check_out);
     let polygon = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/polygon.txt");
     let mut runs = 0;

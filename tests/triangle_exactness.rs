@@ -6,10 +6,10 @@ mod common;
 
 use common::*;
 use proptest::prelude::*;
-use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::FixedPoint;
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(3000))]
+    #![proptest_config(crate::common::proptest_config(3000, "tests/proptest-regressions/triangle_exactness.txt"))]
 
     #[test]
     fn every_backend_matches_naive_on_random_triangles(soup in triangle_soup(4)) {
@@ -164,15 +164,13 @@ mod images {
     use super::common::*;
     use glam::Vec4;
     use proptest::prelude::*;
-    use rasterlab::geometry::scene::Scene2D;
-    use rasterlab::raster::backend::triangle_backends;
-    use rasterlab::raster::edge::FillRule;
-    use rasterlab::raster::primitive::ShadedVertex;
-    use rasterlab::raster::shader::Gouraud;
-    use rasterlab::raster::target::{DepthState, DepthTest, RenderTarget};
+    use rasterlab::geometry::Scene2D;
+    use rasterlab::raster::{
+        triangle_backends, DepthState, DepthTest, FillRule, Gouraud, RenderTarget, ShadedVertex,
+    };
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(500))]
+        #![proptest_config(crate::common::proptest_config(500, "tests/proptest-regressions/triangle_exactness.txt"))]
 
         /// The shared stage turns equal fragments into equal images:
         /// Gouraud colours and random depths, depth test on, every rule.
@@ -208,12 +206,11 @@ mod images {
 mod bands {
     use super::common::*;
     use proptest::prelude::*;
-    use rasterlab::geometry::scene::setup_triangles;
-    use rasterlab::raster::fragment::FragmentList;
-    use rasterlab::{triangle_backends, FillRule, PixelRect, WorkCounters};
+    use rasterlab::geometry::setup_triangles;
+    use rasterlab::raster::{triangle_backends, FillRule, FragmentList, PixelRect, WorkCounters};
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(1000))]
+        #![proptest_config(crate::common::proptest_config(1000, "tests/proptest-regressions/triangle_exactness.txt"))]
 
         /// A draw cut into bands of rows (one per thread) tests the same
         /// samples and emits the same fragments as one draw of the

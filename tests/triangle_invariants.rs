@@ -6,9 +6,7 @@ mod common;
 
 use common::*;
 use proptest::prelude::*;
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::{FillRule, PixelRect, TriangleSetup};
-use rasterlab::raster::fixed::FixedPoint;
+use rasterlab::raster::{triangle_backends, FillRule, FixedPoint, PixelRect, TriangleSetup};
 use std::collections::BTreeSet;
 
 /// The pixels every back-end covers (they must agree), on a 100 x 100 target.
@@ -17,7 +15,7 @@ fn pixels(t: [FixedPoint; 3], rule: FillRule) -> BTreeSet<(u32, u32)> {
         return BTreeSet::new();
     };
     let mut sets = triangle_backends().iter().map(|b| {
-        let mut list = rasterlab::raster::fragment::FragmentList::default();
+        let mut list = rasterlab::raster::FragmentList::default();
         b.rasterize(&[setup], PixelRect::of_target(100, 100), &mut list);
         list.triangles
             .iter()
@@ -32,7 +30,7 @@ fn pixels(t: [FixedPoint; 3], rule: FillRule) -> BTreeSet<(u32, u32)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(3000))]
+    #![proptest_config(crate::common::proptest_config(3000, "tests/proptest-regressions/triangle_invariants.txt"))]
 
     #[test]
     fn rotating_vertices_and_reversing_winding_change_nothing(
@@ -71,7 +69,7 @@ fn offscreen_point_rule_is_not_translation_invariant() {
     // the line to the other side of the point, and the pixel centres on
     // that edge change hands.
     let t = [snap(0.5, 0.5), snap(20.5, 14.5), snap(0.5, 14.5)];
-    let rule = rasterlab::raster::edge::FillRule::OffscreenPoint;
+    let rule = rasterlab::raster::FillRule::OffscreenPoint;
     let here = pixels(t, rule);
     let moved = t.map(|p| FixedPoint::from_raw(p.x.raw() + 256, p.y.raw()).unwrap());
     let there: BTreeSet<_> = pixels(moved, rule)

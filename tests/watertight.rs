@@ -8,11 +8,10 @@ mod common;
 use common::*;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseError, TestError, TestRunner};
-use rasterlab::geometry::polygon::{Polygon, Side};
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::FillRule;
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::triangle::{naive::Naive, TriangleRasterizer};
+use rasterlab::geometry::{Polygon, Side};
+use rasterlab::raster::triangle::naive::Naive;
+use rasterlab::raster::triangle::TriangleRasterizer;
+use rasterlab::raster::{triangle_backends, FillRule, FixedPoint};
 
 /// The watertightness property: every pixel covered at most once, every
 /// pixel centre strictly inside the polygon exactly once, nothing strictly
@@ -44,7 +43,7 @@ fn check_watertight(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(3000))]
+    #![proptest_config(crate::common::proptest_config(3000, "tests/proptest-regressions/watertight.txt"))]
 
     #[test]
     fn spade_triangulated_polygons_are_drawn_exactly_once(poly in polygon()) {

@@ -1,8 +1,7 @@
 //! Argument types several subcommands share.
 
 use clap::Args;
-use rasterlab::raster::line::{Connectivity, Endpoints};
-use rasterlab::LineOptions;
+use rasterlab::raster::line::{Connectivity, Endpoints, LineOptions};
 
 /// A `WxH` size.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

@@ -1,6 +1,6 @@
 //! `rasterlab backends`: every back-end, one per line.
 
-use rasterlab::raster::backend::all_backends;
+use rasterlab::raster::all_backends;
 use rasterlab::Result;
 
 /// Prints the registry as `NAME KIND DESCRIPTION` lines.

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 pub struct BenchArgs {
     /// Workload set: quick (seconds) or full (the `cargo bench` sizes).
     #[arg(long, default_value = "quick")]
-    set: rasterlab::measure::benchmark::WorkloadSet,
+    set: rasterlab::measure::WorkloadSet,
     /// Target size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1920x1080")]
     size: Size,
@@ -31,8 +31,8 @@ pub struct BenchArgs {
 }
 
 pub fn run(args: &BenchArgs) -> Result<()> {
-    use rasterlab::measure::benchmark::{self, BenchOptions};
-    rasterlab::output::check_dir(&args.out)?;
+    use rasterlab::measure::{run, to_json, write_outputs, BenchOptions};
+    rasterlab::check_dir(&args.out)?;
     let meshes = if args.meshes.is_empty() {
         vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/dragon_vrip_res4.ply.gz")]
     } else {
@@ -46,7 +46,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         meshes,
     };
     let bar = progress_bar(0, "");
-    let results = benchmark::run(&options, &mut |p| {
+    let results = run(&options, &mut |p| {
         bar.set_length(p.total as u64);
         bar.set_position(p.done as u64);
         bar.set_message(p.pair.to_string());
@@ -54,11 +54,11 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     bar.finish_and_clear();
     let report = results?;
     if args.json {
-        say!("{}", benchmark::to_json(&report))?;
+        say!("{}", to_json(&report))?;
     } else {
         say_raw!("{report}")?;
     }
-    benchmark::write_outputs(&report, &args.out)?;
+    write_outputs(&report, &args.out)?;
     eprintln!(
         "wrote bench.json, bench.png, bench.svg in {}",
         args.out.display()

@@ -2,7 +2,7 @@
 
 use super::args::Size;
 use clap::Args;
-use rasterlab::teaching::compare::{compare, default_size, CompareRequest};
+use rasterlab::teaching::{compare, default_compare_size, CompareRequest};
 use rasterlab::Result;
 use std::path::PathBuf;
 
@@ -24,10 +24,10 @@ pub struct CompareArgs {
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
-    let (width, height) = args
-        .size
-        .as_ref()
-        .map_or_else(|| default_size(&args.input), |s| (s.width, s.height));
+    let (width, height) = args.size.as_ref().map_or_else(
+        || default_compare_size(&args.input),
+        |s| (s.width, s.height),
+    );
     let summary = compare(&CompareRequest {
         input: &args.input,
         width,

@@ -1,7 +1,7 @@
 //! `rasterlab demo`: every back-end on the bundled scenes, checked identical.
 
 use clap::Args;
-use rasterlab::teaching::demo;
+use rasterlab::teaching::{bundled_assets, run_demo};
 use rasterlab::{Error, Result};
 use std::path::PathBuf;
 
@@ -13,7 +13,7 @@ pub struct DemoArgs {
 }
 
 pub fn run(args: &DemoArgs) -> Result<()> {
-    let report = demo::run(&args.out, &demo::bundled_assets())?;
+    let report = run_demo(&args.out, &bundled_assets())?;
     super::print::out(&report)?;
     if report.all_identical() {
         Ok(())

@@ -2,9 +2,9 @@
 
 use super::args::Size;
 use clap::Args;
-use rasterlab::teaching::explain::{explain, ExplainRequest};
-use rasterlab::teaching::grid_picture::GridPicture;
-use rasterlab::{FillRule, Result};
+use rasterlab::raster::FillRule;
+use rasterlab::teaching::{explain, ExplainRequest, GridPicture};
+use rasterlab::Result;
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -40,7 +40,7 @@ pub struct ExplainArgs {
 
 pub fn run(args: &ExplainArgs) -> Result<()> {
     if let Some(path) = &args.picture {
-        rasterlab::output::check_file(path, &GridPicture::EXTENSIONS)?;
+        rasterlab::check_file(path, &GridPicture::EXTENSIONS)?;
     }
     let explanation = explain(&ExplainRequest {
         backend: args.backend.clone(),

@@ -2,7 +2,7 @@
 
 use clap::Args;
 use rasterlab::check::Program;
-use rasterlab::lab::server::LabServer;
+use rasterlab::lab::LabServer;
 use rasterlab::{Error, Result};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;

@@ -5,13 +5,10 @@
 use super::args::Size;
 use super::print::progress_bar;
 use clap::Args;
-use rasterlab::geometry::pipeline::{CullMode, FrontFace};
-use rasterlab::geometry::render::Shading;
-use rasterlab::measure::render_request::MeshOverrides;
-use rasterlab::raster::shader::Filter;
-use rasterlab::raster::stage::Interpolation;
-use rasterlab::raster::target::DepthState;
-use rasterlab::{Error, FillRule, RenderInput, RenderRequest, Result};
+use rasterlab::geometry::{CullMode, FrontFace, Shading};
+use rasterlab::measure::{MeshOverrides, RenderInput, RenderRequest};
+use rasterlab::raster::{DepthState, FillRule, Filter, Interpolation};
+use rasterlab::{Error, Result};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]

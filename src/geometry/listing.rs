@@ -1,12 +1,14 @@
 //! The fragments a back-end emits for the shapes of a text file, as
 //! `rasterlab fragments` prints them: one `x y t` line per fragment (the
 //! pixel and the primitive's index), with the coverage after them for an
-//! anti-aliased line back-end.
+//! anti-aliased line back-end. Multisampled (`--msaa N`), a triangle's
+//! line is `x y t mask`, `mask` the decimal coverage mask whose bit `i` is
+//! sample `i` of the standard pattern, row by row.
 //!
 //! ```
-//! use rasterlab::geometry::input::parse_shapes;
-//! use rasterlab::geometry::listing::{list_fragments, FragmentsRequest};
-//! use rasterlab::{backend, FillRule, LineOptions};
+//! use rasterlab::geometry::{list_fragments, parse_shapes, FragmentsRequest};
+//! use rasterlab::raster::{backend, FillRule};
+//! use rasterlab::raster::line::LineOptions;
 //! use std::path::Path;
 //!
 //! let shapes = parse_shapes("0 0 2 0 0 2\n", Path::new("one.txt")).unwrap();
@@ -17,6 +19,7 @@
 //!     height: 4,
 //!     rule: FillRule::TopLeft,
 //!     line: LineOptions::DEFAULT,
+//!     msaa: None,
 //! };
 //! let listing = list_fragments(&request, &shapes).unwrap();
 //! // The centres (1.5, 0.5) and (0.5, 1.5) lie on the right edge x + y = 2:
@@ -27,10 +30,11 @@
 use crate::error::{Error, Result};
 use crate::geometry::input::{read_shapes, Shapes};
 use crate::geometry::scene::setup_triangles;
-use crate::raster::backend::Backend;
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fragment::FragmentList;
 use crate::raster::line::{LineOptions, LineSetup};
+use crate::raster::multisample::{masks_of, MaskFragment, SamplePattern};
+use crate::raster::registry::Backend;
 use crate::raster::target::RenderTarget;
 use std::fmt;
 use std::path::Path;
@@ -40,7 +44,7 @@ use std::path::Path;
 pub struct FragmentsRequest<'a> {
     /// The back-end; it must draw the kind of shape the file holds.
     pub backend: Backend,
-    /// The triangle soup or line set (see [`crate::geometry::input`]).
+    /// The triangle soup or line set (see [`crate::geometry::read_shapes`]).
     pub file: &'a Path,
     /// Target width in pixels.
     pub width: u32,
@@ -50,6 +54,9 @@ pub struct FragmentsRequest<'a> {
     pub rule: FillRule,
     /// Line options (lines).
     pub line: LineOptions,
+    /// Multisampling (triangles): the coverage mask of each pixel on this
+    /// pattern instead of its centre alone.
+    pub msaa: Option<SamplePattern>,
 }
 
 /// The fragments of one request, in emission order.
@@ -59,6 +66,8 @@ pub struct FragmentListing {
     pub fragments: FragmentList,
     /// Whether line fragments carry a coverage weight (an anti-aliased back-end).
     pub weighted: bool,
+    /// The coverage masks, when multisampled (then `fragments` is empty).
+    pub masks: Option<Vec<MaskFragment>>,
 }
 
 /// Checks the request, reads its file, draws the shapes with its back-end
@@ -77,7 +86,20 @@ pub fn list_fragments(request: &FragmentsRequest<'_>, shapes: &Shapes) -> Result
     let sink = &mut listing.fragments;
     match (request.backend, shapes) {
         (Backend::Triangle(b), Shapes::Triangles { triangles, .. }) => {
-            b.rasterize(&setup_triangles(triangles, request.rule), viewport, sink);
+            let setups = setup_triangles(triangles, request.rule);
+            match request.msaa {
+                Some(pattern) => listing.masks = Some(masks_of(b, &setups, viewport, &pattern)),
+                None => {
+                    b.rasterize(&setups, viewport, sink);
+                }
+            }
+        }
+        (Backend::Line(b), Shapes::Lines { .. }) if request.msaa.is_some() => {
+            return Err(Error::InvalidArgument(format!(
+                "{}: --msaa multisamples triangles; `{}` draws lines, which are not multisampled",
+                request.file.display(),
+                b.name()
+            )))
         }
         (Backend::Line(b), Shapes::Lines { segments, .. }) => {
             let setups = LineSetup::numbered(segments);
@@ -121,6 +143,9 @@ fn kind_mismatch(file: &Path, name: &str, draws: &str, holds: &str) -> Error {
 
 impl fmt::Display for FragmentListing {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for m in self.masks.iter().flatten() {
+            writeln!(f, "{} {} {} {}", m.x, m.y, m.triangle, m.mask)?;
+        }
         for t in &self.fragments.triangles {
             writeln!(f, "{} {} {}", t.x, t.y, t.triangle)?;
         }

@@ -13,8 +13,8 @@
 //! with integer arithmetic (even-odd rule).
 //!
 //! ```
-//! use rasterlab::raster::fixed::FixedPoint;
-//! use rasterlab::geometry::polygon::{Polygon, Side};
+//! use rasterlab::geometry::{Polygon, Side};
+//! use rasterlab::raster::FixedPoint;
 //! let p = |x: f32, y: f32| FixedPoint::snap(x, y).unwrap();
 //! let square = Polygon::new(vec![p(0., 0.), p(4., 0.), p(4., 4.), p(0., 4.)], vec![]).unwrap();
 //! assert_eq!(square.triangulate().unwrap().len(), 2);
@@ -326,7 +326,7 @@ mod tests {
     }
 
     proptest::proptest! {
-        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3000))]
+        #![proptest_config(crate::test_support::proptest_config(3000, "tests/proptest-regressions/src-geometry-polygon.txt"))]
         /// The sweep accepts exactly the rings that testing every pair
         /// accepts (small integer rings: many touches and crossings).
         #[test]

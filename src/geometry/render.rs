@@ -3,7 +3,8 @@
 //! `rasterlab demo` run.
 //!
 //! ```
-//! use rasterlab::{triangle_backend, Mesh, MeshRenderer, RenderSettings};
+//! use rasterlab::geometry::{Mesh, MeshRenderer, RenderSettings};
+//! use rasterlab::raster::triangle_backend;
 //! use std::path::Path;
 //!
 //! let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
@@ -317,7 +318,8 @@ impl MeshRenderer {
     /// report beside the frames'.
     ///
     /// ```
-    /// use rasterlab::{triangle_backend, Mesh, MeshRenderer, RenderSettings};
+    /// use rasterlab::geometry::{Mesh, MeshRenderer, RenderSettings};
+    /// use rasterlab::raster::triangle_backend;
     /// use std::path::Path;
     ///
     /// let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
@@ -498,7 +500,7 @@ pub fn unique_edges(triangles: &[[u32; 3]]) -> Vec<[u32; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raster::backend::triangle_backends;
+    use crate::raster::registry::triangle_backends;
     use crate::raster::vector::{self, Width};
     use std::path::Path;
 

@@ -37,8 +37,8 @@ pub const BLUE: Vec4 = Vec4::new(0.0, 0.25, 1.0, 1.0);
 /// The red of the rasterization slides' second triangle.
 pub const RED: Vec4 = Vec4::new(0.9, 0.1, 0.1, 1.0);
 
-/// A palette for colouring triangles by index.
-pub fn palette(i: usize) -> Vec4 {
+/// The colour a scene gives its triangle number `i`, from a cycle of eight.
+pub fn scene_colour(i: usize) -> Vec4 {
     const COLORS: [[f32; 3]; 8] = [
         [0.12, 0.47, 0.71],
         [1.00, 0.50, 0.05],
@@ -59,10 +59,10 @@ fn snap(x: f32, y: f32) -> FixedPoint {
 
 impl Scene2D {
     /// A scene from snapped triangles, coloured by index with the
-    /// [`palette`], all at depth 0.
+    /// [`scene_colour`], all at depth 0.
     pub fn from_triangles(width: u32, height: u32, triangles: Vec<[FixedPoint; 3]>) -> Scene2D {
         let vertices = (0..triangles.len())
-            .map(|i| [ShadedVertex::flat(0.0, palette(i)); 3])
+            .map(|i| [ShadedVertex::flat(0.0, scene_colour(i)); 3])
             .collect();
         Scene2D {
             width,
@@ -74,10 +74,10 @@ impl Scene2D {
 
     /// Triangles with one depth each, from numbers in groups of seven
     /// (`x0 y0 x1 y1 x2 y2 z`, screen pixels and a depth in `[0, 1]`),
-    /// coloured by index with the [`palette`].
+    /// coloured by index with [`scene_colour`].
     ///
     /// ```
-    /// use rasterlab::geometry::scene::Scene2D;
+    /// use rasterlab::geometry::Scene2D;
     /// let scene = Scene2D::with_depths(8, 8, &[0., 0., 4., 0., 0., 4., 0.5]).unwrap();
     /// assert_eq!(scene.vertices[0][0].depth, 0.5);
     /// assert!(Scene2D::with_depths(8, 8, &[0., 0., 4., 0., 0., 4., 1.5]).is_err());
@@ -104,7 +104,7 @@ impl Scene2D {
                 FixedPoint::snap_f64(t[2], t[3])?,
                 FixedPoint::snap_f64(t[4], t[5])?,
             ]);
-            vertices.push([ShadedVertex::flat(z, palette(i)); 3]);
+            vertices.push([ShadedVertex::flat(z, scene_colour(i)); 3]);
         }
         Ok(Scene2D {
             width,
@@ -243,13 +243,11 @@ impl Scene2D {
     /// The buffers end as after a clear and [`draw`](Self::draw):
     ///
     /// ```
-    /// use rasterlab::geometry::scene::Scene2D;
-    /// use rasterlab::raster::shader::Flat;
-    /// use rasterlab::raster::target::{DepthState, RenderTarget};
-    /// use rasterlab::FillRule;
+    /// use rasterlab::geometry::Scene2D;
+    /// use rasterlab::raster::{DepthState, FillRule, Flat, RenderTarget};
     ///
     /// let scene = Scene2D::depth_example(false);
-    /// let scanline = rasterlab::triangle_backend("scanline").unwrap();
+    /// let scanline = rasterlab::raster::triangle_backend("scanline").unwrap();
     /// let (rule, depth) = (FillRule::TopLeft, DepthState::DEFAULT);
     /// let mut eager = RenderTarget::new(scene.width, scene.height).unwrap();
     /// scene.draw(scanline, rule, depth, &Flat, &mut eager);

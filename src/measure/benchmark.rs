@@ -18,14 +18,15 @@ use crate::error::Result;
 use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::CullMode;
 use crate::geometry::render::{MeshRenderer, RenderSettings};
+use crate::markup::Markup;
 use crate::measure::context::Context;
 use crate::measure::cpu::CpuUse;
 use crate::measure::table::significant;
 use crate::measure::table::Table;
 use crate::measure::timing::{time_runs, Spread, Timing};
 use crate::measure::workload::{self, LineWorkload};
-use crate::raster::backend::{line_backends, triangle_backends};
 use crate::raster::descriptor::{within_budget, WorkBudget};
+use crate::raster::registry::{line_backends, triangle_backends};
 use crate::raster::target::RenderTarget;
 use serde::Serialize;
 use std::fmt;
@@ -404,7 +405,7 @@ fn group<'a>(results: &'a [Measurement], workload: &str) -> Vec<&'a Measurement>
 }
 
 /// The chart as an image: [`chart_svg`] rendered with the bundled font
-/// ([`crate::output::svg_to_png`]), so the PNG has the same axis, labels
+/// (`resvg`), so the PNG has the same axis, labels
 /// and values. Only with the `png-text` feature (on by default).
 #[cfg(feature = "png-text")]
 pub fn chart_png(report: &BenchReport) -> image::RgbaImage {
@@ -428,76 +429,153 @@ pub fn chart_svg(report: &BenchReport) -> String {
     let plot_h = workloads.len() as f64 * header + rows as f64 * row;
     let width = x0 + bar_w + value_w;
     let height = top + plot_h + 50.0;
-    let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"10\" y=\"22\" font-size=\"14\" font-weight=\"bold\">rasterlab bench: speed relative to the fastest back-end on each workload</text>\n"
-    );
+    let mut m = Markup::new();
+    m.open(
+        "svg",
+        &[
+            ("xmlns", &"http://www.w3.org/2000/svg"),
+            ("width", &width),
+            ("height", &height),
+            ("viewBox", &format_args!("0 0 {width} {height}")),
+            ("font-family", &"DejaVu Sans, sans-serif"),
+            ("font-size", &11),
+        ],
+    )
+    .newline();
+    m.empty(
+        "rect",
+        &[("width", &"100%"), ("height", &"100%"), ("fill", &"white")],
+    )
+    .newline();
+    m.element(
+        "text",
+        &[
+            ("x", &10),
+            ("y", &22),
+            ("font-size", &14),
+            ("font-weight", &"bold"),
+        ],
+        "rasterlab bench: speed relative to the fastest back-end on each workload",
+    )
+    .newline();
     let c = &report.context;
     let load = c
         .machine
         .load_average
         .map_or_else(|| "unknown".to_string(), |l| format!("{:.2}", l[0]));
-    svg += &format!(
-        "<text x=\"10\" y=\"40\">commit {}, {}x{}, {} thread(s), {} timed runs per bar; {}, {} cores, load average {load} at start</text>\n",
-        c.commit, c.width, c.height, c.threads, c.samples, escape(&c.machine.cpu), c.machine.cores
-    );
+    m.element(
+        "text",
+        &[("x", &10), ("y", &40)],
+        &format!(
+            "commit {}, {}x{}, {} thread(s), {} timed runs per bar; {}, {} cores, load average {load} at start",
+            c.commit, c.width, c.height, c.threads, c.samples, c.machine.cpu, c.machine.cores
+        ),
+    )
+    .newline();
     // Vertical grid lines and the axis.
     let axis_y = top + plot_h + 4.0;
+    let one = |v: f64| format!("{v:.1}");
     for k in 0..=4 {
         let f = f64::from(k) / 4.0;
-        let x = x0 + f * bar_w;
-        svg += &format!(
-            "<line x1=\"{x:.1}\" y1=\"{top}\" x2=\"{x:.1}\" y2=\"{axis_y:.1}\" stroke=\"#ddd\"/><text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{f}</text>\n",
-            axis_y + 14.0
+        let x = one(x0 + f * bar_w);
+        m.empty(
+            "line",
+            &[
+                ("x1", &x),
+                ("y1", &top),
+                ("x2", &x),
+                ("y2", &one(axis_y)),
+                ("stroke", &"#ddd"),
+            ],
         );
+        m.element(
+            "text",
+            &[
+                ("x", &x),
+                ("y", &one(axis_y + 14.0)),
+                ("text-anchor", &"middle"),
+            ],
+            &f.to_string(),
+        )
+        .newline();
     }
-    svg += &format!(
-        "<line x1=\"{x0}\" y1=\"{axis_y:.1}\" x2=\"{:.1}\" y2=\"{axis_y:.1}\" stroke=\"#333\"/><text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">speed relative to the fastest (1 = fastest; median [min-max] ms and throughput beside each bar)</text>\n",
-        x0 + bar_w,
-        x0 + bar_w / 2.0,
-        axis_y + 32.0
+    m.empty(
+        "line",
+        &[
+            ("x1", &x0),
+            ("y1", &one(axis_y)),
+            ("x2", &one(x0 + bar_w)),
+            ("y2", &one(axis_y)),
+            ("stroke", &"#333"),
+        ],
     );
+    m.element(
+        "text",
+        &[
+            ("x", &one(x0 + bar_w / 2.0)),
+            ("y", &one(axis_y + 32.0)),
+            ("text-anchor", &"middle"),
+        ],
+        "speed relative to the fastest (1 = fastest; median [min-max] ms and throughput beside each bar)",
+    )
+    .newline();
     let mut y = top;
     for wl in &workloads {
         let members = group(results, wl);
         let prims = members.first().map_or(0, |m| m.primitives);
         y += header;
-        svg += &format!(
-            "<text x=\"10\" y=\"{:.1}\" font-weight=\"bold\">{wl} ({prims} primitives)</text>\n",
-            y - 7.0
-        );
-        for m in members {
-            let k = names.iter().position(|n| *n == m.backend).unwrap_or(0);
-            let [r, gr, b] = PALETTE[k % PALETTE.len()];
-            let rel = 1.0 / m.vs_fastest.max(1.0);
+        m.element(
+            "text",
+            &[("x", &10), ("y", &one(y - 7.0)), ("font-weight", &"bold")],
+            &format!("{wl} ({prims} primitives)"),
+        )
+        .newline();
+        for r in members {
+            let k = names.iter().position(|n| *n == r.backend).unwrap_or(0);
+            let [red, green, blue] = PALETTE[k % PALETTE.len()];
+            let rel = 1.0 / r.vs_fastest.max(1.0);
             let w = (rel * bar_w).max(1.0);
-            svg += &format!(
-                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text><rect x=\"{x0}\" y=\"{:.1}\" width=\"{w:.1}\" height=\"{:.1}\" fill=\"rgb({r},{gr},{b})\"><title>{} {}: {} ms</title></rect><text x=\"{:.1}\" y=\"{:.1}\">{} ms, {} {}</text>\n",
-                x0 - 6.0,
-                y + row - 5.0,
-                m.backend,
-                y + 2.0,
-                row - 4.0,
-                m.workload,
-                m.backend,
-                m.spread.summary(),
-                x0 + w + 6.0,
-                y + row - 5.0,
-                m.spread.summary(),
-                significant(m.rate),
-                m.unit
+            m.element(
+                "text",
+                &[
+                    ("x", &one(x0 - 6.0)),
+                    ("y", &one(y + row - 5.0)),
+                    ("text-anchor", &"end"),
+                ],
+                &r.backend,
             );
+            m.open(
+                "rect",
+                &[
+                    ("x", &x0),
+                    ("y", &one(y + 2.0)),
+                    ("width", &one(w)),
+                    ("height", &one(row - 4.0)),
+                    ("fill", &format_args!("rgb({red},{green},{blue})")),
+                ],
+            );
+            m.element(
+                "title",
+                &[],
+                &format!("{} {}: {} ms", r.workload, r.backend, r.spread.summary()),
+            );
+            m.close("rect");
+            m.element(
+                "text",
+                &[("x", &one(x0 + w + 6.0)), ("y", &one(y + row - 5.0))],
+                &format!(
+                    "{} ms, {} {}",
+                    r.spread.summary(),
+                    significant(r.rate),
+                    r.unit
+                ),
+            )
+            .newline();
             y += row;
         }
     }
-    svg += "</svg>\n";
-    svg
-}
-
-/// Text safe inside SVG.
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
+    m.close("svg").newline();
+    m.finish()
 }
 
 /// Writes `bench.json`, `bench.svg` and (with the `png-text` feature, on

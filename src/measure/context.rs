@@ -3,7 +3,7 @@
 //! and at the end of the run), recorded with every set of figures.
 //!
 //! ```
-//! use rasterlab::measure::context::Machine;
+//! use rasterlab::measure::Machine;
 //! let machine = Machine::now();
 //! assert!(machine.cores >= 1);
 //! assert!(!machine.cpu.is_empty());

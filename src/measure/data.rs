@@ -10,8 +10,8 @@
 //! printed with its reason, never a silent gap.
 //!
 //! ```
-//! use rasterlab::measure::data;
-//! let missing = data::find_in(std::path::Path::new("/no/such/folder"), data::FULL_DRAGON);
+//! use rasterlab::measure::{find_in, FULL_DRAGON};
+//! let missing = find_in(std::path::Path::new("/no/such/folder"), FULL_DRAGON);
 //! let reason = missing.unwrap_err().to_string();
 //! assert!(reason.starts_with("skipped: dragon_vrip.ply.gz not found in /no/such/folder"));
 //! ```
@@ -80,7 +80,8 @@ mod tests {
 
     #[test]
     fn a_missing_model_is_a_skipped_row_that_says_where_to_get_it() {
-        let dir = std::env::temp_dir().join(format!("rasterlab-no-data-{}", std::process::id()));
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path().join("no-data");
         let skipped = find_in(&dir, DRAGON_RES2).unwrap_err();
         let text = skipped.to_string();
         assert_eq!(

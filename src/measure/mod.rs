@@ -1,32 +1,67 @@
 //! Measurement: the workloads every back-end is timed on, the benchmark
 //! that times them, and what makes a figure trustworthy.
 //!
-//! * [`workload`]: named, repeatable inputs (large fills, many small
-//!   triangles, meshes, line sets) prepared once and drawn many times;
-//! * [`render_request`]: one `rasterlab render` as a value (input,
-//!   choices, output file), run on the fast path frame after frame into
-//!   a report with the time per frame;
-//! * [`benchmark`]: the table, JSON and chart of `rasterlab bench`;
-//! * [`Timing`] and [`time_runs`]: a warm-up, timed runs, their minimum, median and maximum;
-//! * [`rounds`]: rasterlab and its peers timed in interleaved rounds, and
-//!   the ratio table of `cargo bench --bench side_by_side`;
-//! * [`CpuUse`]: the CPU time each thread got, and the time it waited for a
-//!   core, beside the wall time;
-//! * [`context`]: the commit, machine and load a run was measured on;
-//! * [`data`]: where the Stanford models that are not bundled are found,
-//!   and the skipped row when they are not;
-//! * [`Table`]: plain-text tables with aligned columns.
+//! * named, repeatable inputs (large fills, many small triangles, meshes,
+//!   line sets) prepared once and drawn many times: [`TriangleWorkload`]
+//!   ([`fill`], [`sized`], [`slivers`]) and [`LineWorkload`];
+//! * one `rasterlab render` as a value ([`RenderRequest`]: input, choices,
+//!   output file), run on the fast path frame after frame into a
+//!   [`RenderReport`] with the time per frame;
+//! * the table, JSON and chart of `rasterlab bench`: [`run`] with
+//!   [`BenchOptions`] into a [`BenchReport`], [`to_json`], [`chart_svg`];
+//! * a warm-up, timed runs, their minimum, median and maximum: [`Timing`]
+//!   and [`time_runs`];
+//! * rasterlab and its peers timed in interleaved rounds, and the ratio
+//!   table of `cargo bench --bench side_by_side`: [`Contender`],
+//!   [`Workload`], [`Ratio`];
+//! * the CPU time each thread got, and the time it waited for a core,
+//!   beside the wall time: [`CpuUse`];
+//! * the commit, machine and load a run was measured on: [`Context`];
+//! * where the Stanford models that are not bundled are found, and the
+//!   skipped row when they are not: [`find`], [`Skipped`];
+//! * plain-text tables with aligned columns: [`Table`].
+//!
+//! ```
+//! use rasterlab::measure::{sized, time_runs};
+//! use rasterlab::raster::{triangle_backend, RenderTarget};
+//!
+//! // Many small triangles on a 64 x 64 target, drawn by the scanline
+//! // back-end: one warm-up, then five timed runs.
+//! let workload = sized(64, 64, 4.0);
+//! let scanline = triangle_backend("scanline").unwrap();
+//! let mut target = RenderTarget::new(64, 64).unwrap();
+//! let (timing, samples) = time_runs(5, || workload.run(scanline, &mut target));
+//! assert!(samples > 0);
+//! let t = timing.spread;
+//! assert!(t.min_ms <= t.median_ms && t.median_ms <= t.max_ms);
+//! ```
 
-pub mod benchmark;
-pub mod context;
+pub(crate) mod benchmark;
+pub(crate) mod context;
 mod cpu;
-pub mod data;
-pub mod render_request;
-pub mod rounds;
+pub(crate) mod data;
+pub(crate) mod render_request;
+pub(crate) mod rounds;
 mod table;
 mod timing;
-pub mod workload;
+pub(crate) mod workload;
 
+#[cfg(feature = "png-text")]
+pub use benchmark::chart_png;
+pub use benchmark::{
+    chart_svg, run, to_json, write_outputs, BenchOptions, BenchReport, Measurement, Progress,
+    WorkloadSet, BASELINE,
+};
+pub use context::{load_average, Context, Machine, COMMIT};
 pub use cpu::{CpuUse, ThreadTimes};
+pub use data::{data_dir, find, find_in, Skipped, DATA_ENV, DRAGON_RES2, FULL_DRAGON};
+pub use render_request::{
+    DrawingReport, MeshOverrides, MeshReport, RenderInput, RenderReport, RenderRequest, MAX_SCALE,
+    RENDER_CULL,
+};
+pub use rounds::{ratio_header, Contender, Figure, Ratio, Side, Workload, WorkloadResult};
 pub use table::{significant, Table};
 pub use timing::{time_runs, Spread, Timing};
+pub use workload::{
+    fill, long_lines, short_lines, sized, slivers, LineWorkload, TriangleWorkload, WORKLOAD_COLOR,
+};

@@ -10,16 +10,16 @@
 //! an application pays.
 //!
 //! ```
-//! use rasterlab::{RenderInput, RenderReport, RenderRequest};
+//! use rasterlab::measure::{RenderInput, RenderReport, RenderRequest};
 //!
-//! let out = std::env::temp_dir().join("rasterlab-render-request-example.png");
+//! let dir = tempfile::tempdir().unwrap();
+//! let out = dir.path().join("pinwheel.png");
 //! let mut request = RenderRequest::new(RenderInput::Scene("pinwheel".into()), &out);
 //! request.backend = Some("incremental".into());
 //! let report = request.run().unwrap();
 //! let RenderReport::Drawing(drawing) = &report else { unreachable!() };
 //! assert_eq!(drawing.work.primitives, 8);
 //! assert!(report.to_string().starts_with("incremental: 8 primitives"));
-//! # std::fs::remove_file(&out).unwrap();
 //! ```
 
 use crate::error::{Error, Result};
@@ -30,13 +30,13 @@ use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::geometry::scene::Scene2D;
 use crate::geometry::{milliseconds, FrameTimes};
 use crate::measure::workload::LineWorkload;
-use crate::raster::backend::{
-    backend, default_line_backend, default_triangle_backend, line_backend, Backend,
-};
 use crate::raster::descriptor::{within_budget, WorkBudget};
 use crate::raster::edge::FillRule;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::LineSetup;
+use crate::raster::registry::{
+    backend, default_line_backend, default_triangle_backend, line_backend, Backend,
+};
 use crate::raster::shader::{Filter, Flat};
 use crate::raster::stage::Interpolation;
 use crate::raster::target::{DepthState, RenderTarget, MAX_TARGET_SIDE};

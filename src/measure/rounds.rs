@@ -10,7 +10,7 @@
 //! one round), with their minimum and maximum beside it.
 //!
 //! ```
-//! use rasterlab::measure::rounds::{Contender, Side, Workload};
+//! use rasterlab::measure::{Contender, Side, Workload};
 //! let mut work = Workload::new("sum");
 //! work.add(Contender::new("fast", Side::Rasterlab, 1, || (1..=10u64).sum::<u64>()));
 //! work.add(Contender::new("slow", Side::Peer, 1, || (1..=1000u64).sum::<u64>()));

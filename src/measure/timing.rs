@@ -4,8 +4,7 @@
 //! meanwhile ([`crate::measure::cpu`]).
 //!
 //! ```
-//! use rasterlab::measure::significant;
-//! use rasterlab::measure::time_runs;
+//! use rasterlab::measure::{significant, time_runs};
 //! let (timing, answer) = time_runs(5, || (1..=100u64).sum::<u64>());
 //! assert_eq!(answer, 5050);
 //! assert_eq!(timing.spread.runs, 5);

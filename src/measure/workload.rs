@@ -33,7 +33,7 @@ use crate::raster::triangle::TriangleRasterizer;
 use glam::Vec4;
 
 /// The colour every workload writes.
-pub const COLOR: Vec4 = Vec4::new(0.2, 0.5, 0.9, 1.0);
+pub const WORKLOAD_COLOR: Vec4 = Vec4::new(0.2, 0.5, 0.9, 1.0);
 
 fn p(x: f32, y: f32) -> FixedPoint {
     FixedPoint::snap(x, y).expect("workload coordinates lie inside the guard band")
@@ -56,7 +56,7 @@ impl TriangleWorkload {
     pub fn new(name: String, triangles: &[[FixedPoint; 3]], depth: impl Fn(usize) -> f32) -> Self {
         let setups = setup_triangles(triangles, FillRule::TopLeft);
         let vertices: Vec<[ShadedVertex; 3]> = (0..triangles.len())
-            .map(|i| [ShadedVertex::flat(depth(i), COLOR); 3])
+            .map(|i| [ShadedVertex::flat(depth(i), WORKLOAD_COLOR); 3])
             .collect();
         TriangleWorkload {
             name,
@@ -92,7 +92,7 @@ impl TriangleWorkload {
         draw_clearing(
             &self.geometry,
             backend,
-            &Constant(COLOR),
+            &Constant(WORKLOAD_COLOR),
             DepthState::DEFAULT,
             Interpolation::PerspectiveCorrect,
             Clear::DEPTH_AND_COVERAGE,
@@ -112,7 +112,7 @@ impl TriangleWorkload {
         draw_clearing(
             &self.geometry,
             backend,
-            &Constant(COLOR),
+            &Constant(WORKLOAD_COLOR),
             DepthState::OFF,
             Interpolation::PerspectiveCorrect,
             Clear::color(RenderTarget::BLACK),
@@ -141,7 +141,7 @@ impl LineWorkload {
             .map(|l| ShadedLine {
                 from: l.from,
                 to: l.to,
-                vertices: [ShadedVertex::flat(0.5, COLOR); 2],
+                vertices: [ShadedVertex::flat(0.5, WORKLOAD_COLOR); 2],
             })
             .collect();
         LineWorkload {
@@ -156,7 +156,7 @@ impl LineWorkload {
     /// returns the back-end's work.
     pub fn run(&self, backend: &dyn LineRasterizer, target: &mut RenderTarget) -> WorkCounters {
         target.clear_depth_and_coverage();
-        let shader = Constant(COLOR);
+        let shader = Constant(WORKLOAD_COLOR);
         let viewport = PixelRect::of_target(target.width(), target.height());
         let mut stage = FragmentStage::new(target, &shader)
             .with_lines(&self.shaded)
@@ -174,7 +174,7 @@ impl LineWorkload {
     /// as it is.
     pub fn run_fast(&self, target: &mut RenderTarget) -> u64 {
         target.coverage.fill(0);
-        draw_lines(target, &self.lines, to_rgba8(COLOR))
+        draw_lines(target, &self.lines, to_rgba8(WORKLOAD_COLOR))
     }
 }
 
@@ -281,7 +281,7 @@ pub fn long_lines(width: u32, height: u32, count: usize) -> Vec<LineSetup> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raster::backend::triangle_backends;
+    use crate::raster::registry::triangle_backends;
 
     #[test]
     fn workloads_draw_what_they_say() {

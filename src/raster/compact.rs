@@ -31,9 +31,7 @@
 //! [`SmallTriangle::may_cover_a_sample`].
 //!
 //! ```
-//! use rasterlab::raster::compact::SmallTriangle;
-//! use rasterlab::raster::edge::TriangleSetup;
-//! use rasterlab::raster::fixed::FixedPoint;
+//! use rasterlab::raster::{FixedPoint, SmallTriangle, TriangleSetup};
 //!
 //! let p = |x, y| FixedPoint::snap(x, y).unwrap();
 //! // Around the centre of pixel (2, 1), and a sliver that passes between
@@ -246,9 +244,8 @@ mod tests {
         // A third of the small triangles drawn have no pixel centre in
         // their box, and are drawn again.
         #![proptest_config(ProptestConfig {
-            cases: 2000,
             max_global_rejects: 20_000,
-            ..ProptestConfig::default()
+            ..crate::test_support::proptest_config(2000, "tests/proptest-regressions/src-raster-compact.txt")
         })]
 
         /// Any triangle within the span, anywhere in the guard band: the

@@ -9,8 +9,7 @@
 //! [`WorkBudget`] of what it is doing.
 //!
 //! ```
-//! use rasterlab::raster::descriptor::{within_budget, WorkBudget};
-//! use rasterlab::triangle_backend;
+//! use rasterlab::raster::{triangle_backend, within_budget, WorkBudget};
 //!
 //! // The course's loop tests every pixel for every triangle: a 100,000
 //! // triangle mesh on a 1920 x 1080 target is beyond a report's budget,

@@ -37,8 +37,7 @@
 //! then `E + bias >= 0` on all three edges, the same for every back-end.
 //!
 //! ```
-//! use rasterlab::raster::edge::{FillRule, TriangleSetup};
-//! use rasterlab::raster::fixed::FixedPoint;
+//! use rasterlab::raster::{FillRule, FixedPoint, TriangleSetup};
 //!
 //! // the rules' known answer: the 5x5 square split along its diagonal.
 //! let p = |x: f32, y: f32| FixedPoint::snap(x, y).unwrap();

@@ -19,7 +19,7 @@
 //! normalised device coordinates as `x = (i + 0.5) / w * 2 - 1`).
 //!
 //! ```
-//! use rasterlab::raster::fixed::{Fixed, SUBPIXEL_SCALE};
+//! use rasterlab::raster::{Fixed, SUBPIXEL_SCALE};
 //! let x = Fixed::snap(1.5).unwrap();
 //! assert_eq!(x.raw(), 384);
 //! // 1/512 px is exactly halfway between two grid points: ties go to even.

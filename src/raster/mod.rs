@@ -1,41 +1,90 @@
 //! The core: everything a pixel goes through, from snapped vertices to the
 //! colour and depth buffers.
 //!
-//! * [`fixed`]: snapping to 1/256 pixel and the guard band;
-//! * [`edge`]: the course's implicit line equation as exact `i64` edge
-//!   functions, fill rules (top-left, bottom-right, off-screen point,
-//!   inclusive, exclusive) and triangle set-up;
-//! * [`compact`]: the same edge functions in 32 bits for small triangles,
-//!   relative to their box's corner, and the bound that keeps them exact;
-//! * [`triangle`]: the triangle back-ends, one file each, and the
-//!   [`TriangleRasterizer`](triangle::TriangleRasterizer) trait;
-//! * [`line`](mod@line): the line back-ends, one file each, the
-//!   [`LineRasterizer`](line::LineRasterizer) trait and line options;
-//! * [`descriptor`]: what a back-end is, as data (name, description,
-//!   walk, role, cost class), and the one work budget;
-//! * [`backend`]: the registry of back-ends by name and by role;
-//! * [`fragment`]: fragments, the [`FragmentSink`](fragment::FragmentSink)
-//!   they go into, work counters;
-//! * [`primitive`]: what the stage reads of a draw (per vertex depth,
-//!   `1 / w` and varyings; per triangle its vertices and depth plane);
-//! * [`stage`]: the shared fragment stage (depth test, interpolation,
-//!   shading, writes);
-//! * [`shader`]: fragment shaders and lights;
-//! * [`target`]: colour, depth and coverage buffers.
+//! * snapping to 1/256 pixel and the guard band: [`FixedPoint`],
+//!   [`SUBPIXEL_SCALE`], [`GUARD_BAND`];
+//! * the course's implicit line equation as exact `i64` edge functions
+//!   ([`EdgeFunction`]), the fill rules that break ties ([`FillRule`]:
+//!   top-left, bottom-right, off-screen point, inclusive, exclusive) and
+//!   triangle set-up ([`TriangleSetup`]); the same edge functions in 32
+//!   bits for small triangles ([`SmallTriangle`], [`MAX_SPAN`]);
+//! * the back-ends, one module each: [`triangle`] (with the
+//!   [`TriangleRasterizer`](triangle::TriangleRasterizer) trait) and
+//!   [`line`](mod@line) (with [`LineRasterizer`](line::LineRasterizer) and
+//!   the line options);
+//! * what a back-end is, as data ([`Descriptor`]: name, walk, role, cost
+//!   class), the one work budget ([`WorkBudget`]), and the registry by
+//!   name and by role ([`triangle_backends`], [`line_backends`],
+//!   [`backend`]);
+//! * multisampling: a triangle's coverage mask at the standard sample
+//!   patterns of Direct3D and Vulkan ([`SamplePattern`], [`masks_of`],
+//!   checked against [`reference_masks`]);
+//! * fragments and the [`FragmentSink`] they go into, with
+//!   [`WorkCounters`];
+//! * what the stage reads of a draw ([`ShadedVertex`], [`ShadedTriangle`],
+//!   [`Varyings`]), the shared fragment stage ([`FragmentStage`]: depth
+//!   test, interpolation, shading, writes), fragment shaders
+//!   ([`FragmentShader`], [`Flat`], [`Gouraud`], [`Textured`]...) and the
+//!   colour, depth and coverage buffers ([`RenderTarget`]).
 //!
 //! Nothing here depends on the rest of the crate: geometry input,
 //! teaching and measurement are built on this.
+//!
+//! ```
+//! use rasterlab::raster::{triangle_backends, FillRule, FixedPoint, FragmentList, PixelRect, TriangleSetup};
+//!
+//! // One triangle, snapped to 1/256 pixel and set up for the top-left rule,
+//! // drawn by every triangle back-end: the same fragments from each.
+//! let v = [(0.5, 0.5), (6.0, 1.0), (2.0, 5.5)].map(|(x, y)| FixedPoint::snap_f64(x, y).unwrap());
+//! let setup = TriangleSetup::new(0, v, FillRule::TopLeft).unwrap();
+//! let mut reference = FragmentList::default();
+//! triangle_backends()[0].rasterize(&[setup], PixelRect::of_target(8, 8), &mut reference);
+//! for b in triangle_backends() {
+//!     let mut list = FragmentList::default();
+//!     b.rasterize(&[setup], PixelRect::of_target(8, 8), &mut list);
+//!     assert_eq!(list.triangles, reference.triangles, "{}", b.name());
+//! }
+//! ```
 
-pub mod backend;
-pub mod compact;
-pub mod descriptor;
-pub mod edge;
-pub mod fixed;
-pub mod fragment;
+pub(crate) mod compact;
+pub(crate) mod descriptor;
+pub(crate) mod edge;
+pub(crate) mod fixed;
+pub(crate) mod fragment;
 pub mod line;
-pub mod primitive;
-pub mod shader;
-pub mod stage;
-pub mod target;
+pub(crate) mod multisample;
+pub(crate) mod primitive;
+pub(crate) mod registry;
+pub(crate) mod shader;
+pub(crate) mod stage;
+pub(crate) mod target;
 pub mod triangle;
 pub(crate) mod vector;
+
+pub use compact::{SmallTriangle, MAX_SPAN};
+pub use descriptor::{within_budget, CostClass, Descriptor, Role, WorkBudget};
+pub use edge::{
+    EdgeFunction, EdgeKind, FillRule, PixelRect, TriangleSetup, OFFSCREEN_POINT,
+    SECONDARY_OFFSCREEN_POINT,
+};
+pub use fixed::{
+    first_sample_at_or_after, last_sample_at_or_before, Fixed, FixedPoint, GUARD_BAND, HALF_PIXEL,
+    SUBPIXEL_BITS, SUBPIXEL_SCALE,
+};
+pub use fragment::{
+    FragmentList, FragmentSink, LineFragment, TriangleFragment, TriangleSpan, WorkCounters,
+};
+pub use multisample::{masks_of, reference_masks, MaskFragment, SamplePattern, SAMPLE_COUNTS};
+pub use primitive::{DepthPlane, ShadedLine, ShadedTriangle, ShadedVertex, TriangleData, Varyings};
+pub use registry::{
+    all_backends, backend, default_line_backend, default_triangle_backend,
+    fallback_triangle_backend, line_backend, line_backends, reference_triangle_backend,
+    reference_triangle_backend_within, triangle_backend, triangle_backends, Backend, BackendInfo,
+    BackendKind,
+};
+pub use shader::{
+    from_rgba8, to_rgba8, Constant, Diffuse, DirectionalLight, Filter, Flat, FragmentInput,
+    FragmentShader, Gouraud, NormalColors, Texture, Textured,
+};
+pub use stage::{FragmentStage, Interpolation};
+pub use target::{Clear, DepthState, DepthTest, RenderTarget, TargetRows, MAX_TARGET_SIDE};

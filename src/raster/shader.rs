@@ -52,7 +52,7 @@ pub trait FragmentShader: Sync {
 ///
 /// ```
 /// use glam::Vec4;
-/// use rasterlab::raster::shader::to_rgba8;
+/// use rasterlab::raster::to_rgba8;
 ///
 /// assert_eq!(to_rgba8(Vec4::new(0.0, 0.5, 1.0, 2.0)), [0, 128, 255, 255]);
 /// assert_eq!(to_rgba8(Vec4::new(f32::NAN, -1.0, 0.998, 0.002)), [0, 0, 254, 1]);

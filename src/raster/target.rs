@@ -180,7 +180,7 @@ impl RenderTarget {
     /// same as with [`new`](Self::new).
     ///
     /// ```
-    /// use rasterlab::raster::target::RenderTarget;
+    /// use rasterlab::raster::RenderTarget;
     ///
     /// let target = RenderTarget::without_coverage(4, 3).unwrap();
     /// assert!(!target.counts_coverage() && target.coverage.is_empty());

@@ -31,14 +31,12 @@ pub fn part_missing(test: &str, part: &str, required: &str) {
 }
 
 use proptest::prelude::*;
-use rasterlab::geometry::polygon::Polygon;
-use rasterlab::geometry::scene::setup_triangles;
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::{FillRule, PixelRect, TriangleSetup};
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::fragment::FragmentList;
+use rasterlab::geometry::{setup_triangles, Polygon};
 use rasterlab::raster::triangle::naive::Naive;
 use rasterlab::raster::triangle::TriangleRasterizer;
+use rasterlab::raster::{
+    triangle_backends, FillRule, FixedPoint, FragmentList, PixelRect, TriangleSetup,
+};
 
 /// Side of the square target used by the property tests.
 pub const SIZE: u32 = 40;
@@ -205,3 +203,16 @@ pub const HEADLESS: [&str; 8] = [
     "--disable-component-update",
     "--disable-sync",
 ];
+
+/// A proptest configuration of `cases` cases that keeps the failures it
+/// finds in `file` (under `tests/proptest-regressions/`, beside the named
+/// regression tests of `tests/regressions.rs`), where every later run
+/// tries them first.
+pub fn proptest_config(cases: u32, file: &'static str) -> proptest::test_runner::Config {
+    proptest::test_runner::Config {
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::Direct(file),
+        )),
+        ..proptest::test_runner::Config::with_cases(cases)
+    }
+}

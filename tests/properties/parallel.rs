@@ -5,15 +5,11 @@
 
 use glam::Vec4;
 use proptest::prelude::*;
-use rasterlab::geometry::pipeline::{draw, draw_clearing, Geometry};
-use rasterlab::geometry::scene::setup_triangles;
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::FillRule;
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::primitive::ShadedVertex;
-use rasterlab::raster::shader::Gouraud;
-use rasterlab::raster::stage::Interpolation;
-use rasterlab::raster::target::{Clear, DepthState, RenderTarget};
+use rasterlab::geometry::{draw, draw_clearing, setup_triangles, Geometry};
+use rasterlab::raster::{
+    triangle_backends, Clear, DepthState, FillRule, FixedPoint, Gouraud, Interpolation,
+    RenderTarget, ShadedVertex,
+};
 
 /// A 2D soup as a draw: depths and colours per triangle from `depths`.
 pub fn soup_geometry(soup: &[[FixedPoint; 3]], depths: &[f32]) -> Geometry {

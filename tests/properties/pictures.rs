@@ -5,12 +5,12 @@
 
 use crate::common::SIZE;
 use proptest::prelude::*;
-use rasterlab::geometry::scene::setup_triangles;
-use rasterlab::raster::backend::triangle_backends;
-use rasterlab::raster::edge::{FillRule, PixelRect};
-use rasterlab::raster::fixed::FixedPoint;
-use rasterlab::raster::fragment::{FragmentList, FragmentSink, LineFragment, TriangleFragment};
-use rasterlab::teaching::grid_picture::{is_fragment_green, GridPicture, TESTED_OUTSIDE};
+use rasterlab::geometry::setup_triangles;
+use rasterlab::raster::{
+    triangle_backends, FillRule, FixedPoint, FragmentList, FragmentSink, LineFragment, PixelRect,
+    TriangleFragment,
+};
+use rasterlab::teaching::{is_fragment_green, GridPicture, TESTED_OUTSIDE};
 
 /// Counts the samples a back-end reports as tested, per pixel.
 struct TestedCells(Vec<bool>);

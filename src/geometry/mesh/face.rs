@@ -15,7 +15,7 @@
 //!
 //! ```
 //! use glam::Vec3;
-//! use rasterlab::geometry::mesh::face::triangulate_face;
+//! use rasterlab::geometry::triangulate_face;
 //! // An L: six corners, concave at corner 3.
 //! let p = [(0., 0.), (2., 0.), (2., 1.), (1., 1.), (1., 2.), (0., 2.)]
 //!     .map(|(x, y)| Vec3::new(x, y, 0.0));

@@ -17,13 +17,17 @@
 //! (area-weighted, [`Mesh::compute_normals`]); missing texture coordinates can
 //! be generated ([`Mesh::planar_uvs`]).
 
-pub mod face;
+pub(crate) mod face;
 mod inflate;
-pub mod obj;
-pub mod ply;
+pub(crate) mod obj;
+pub(crate) mod ply;
 mod ply_ascii;
 mod ply_blocks;
 mod ply_payload;
+
+pub use face::triangulate_face;
+pub use obj::{load_obj, parse_obj};
+pub use ply::{load_ply, read_ply};
 
 use crate::error::{Error, Result};
 use glam::{Vec2, Vec3, Vec4};
@@ -71,7 +75,7 @@ impl Mesh {
     ///
     /// ```
     /// use glam::Vec3;
-    /// use rasterlab::geometry::mesh::Mesh;
+    /// use rasterlab::geometry::Mesh;
     ///
     /// let quad = Mesh::new(
     ///     vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
@@ -117,8 +121,8 @@ impl Mesh {
     /// Loads a mesh by file extension: `.ply`, `.ply.gz` or `.obj`.
     pub fn load(path: &Path) -> Result<Mesh> {
         match MeshFormat::of(path) {
-            Some(MeshFormat::Ply) => ply::load(path),
-            Some(MeshFormat::Obj) => obj::load(path),
+            Some(MeshFormat::Ply) => ply::load_ply(path),
+            Some(MeshFormat::Obj) => obj::load_obj(path),
             None => Err(Error::Parse {
                 path: path.to_path_buf(),
                 line: None,

@@ -18,21 +18,21 @@ use std::collections::HashMap;
 use std::path::Path;
 
 /// Loads an OBJ file.
-pub fn load(path: &Path) -> Result<Mesh> {
+pub fn load_obj(path: &Path) -> Result<Mesh> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, &e))?;
-    parse(&text, path)
+    parse_obj(&text, path)
 }
 
 /// Parses OBJ text; `path` is used in error messages only.
 ///
 /// ```
 /// use std::path::Path;
-/// let mesh = rasterlab::geometry::mesh::obj::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", Path::new("t.obj")).unwrap();
+/// let mesh = rasterlab::geometry::parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", Path::new("t.obj")).unwrap();
 /// assert_eq!(mesh.triangles, vec![[0, 1, 2]]);
-/// let err = rasterlab::geometry::mesh::obj::parse("v 0 0 0\nf 1 2 3\n", Path::new("t.obj")).unwrap_err();
+/// let err = rasterlab::geometry::parse_obj("v 0 0 0\nf 1 2 3\n", Path::new("t.obj")).unwrap_err();
 /// assert_eq!(err.to_string(), "t.obj:2: position index 2 is out of range (1 defined so far)");
 /// ```
-pub fn parse(text: &str, path: &Path) -> Result<Mesh> {
+pub fn parse_obj(text: &str, path: &Path) -> Result<Mesh> {
     let mut positions: Vec<Vec3> = Vec::new();
     let mut colors: Vec<Vec4> = Vec::new();
     let mut uvs: Vec<Vec2> = Vec::new();
@@ -185,7 +185,7 @@ mod tests {
     use super::*;
 
     fn error_line(text: &str) -> Option<usize> {
-        match parse(text, Path::new("m.obj")) {
+        match parse_obj(text, Path::new("m.obj")) {
             Err(Error::Parse { line, .. }) => line,
             other => panic!("expected a parse error, got {other:?}"),
         }
@@ -194,7 +194,7 @@ mod tests {
     #[test]
     fn reads_quads_uvs_normals_and_negative_indices() {
         let text = "# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 2\ng quad\nf -4/1/1 -3/2/1 -2/3/1 -1/4/1\n";
-        let m = parse(text, Path::new("q.obj")).unwrap();
+        let m = parse_obj(text, Path::new("q.obj")).unwrap();
         assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
         assert_eq!(m.uvs.as_ref().unwrap()[2], Vec2::new(1.0, 1.0));
         assert_eq!(m.normals[3], Vec3::Z);

@@ -758,7 +758,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(4000))]
+        #![proptest_config(crate::test_support::proptest_config(4000, "tests/proptest-regressions/src-geometry-mesh-ply_ascii.txt"))]
 
         /// The plain readings of faces and vertices read every line as the
         /// general reader does: the same values, the same bytes, the same

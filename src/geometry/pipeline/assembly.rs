@@ -11,7 +11,7 @@
 //! | fan | `(0, i+1, i+2)` | `n - 2` |
 //!
 //! ```
-//! use rasterlab::geometry::pipeline::assembly::{assemble, Topology};
+//! use rasterlab::geometry::{assemble, Topology};
 //!
 //! // The course chapter: three vertices, no index buffer, one triangle.
 //! assert_eq!(assemble(Topology::List, None, 3).unwrap(), vec![[0, 1, 2]]);

@@ -77,13 +77,8 @@ pub fn draw<S: FragmentShader + ?Sized>(
 ///
 /// ```
 /// use glam::Vec4;
-/// use rasterlab::geometry::pipeline::{draw, draw_clearing, Geometry};
-/// use rasterlab::geometry::scene::setup_triangles;
-/// use rasterlab::raster::primitive::ShadedVertex;
-/// use rasterlab::raster::shader::Flat;
-/// use rasterlab::raster::stage::Interpolation;
-/// use rasterlab::raster::target::{Clear, DepthState, RenderTarget};
-/// use rasterlab::{FillRule, FixedPoint};
+/// use rasterlab::geometry::{draw, draw_clearing, setup_triangles, Geometry};
+/// use rasterlab::raster::{Clear, DepthState, FillRule, FixedPoint, Flat, Interpolation, RenderTarget, ShadedVertex};
 ///
 /// let p = |x, y| FixedPoint::snap(x, y).unwrap();
 /// let triangle = [p(1.0, 1.0), p(7.0, 2.0), p(3.0, 6.0)];
@@ -97,7 +92,7 @@ pub fn draw<S: FragmentShader + ?Sized>(
 /// used.depth.fill(0.25);
 /// let mut eager = used.clone();
 /// eager.clear();
-/// let scanline = rasterlab::triangle_backend("scanline").unwrap();
+/// let scanline = rasterlab::raster::triangle_backend("scanline").unwrap();
 /// let (depth, lerp) = (DepthState::DEFAULT, Interpolation::PerspectiveCorrect);
 /// draw(&geometry, scanline, &Flat, depth, lerp, &mut eager);
 /// // ... or the clear folded into the draw: the same buffers.

@@ -29,10 +29,10 @@
 //! `geometry` (the result), `draw` and `bands` (drawing it, on one thread
 //! or band by band).
 
-pub mod assembly;
+pub(crate) mod assembly;
 mod camera;
-pub mod clip;
-pub mod vertex;
+pub(crate) mod clip;
+pub(crate) mod vertex;
 
 mod bands;
 mod draw;
@@ -42,12 +42,15 @@ mod process;
 mod setup;
 mod viewport;
 
+pub use assembly::{assemble, Topology};
 pub use camera::Camera;
+pub use clip::{ClipResult, ClipVertex, ClipVolume, GUARD_LIMIT_PX, PLANE_NAMES, W_MIN};
 pub use draw::{draw, draw_binned, draw_clearing};
 pub use geometry::Geometry;
 pub use options::{CullMode, FrontFace, PipelineOptions};
 pub use process::{process_lines, process_triangles, process_triangles_into};
 pub use setup::GeometryStats;
+pub use vertex::{positions_from_floats, MeshVertex, Transform, VertexShader};
 pub use viewport::Viewport;
 
 pub(crate) use draw::{draw_runs_binned, Pass};

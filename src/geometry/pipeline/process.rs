@@ -563,7 +563,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(3000))]
+        #![proptest_config(crate::test_support::proptest_config(3000, "tests/proptest-regressions/src-geometry-pipeline-process.txt"))]
 
         /// The vertex stage eight at a time (AVX2 lanes) writes the bits of
         /// the one-vertex path, for every vertex: on screen, outside a
@@ -614,7 +614,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(300))]
+        #![proptest_config(crate::test_support::proptest_config(300, "tests/proptest-regressions/src-geometry-pipeline-process.txt"))]
 
         /// Assembly with its first tests in lanes (eight triangles at a
         /// time) keeps, sets up and counts what the one-at-a-time loop

@@ -39,7 +39,7 @@ pub struct GeometryStats {
     /// could not produce a fragment.
     pub empty_bounds: u64,
     /// Triangles whose bounding box holds at most 2x2 pixel centres, none
-    /// of them inside (tested in 32 bits, [`crate::raster::compact`]):
+    /// of them inside (tested in 32 bits, [`crate::raster::SmallTriangle`]):
     /// dropped before their set-up, as they could not produce a fragment.
     pub no_sample: u64,
     /// Triangles handed to the rasterizer.

@@ -43,7 +43,7 @@ where
 /// per vertex, as in its C listing.
 ///
 /// ```
-/// use rasterlab::geometry::pipeline::vertex::positions_from_floats;
+/// use rasterlab::geometry::positions_from_floats;
 ///
 /// // The course's array: v0 = (-1, 0, 0), v1 = (0, -1, 0), v2 = (-1, -1, 0).
 /// let v = positions_from_floats(&[-1., 0., 0., 0., -1., 0., -1., -1., 0.]).unwrap();

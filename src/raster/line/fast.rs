@@ -33,9 +33,9 @@ use crate::raster::target::RenderTarget;
 /// and returns the number of pixels written.
 ///
 /// ```
-/// use rasterlab::raster::fixed::FixedPoint;
-/// use rasterlab::raster::line::{fast::draw_lines, LineSetup};
-/// use rasterlab::raster::target::RenderTarget;
+/// use rasterlab::raster::{FixedPoint, RenderTarget};
+/// use rasterlab::raster::line::LineSetup;
+/// use rasterlab::raster::line::fast::draw_lines;
 ///
 /// let mut target = RenderTarget::new(8, 4).unwrap();
 /// let p = |x: f32, y: f32| FixedPoint::snap(x, y).unwrap();

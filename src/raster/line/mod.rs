@@ -113,7 +113,7 @@ crate::names::named_enum!(
 );
 
 /// How a line back-end chooses its pixels: what its step-by-step trace
-/// ([`crate::teaching::trace::of_line_backend`]) shows.
+/// ([`crate::teaching::trace_line`]) shows.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum LineWalk {
     /// `y = m x + b` evaluated per column, then rounded.

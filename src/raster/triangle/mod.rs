@@ -5,7 +5,7 @@
 //! triangle ([`TriangleAlgorithm::draw_triangle`]); the loop over a draw's
 //! triangles is written once, and makes every algorithm an object-safe
 //! [`TriangleRasterizer`], so tools and tests loop over
-//! [`crate::raster::backend::triangle_backends`] by name. A back-end only decides
+//! [`crate::raster::triangle_backends`] by name. A back-end only decides
 //! *which* pixels each triangle covers; every one of them applies the same
 //! exact inside test ([`TriangleSetup::inside`](crate::raster::edge::TriangleSetup::inside)) to the same sample points,
 //! so they all emit the same fragments, and differ only in how many samples
@@ -37,7 +37,7 @@ use crate::raster::fragment::{FragmentSink, TriangleFragment, TriangleSpan, Work
 pub type TriangleDescriptor = Descriptor<TriangleWalk>;
 
 /// How a triangle back-end walks the pixels: what its step-by-step trace
-/// ([`crate::teaching::trace::of_triangle_backend`]) is headed with.
+/// ([`crate::teaching::trace_triangle`]) is headed with.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum TriangleWalk {
     /// Every pixel of the target, each tested on its own (the course's
@@ -197,11 +197,8 @@ impl WalkObserver for Vec<WalkStep> {
 /// is provided once, by the [`TriangleRasterizer`] every algorithm is.
 ///
 /// ```
-/// use rasterlab::raster::descriptor::{CostClass, Role};
-/// use rasterlab::raster::triangle::{
-///     emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver,
-/// };
-/// use rasterlab::{FragmentSink, PixelRect, TriangleRasterizer, TriangleSetup, WorkCounters};
+/// use rasterlab::raster::{CostClass, FragmentSink, PixelRect, Role, TriangleSetup, WorkCounters};
+/// use rasterlab::raster::triangle::{emit, TriangleAlgorithm, TriangleDescriptor, TriangleRasterizer, TriangleWalk, WalkObserver};
 ///
 /// /// The bounding box, walked bottom row first.
 /// struct BottomUp;
@@ -235,9 +232,9 @@ impl WalkObserver for Vec<WalkStep> {
 /// assert_eq!(BottomUp.name(), "bottom-up");
 /// // Its trace is the recording of its walk: the bottom row first.
 /// let t = TriangleSetup::new(0, [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)]
-///     .map(|(x, y)| rasterlab::FixedPoint::snap_f64(x, y).unwrap()),
-///     rasterlab::FillRule::TopLeft).unwrap();
-/// let (steps, _) = BottomUp.record(&t, PixelRect::of_target(6, 4), &mut rasterlab::raster::fragment::FragmentList::default());
+///     .map(|(x, y)| rasterlab::raster::FixedPoint::snap_f64(x, y).unwrap()),
+///     rasterlab::raster::FillRule::TopLeft).unwrap();
+/// let (steps, _) = BottomUp.record(&t, PixelRect::of_target(6, 4), &mut rasterlab::raster::FragmentList::default());
 /// assert!(matches!(steps[0], rasterlab::raster::triangle::WalkStep::Sample { y: 3, .. }));
 /// ```
 pub trait TriangleAlgorithm: Send + Sync {

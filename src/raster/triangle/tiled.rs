@@ -45,7 +45,7 @@
 //! ```
 
 use super::incremental::{report_tested, run_in_row, step_over, Run};
-pub use super::BlockClass;
+use super::BlockClass;
 use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
@@ -370,7 +370,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(3000))]
+        #![proptest_config(crate::test_support::proptest_config(3000, "tests/proptest-regressions/src-raster-triangle-tiled.txt"))]
 
         /// A box of at most 2x2 pixels tested sample by sample gives what
         /// the per-pixel loop gives: the same fragments with the same edge
@@ -400,6 +400,8 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config(crate::test_support::proptest_config(256, "tests/proptest-regressions/src-raster-triangle-tiled.txt"))]
+
         /// The two-corner test says what testing every pixel says: a block
         /// is inside exactly when all its pixels are, and no pixel of an
         /// outside block is inside (a straddling block may still hold none:

@@ -300,7 +300,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(3000))]
+        #![proptest_config(crate::test_support::proptest_config(3000, "tests/proptest-regressions/src-raster-vector-triangles.txt"))]
 
         /// The lanes drop the triangles the one-at-a-time tests drop, for
         /// the same reason: corners on either side of pixel centres, on
