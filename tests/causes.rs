@@ -178,6 +178,7 @@ fn student(m: Mistakes) -> impl FnMut(&Case) -> Result<Vec<Fragment>, SubjectErr
                             x,
                             y: row,
                             id: id as u32,
+                            mask: 0,
                         };
                         out.push(f);
                         if first && m.duplicate_first {
@@ -569,6 +570,7 @@ fn line_student(m: LineMistakes) -> impl FnMut(&Case) -> Result<Vec<Fragment>, S
                         x,
                         y,
                         id: id as u32,
+                        mask: 0,
                     }),
             );
         }

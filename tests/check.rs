@@ -195,6 +195,7 @@ fn mutants_are_caught_with_at_most_three_primitives() {
             x: i64::from(c.width),
             y: 0,
             id: 0,
+            mask: 0,
         });
         f
     });
@@ -310,7 +311,7 @@ fn an_outside_program_passes_and_fails_through_exec() {
         &counter,
     ]);
     let drawn =
-        rasterlab::check::parse_fragments(&String::from_utf8(rerun.stdout).unwrap()).unwrap();
+        rasterlab::check::parse_fragments(&String::from_utf8(rerun.stdout).unwrap(), None).unwrap();
     assert!(rasterlab::check::judge(Property::Watertight, &case, &drawn).is_some());
     // JSON for autograders.
     let out = rasterlab(&[
@@ -386,7 +387,7 @@ fn a_broken_program_exits_2_with_the_input_that_breaks_it() {
 // Regression tests: each failed before its fix.
 
 fn frag(x: i64, y: i64, id: u32) -> Fragment {
-    Fragment { x, y, id }
+    Fragment::at(x, y, id)
 }
 
 fn case_of(width: u32, height: u32, triangles: Vec<[(f64, f64); 3]>) -> Case {
@@ -395,6 +396,7 @@ fn case_of(width: u32, height: u32, triangles: Vec<[(f64, f64); 3]>) -> Case {
         height,
         triangles,
         lines: Vec::new(),
+        samples: None,
     }
 }
 
@@ -703,6 +705,7 @@ fn a_line_failure_is_diagnosed() {
         height: 8,
         triangles: Vec::new(),
         lines: vec![[(0.5, 0.5), (6.5, 3.5)]],
+        samples: None,
     };
     let mut drawn = line_fragments(bresenham, &case);
     drawn.retain(|f| f.x != 3);
@@ -728,6 +731,7 @@ fn the_midpoint_convention_is_the_documented_one() {
                 height: 8,
                 triangles: Vec::new(),
                 lines: vec![line],
+                samples: None,
             },
         );
         f.sort();
@@ -1296,7 +1300,7 @@ fn the_counterexample_picture_labels_clips_and_uses_the_palette() {
     let case = Case::from_text("# size 3x2\n0 0 3 0 0 2\n3 0 3 2 0 2\n").unwrap();
     let mut drawn = triangle_fragments(scanline, &case, FillRule::TopLeft);
     let gone = drawn.remove(0);
-    drawn.push(Fragment { x: -1, y: 0, id: 1 });
+    drawn.push(Fragment::at(-1, 0, 1));
     let finding = judge(Property::Exact(FillRule::TopLeft), &case, &drawn).unwrap();
     let svg = finding.to_svg();
     // The palette's colours, none of the old private ones.
@@ -1357,7 +1361,7 @@ fn the_counterexample_picture_labels_clips_and_uses_the_palette() {
     let finding = judge(
         Property::Exact(FillRule::BottomLeft),
         &far,
-        &[Fragment { x: 0, y: 0, id: 0 }],
+        &[Fragment::at(0, 0, 0)],
     )
     .unwrap();
     let svg = finding.to_svg();

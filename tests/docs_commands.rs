@@ -76,6 +76,11 @@ const EXPECTED_STATUS: &[(&str, i32)] = &[
         1,
     ),
     ("rasterlab check --persistent --exec \"./rasterizer", 1),
+    // The multisampler asked to decide every sample at the centre.
+    (
+        "rasterlab check --msaa 4 --persistent --exec \"python3 examples/student/multisample.py {msaa} centre",
+        1,
+    ),
     (
         "rasterlab check --persistent --exec \"node examples/starters/js/rasterizer.js",
         1,

@@ -463,7 +463,7 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
     let property = Property::Exact(FillRule::TopLeft);
     let mut drawn = reference(property, &case);
     drawn.remove(0);
-    drawn.push(Fragment { x: -1, y: 0, id: 1 });
+    drawn.push(Fragment::at(-1, 0, 1));
     let finding = judge(property, &case, &drawn).expect("a failure");
     let svg = finding.to_svg();
     let entries = legend_entries(&svg);

@@ -420,6 +420,7 @@ impl Window {
                             x: i64::from(x),
                             y: i64::from(y),
                             id: id as u32,
+                            mask: 0,
                         });
                     }
                 }

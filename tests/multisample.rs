@@ -2,16 +2,22 @@
 //! reference gives, sample for sample, under every fill rule, on the
 //! standard patterns; a spade-triangulated polygon covers each sample
 //! inside it exactly once under the watertight rules; and a sample lying
-//! on an edge goes to the triangle whose edge owns its ties.
+//! on an edge goes to the triangle whose edge owns its ties. `check
+//! --msaa N` passes every back-end, judges masks exactly and names the
+//! classic multisampling mistakes by the reference.
 
 mod common;
 
 use common::*;
 use proptest::prelude::*;
+use rasterlab::check::{
+    check, run, triangle_fragments, Case, CheckOptions, CheckRequest, FailureKind, Fragment,
+    Property, RuleChoice, Subject, SubjectError, SubjectSpec, Verdict, VerdictWord,
+};
 use rasterlab::geometry::{setup_triangles, Polygon, Side};
 use rasterlab::raster::{
-    masks_of, reference_masks, triangle_backends, FillRule, FixedPoint, MaskFragment,
-    SamplePattern, SAMPLE_COUNTS,
+    masks_of, reference_masks, triangle_backend, triangle_backends, FillRule, FixedPoint,
+    MaskFragment, SamplePattern, SAMPLE_COUNTS,
 };
 
 /// Every back-end's masks against the reference's, for one rule and pattern.
@@ -263,4 +269,223 @@ fn fragments_prints_masks() {
     ]);
     assert_eq!(lines.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&lines.stderr).contains("not multisampled"));
+}
+
+/// `check --msaa N` (the library's request) passes every triangle
+/// back-end under every fill rule, on 4, 8 and 16 samples: the back-ends'
+/// masks, one pass of their own walk per sample, against the reference's
+/// sample-by-sample test, on the check's adversarial families.
+#[test]
+fn check_msaa_passes_every_backend_under_every_rule() {
+    for backend in triangle_backends() {
+        for rule in FillRule::ALL {
+            for n in [4, 8, 16] {
+                let request = CheckRequest {
+                    rule: Some(RuleChoice::Exact(rule)),
+                    msaa: Some(n),
+                    cases: 60,
+                    seed: u64::from(n),
+                    ..CheckRequest::new(SubjectSpec::Backend(backend.name().into()))
+                };
+                let report = run(&request).unwrap();
+                assert_eq!(
+                    report.verdict,
+                    VerdictWord::Pass,
+                    "{} under {rule}, {n} samples: {:?}",
+                    backend.name(),
+                    report.counterexample
+                );
+                assert_eq!(report.samples, n);
+                assert!(report
+                    .description
+                    .contains(&format!("{n} samples per pixel")));
+            }
+        }
+    }
+}
+
+/// The cause `check` names for a multisampling subject under `rule`, and
+/// the kind of the shrunk failure.
+fn named_cause(rule: FillRule, n: u32, subject: &mut impl Subject) -> (Vec<String>, FailureKind) {
+    let options = CheckOptions {
+        samples: SamplePattern::standard(n).ok(),
+        ..CheckOptions::new(Property::Exact(rule))
+    };
+    match check(&options, subject).unwrap() {
+        Verdict::Fail { finding, .. } => {
+            let cause = finding.cause.as_ref().expect("a cause is named");
+            (cause.causes.clone(), finding.kind())
+        }
+        Verdict::Pass { .. } => panic!("the mistake passed"),
+    }
+}
+
+/// The mistakes a multisampling rasterizer makes, each caught and named:
+/// every sample decided at the pixel centre (a full mask, the done-when
+/// case of a "multisampler" that is not one), OpenGL's y-up pattern used
+/// on a y-down screen, a sample on an edge given by the top-left rule
+/// where the bottom-right rule is asked for, and a mask with the bits of
+/// samples 0 and 1 swapped, which no cause explains.
+#[test]
+fn check_msaa_names_the_classic_mistakes() {
+    let tiled = triangle_backend("tiled").unwrap();
+    let mut centre = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        let full = c.samples.unwrap().full_mask();
+        let one = Case {
+            samples: None,
+            ..c.clone()
+        };
+        Ok(triangle_fragments(tiled, &one, FillRule::TopLeft)
+            .into_iter()
+            .map(|f| Fragment { mask: full, ..f })
+            .collect())
+    };
+    let (causes, _) = named_cause(FillRule::TopLeft, 4, &mut centre);
+    assert_eq!(causes, ["centre-for-every-sample"]);
+
+    let mut mirrored = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        let gl = Case {
+            samples: c.samples.map(SamplePattern::mirrored_y),
+            ..c.clone()
+        };
+        Ok(triangle_fragments(tiled, &gl, FillRule::TopLeft))
+    };
+    let (causes, _) = named_cause(FillRule::TopLeft, 8, &mut mirrored);
+    assert_eq!(causes, ["mirrored-pattern"]);
+
+    let mut top_left = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        Ok(triangle_fragments(tiled, c, FillRule::TopLeft))
+    };
+    let (causes, _) = named_cause(FillRule::BottomRight, 16, &mut top_left);
+    assert_eq!(causes, ["fill-rule:top-left"]);
+
+    let mut swapped = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        Ok(triangle_fragments(tiled, c, FillRule::TopLeft)
+            .into_iter()
+            .map(|f| {
+                let (b0, b1) = (f.mask & 1, (f.mask >> 1) & 1);
+                Fragment {
+                    mask: (f.mask & !3) | (b0 << 1) | b1,
+                    ..f
+                }
+            })
+            .collect())
+    };
+    let options = CheckOptions {
+        samples: SamplePattern::standard(4).ok(),
+        ..CheckOptions::new(Property::Exact(FillRule::TopLeft))
+    };
+    match check(&options, &mut swapped).unwrap() {
+        Verdict::Fail { finding, .. } => {
+            assert_eq!(finding.kind(), FailureKind::Mask);
+            assert!(finding.cause.is_none(), "{:?}", finding.cause);
+            let text = &finding.problems[0];
+            assert!(text.contains("another mask than the rule's"), "{text}");
+        }
+        Verdict::Pass { .. } => panic!("swapped samples passed"),
+    }
+}
+
+/// The example multisampler passes `check --msaa 4 --persistent`, and
+/// with a mistake asked for fails (exit 1) with the cause named; the
+/// counterexample file says `# msaa 4`, so `--case` reruns it without
+/// `--msaa`, and a case that says another count than `--msaa` is refused.
+#[test]
+fn check_msaa_runs_a_program_and_names_its_mistake() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().to_str().unwrap();
+    let example = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/student/multisample.py"
+    );
+    let command = |mistake: &str| format!("python3 {example} {{msaa}} {mistake}");
+    let right = rasterlab(&[
+        "check",
+        "--msaa",
+        "4",
+        "--persistent",
+        "--exec",
+        &command(""),
+        "--out",
+        out,
+    ]);
+    assert!(right.status.success(), "{right:?}");
+    let stdout = String::from_utf8_lossy(&right.stdout);
+    assert!(stdout.contains("4 samples per pixel"), "{stdout}");
+
+    let wrong = rasterlab(&[
+        "check",
+        "--msaa",
+        "4",
+        "--persistent",
+        "--exec",
+        &command("centre"),
+        "--out",
+        out,
+    ]);
+    assert_eq!(wrong.status.code(), Some(1), "{wrong:?}");
+    let stdout = String::from_utf8_lossy(&wrong.stdout);
+    assert!(
+        stdout.contains("every sample decided at the pixel centre"),
+        "{stdout}"
+    );
+    let file = tmp.path().join("counterexample.txt");
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(text.starts_with("# size 1x1\n# msaa 4\n"), "{text}");
+    assert!(text.contains("mask 15"), "{text}");
+    let case = Case::from_text(&text).unwrap();
+    assert_eq!(case.samples, SamplePattern::standard(4).ok());
+
+    let rerun = rasterlab(&[
+        "check",
+        "--case",
+        file.to_str().unwrap(),
+        "--backend",
+        "scanline",
+        "--out",
+        out,
+    ]);
+    assert!(rerun.status.success(), "{rerun:?}");
+    assert!(String::from_utf8_lossy(&rerun.stdout).contains("4 samples per pixel"));
+    let other = rasterlab(&[
+        "check",
+        "--case",
+        file.to_str().unwrap(),
+        "--msaa",
+        "8",
+        "--backend",
+        "scanline",
+    ]);
+    assert_eq!(other.status.code(), Some(2), "{other:?}");
+    assert!(String::from_utf8_lossy(&other.stderr).contains("says `# msaa 4`"));
+}
+
+/// `--msaa` is refused, exit 2, where it does not apply or names no
+/// standard pattern: lines, watertight, crack-free, `any`, a count of 3,
+/// a word; and a case file with `# msaa 3`.
+#[test]
+fn check_msaa_refuses_what_it_cannot_judge() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bad_case = tmp.path().join("three.txt");
+    std::fs::write(&bad_case, "# size 4x4\n# msaa 3\n0 0 4 0 0 4\n").unwrap();
+    let bad_case = bad_case.to_str().unwrap();
+    for args in [
+        &["--msaa", "4", "--kind", "lines"][..],
+        &["--msaa", "4", "--rule", "watertight"],
+        &["--msaa", "4", "--rule", "crack-free"],
+        &["--msaa", "4", "--rule", "any"],
+        &["--msaa", "3"],
+        &["--msaa", "four"],
+        &["--case", bad_case],
+    ] {
+        let mut all = vec!["check", "--backend", "scanline"];
+        all.extend_from_slice(args);
+        let out = rasterlab(&all);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {out:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("msaa") || err.contains("sample"),
+            "{args:?}: {err}"
+        );
+    }
 }

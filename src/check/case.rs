@@ -1,9 +1,11 @@
-//! One input of a check: a target size and triangles or line segments in
-//! screen pixels, as written in a counterexample file and read back.
+//! One input of a check: a target size, its samples per pixel, and
+//! triangles or line segments in screen pixels, as written in a
+//! counterexample file and read back.
 //! The generators make cases, the judge and the shrinker read them.
 
 use crate::error::{Error, Result};
 use crate::raster::fixed::FixedPoint;
+use crate::raster::multisample::SamplePattern;
 use std::fmt::Write;
 
 /// A point in screen pixels, as written in the input file.
@@ -21,6 +23,10 @@ pub struct Case {
     pub triangles: Vec<[Point; 3]>,
     /// Line segments (empty for a triangle case).
     pub lines: Vec<[Point; 2]>,
+    /// The samples per pixel under `check --msaa N` (`None`: one sample,
+    /// at the pixel centre). A multisampled case's fragments carry a
+    /// coverage mask.
+    pub samples: Option<SamplePattern>,
 }
 
 impl Case {
@@ -44,11 +50,14 @@ impl Case {
         self.lines.iter().map(|l| l.map(snap)).collect()
     }
 
-    /// The input file: `# size WxH`, then one primitive per line (`-0`
-    /// written as `0`).
+    /// The input file: `# size WxH`, under `--msaa N` a line `# msaa N`,
+    /// then one primitive per line (`-0` written as `0`).
     pub fn to_text(&self) -> String {
         let clean = self.without_negative_zeros();
         let mut out = format!("# size {}x{}\n", clean.width, clean.height);
+        if let Some(p) = self.samples {
+            let _ = writeln!(out, "# msaa {}", p.count());
+        }
         for t in &clean.triangles {
             let _ = writeln!(
                 out,
@@ -70,11 +79,13 @@ impl Case {
             height: self.height,
             triangles: self.triangles.iter().map(|t| t.map(fix)).collect(),
             lines: self.lines.iter().map(|l| l.map(fix)).collect(),
+            samples: self.samples,
         }
     }
 
     /// Reads a case written by [`Case::to_text`] (a counterexample file),
-    /// or any soup or line set with a `# size WxH` line.
+    /// or any soup or line set with a `# size WxH` line (and a `# msaa N`
+    /// line for a multisampled one, `N` one of 1, 2, 4, 8 and 16).
     pub fn from_text(text: &str) -> Result<Case> {
         let mut case = Case::default();
         for (i, line) in text.lines().enumerate() {
@@ -85,6 +96,14 @@ impl Case {
                     .ok_or_else(|| bad("expected # size WxH".into()))?;
                 case.width = w.trim().parse().map_err(|_| bad("bad width".into()))?;
                 case.height = h.trim().parse().map_err(|_| bad("bad height".into()))?;
+                continue;
+            }
+            if let Some(n) = line.trim().strip_prefix("# msaa ") {
+                let n: u32 = n
+                    .trim()
+                    .parse()
+                    .map_err(|_| bad(format!("`{}` is not a sample count", n.trim())))?;
+                case.samples = Some(SamplePattern::standard(n).map_err(|e| bad(e.to_string()))?);
                 continue;
             }
             let content = line.split('#').next().unwrap_or("").trim();

@@ -38,6 +38,7 @@ use super::cause::{self, Diagnosis};
 use super::generate;
 use super::judge::{judge, Finding, LineConvention, Property, Provenance};
 use super::program::Program;
+use super::property::with_samples;
 use super::request::{
     timeout_from_seconds, BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice,
     Counterexample, FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
@@ -46,6 +47,7 @@ use super::request::{
 use super::{broken, shrink, Broken, Builtin, Fragment, Subject, SubjectError};
 use crate::error::{Error, Result};
 use crate::raster::edge::FillRule;
+use crate::raster::multisample::SamplePattern;
 use crate::raster::registry::{backend, Backend};
 
 /// Cases drawn after the first failure, at most, to confirm its cause:
@@ -327,6 +329,20 @@ fn run_inner(
         )));
     }
     timeout_from_seconds(request.timeout.as_secs_f64())?;
+    let mut samples = match request.msaa {
+        None => None,
+        Some(n) => {
+            if !matches!(mode, Mode::One(Property::Exact(_))) {
+                return Err(Error::InvalidArgument(
+                    "--msaa judges the coverage masks of triangles under one fill rule \
+                     (--rule top-left, bottom-right, ...): not lines, watertight, crack-free \
+                     or any"
+                        .into(),
+                ));
+            }
+            Some(SamplePattern::standard(n)?)
+        }
+    };
     let given = match &request.case_file {
         Some(path) => {
             let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
@@ -354,7 +370,25 @@ fn run_inner(
                     }
                 )));
             }
-            Some(case)
+            match (case.samples, samples) {
+                (Some(a), Some(b)) if a != b => {
+                    return Err(Error::InvalidArgument(format!(
+                        "{} says `# msaa {}`, but --msaa {} was given",
+                        path.display(),
+                        a.count(),
+                        b.count()
+                    )))
+                }
+                (Some(_), None) if !matches!(mode, Mode::One(Property::Exact(_))) => {
+                    return Err(Error::InvalidArgument(format!(
+                        "{} is multisampled (`# msaa N`): it is judged under one fill rule",
+                        path.display()
+                    )))
+                }
+                (Some(a), None) => samples = Some(a),
+                _ => {}
+            }
+            Some(Case { samples, ..case })
         }
         None => None,
     };
@@ -366,9 +400,13 @@ fn run_inner(
         None => subject_factory(request, chosen, kind, mode)?,
     };
     let mut subjects = Subjects::Pool((0..request.jobs).map(|_| factory()).collect());
-    let mut report = Checker { request, mode }
-        .check(given, &mut subjects, progress)?
-        .report;
+    let mut report = Checker {
+        request,
+        mode,
+        samples,
+    }
+    .check(given, &mut subjects, progress)?
+    .report;
     report.subject = subject_name;
     Ok(report)
 }
@@ -496,9 +534,20 @@ pub(crate) struct Run {
 pub(crate) struct Checker<'a> {
     pub(crate) request: &'a CheckRequest,
     pub(crate) mode: Mode,
+    /// The samples per pixel of every case (`--msaa N`).
+    pub(crate) samples: Option<SamplePattern>,
 }
 
 impl Checker<'_> {
+    /// The case `index` of `property`'s families, with the check's samples
+    /// per pixel.
+    fn generate(&self, property: Property, index: u32, rng: &mut fastrand::Rng) -> Case {
+        Case {
+            samples: self.samples,
+            ..generate::generate_case(property, index, rng)
+        }
+    }
+
     /// Runs the cases (or the one `given`), confirms and shrinks.
     pub(crate) fn check(
         &self,
@@ -538,7 +587,7 @@ impl Checker<'_> {
                         Some(c) => c.clone(),
                         None => {
                             let (p, k) = self.mode.case_property(i);
-                            generate::generate_case(p, k, &mut rng)
+                            self.generate(p, k, &mut rng)
                         }
                     };
                     (i, case)
@@ -586,7 +635,8 @@ impl Checker<'_> {
             schema: "rasterlab-check-report/2",
             verdict: VerdictWord::Pass,
             property: self.mode.id(),
-            description: self.mode.description(),
+            description: with_samples(self.mode.description(), self.samples),
+            samples: self.samples.map_or(1, SamplePattern::count),
             subject: String::new(),
             command: request.command.clone(),
             seed: request.seed,
@@ -799,7 +849,7 @@ impl Checker<'_> {
                     let mut rng = fastrand::Rng::with_seed(
                         self.request.seed ^ 0x9e37_79b9_7f4a_7c15 ^ u64::from(index),
                     );
-                    (index, generate::generate_case(property, index, &mut rng))
+                    (index, self.generate(property, index, &mut rng))
                 })
                 .collect();
             done += batch;
@@ -824,7 +874,7 @@ impl Checker<'_> {
         property: Property,
         subject: &mut dyn Subject,
     ) -> (Vec<Finding>, Vec<(Case, Vec<Fragment>)>) {
-        let rivals = cause::rivals(diagnosis, property);
+        let rivals = cause::rivals(diagnosis, property, self.samples.is_some());
         let (mut failing, mut passing) = (Vec::new(), Vec::new());
         if rivals.is_empty() || self.request.case_file.is_some() {
             return (failing, passing);
@@ -838,9 +888,12 @@ impl Checker<'_> {
                 break;
             }
             let case = if property.is_lines() || index % 2 == 0 {
-                generate::generate_case(property, index / 2, &mut rng)
+                self.generate(property, index / 2, &mut rng)
             } else {
-                small_triangles(&mut rng)
+                Case {
+                    samples: self.samples,
+                    ..small_triangles(&mut rng)
+                }
             };
             let sorted = |mut v: Vec<Fragment>| {
                 v.sort();
@@ -1082,6 +1135,7 @@ fn small_triangles(rng: &mut fastrand::Rng) -> Case {
         height: 6,
         triangles,
         lines: Vec::new(),
+        samples: None,
     }
 }
 

@@ -29,6 +29,12 @@
 //!   by integer Bresenham between pixel-index endpoints
 //!   ([`LineConvention::PixelIndex`]).
 //!
+//! Under [`Property::Exact`] a case may be multisampled
+//! ([`Case::samples`], `check --msaa N`): each fragment then carries the
+//! coverage mask of its pixel's samples on the standard pattern
+//! ([`Fragment::mask`]), judged exactly, and the catalogue of causes
+//! gains the classic multisampling mistakes ([`catalogue_multisampled`]).
+//!
 //! A failure's cause is named only where the reference confirms it: the
 //! catalogue's hypotheses ([`Cause`], [`catalogue`]) are each a change to
 //! the case or the reference, or a condition on the differences, tried on
@@ -74,7 +80,10 @@ mod shrink;
 mod text;
 
 pub use case::{Case, Point};
-pub use cause::{catalogue, Cause, Diagnosis, End, Side, Winding, FAR_OFF_TARGET, NEAR_AN_EDGE};
+pub use cause::{
+    catalogue, catalogue_multisampled, Cause, Diagnosis, End, Side, Winding, FAR_OFF_TARGET,
+    NEAR_AN_EDGE,
+};
 pub use engine::{
     run, run_with, run_with_progress, Progress, CONFIRMING_CASES, CONFIRMING_FAILURES,
 };
@@ -96,14 +105,16 @@ use crate::geometry::scene::setup_triangles;
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fragment::FragmentList;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup, LineWalk};
+use crate::raster::multisample::{masks_of, SamplePattern};
 use crate::raster::registry::{line_backends, reference_triangle_backend};
 use crate::raster::triangle::TriangleRasterizer;
 use std::fmt;
 
 /// One fragment a rasterizer reports: a pixel and the index of the
-/// primitive (triangle or line, 0-based, in input order) that covers it.
+/// primitive (triangle or line, 0-based, in input order) that covers it,
+/// and for a multisampled case the samples it covers.
 /// Coordinates are `i64` so that output off the target can be judged.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Fragment {
     /// Column.
     pub x: i64,
@@ -111,6 +122,16 @@ pub struct Fragment {
     pub y: i64,
     /// The primitive's index.
     pub id: u32,
+    /// Under `--msaa N`, the coverage mask: bit `i` set when the primitive
+    /// covers sample `i` of the pattern. 0 for a case with one sample.
+    pub mask: u32,
+}
+
+impl Fragment {
+    /// A fragment of a case with one sample per pixel.
+    pub fn at(x: i64, y: i64, id: u32) -> Fragment {
+        Fragment { x, y, id, mask: 0 }
+    }
 }
 
 /// Why a rasterizer under test could not be judged: it is broken in a way
@@ -216,7 +237,7 @@ impl fmt::Display for SubjectError {
 ///             for x in 0..i64::from(case.width) {
 ///                 let p = (x as f64 + 0.5, y as f64 + 0.5);
 ///                 if (0..3).all(|i| edge(t[i], t[(i + 1) % 3], p) * area.signum() >= 0.0) {
-///                     fragments.push(Fragment { x, y, id: id as u32 });
+///                     fragments.push(Fragment::at(x, y, id as u32));
 ///                 }
 ///             }
 ///         }
@@ -277,25 +298,33 @@ impl Subject for Builtin {
     }
 }
 
-/// The fragments `backend` draws for the case's triangles under `rule`.
+/// The fragments `backend` draws for the case's triangles under `rule`;
+/// for a multisampled case, each with its coverage mask
+/// ([`masks_of`](crate::raster::masks_of): the back-end's own walk, once
+/// per sample).
 pub fn triangle_fragments(
     backend: &dyn TriangleRasterizer,
     case: &Case,
     rule: FillRule,
 ) -> Vec<Fragment> {
+    let setups = setup_triangles(&case.snapped_triangles(), rule);
+    let rect = PixelRect::of_target(case.width, case.height);
+    if let Some(pattern) = &case.samples {
+        return masks_of(backend, &setups, rect, pattern)
+            .into_iter()
+            .map(|m| Fragment {
+                x: m.x,
+                y: m.y,
+                id: m.triangle,
+                mask: m.mask,
+            })
+            .collect();
+    }
     let mut list = FragmentList::default();
-    backend.rasterize(
-        &setup_triangles(&case.snapped_triangles(), rule),
-        PixelRect::of_target(case.width, case.height),
-        &mut list,
-    );
+    backend.rasterize(&setups, rect, &mut list);
     list.triangles
         .iter()
-        .map(|f| Fragment {
-            x: i64::from(f.x),
-            y: i64::from(f.y),
-            id: f.triangle,
-        })
+        .map(|f| Fragment::at(i64::from(f.x), i64::from(f.y), f.triangle))
         .collect()
 }
 
@@ -312,11 +341,7 @@ pub fn line_fragments(backend: &dyn LineRasterizer, case: &Case) -> Vec<Fragment
     list.lines
         .iter()
         .filter(|f| f.coverage > 0.0)
-        .map(|f| Fragment {
-            x: i64::from(f.x),
-            y: i64::from(f.y),
-            id: f.line,
-        })
+        .map(|f| Fragment::at(i64::from(f.x), i64::from(f.y), f.line))
         .collect()
 }
 
@@ -331,16 +356,21 @@ pub struct CheckOptions {
     pub seed: u64,
     /// The most times the subject is run while shrinking a failure.
     pub shrink_runs: u32,
+    /// The samples per pixel of every case, for a multisampling subject
+    /// under [`Property::Exact`]: its fragments carry coverage masks
+    /// ([`Fragment::mask`]). `None`: one sample, at the pixel centre.
+    pub samples: Option<SamplePattern>,
 }
 
 impl CheckOptions {
-    /// 150 cases, seed 0, up to 150 shrinking runs.
+    /// 150 cases, seed 0, up to 150 shrinking runs, one sample per pixel.
     pub fn new(property: Property) -> CheckOptions {
         CheckOptions {
             property,
             cases: 150,
             seed: 0,
             shrink_runs: 150,
+            samples: None,
         }
     }
 }
@@ -455,6 +485,7 @@ pub fn simplest_case(lines: bool) -> Case {
         } else {
             Vec::new()
         },
+        samples: None,
     }
 }
 
@@ -511,6 +542,7 @@ pub fn check_with_progress(
     let checker = engine::Checker {
         request: &request,
         mode: engine::Mode::One(options.property),
+        samples: options.samples,
     };
     let run = checker
         .check(None, &mut engine::Subjects::One(subject), progress)

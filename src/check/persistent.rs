@@ -5,15 +5,18 @@
 //! and its imports take 30 to 500 ms, a case a few milliseconds), so a
 //! check that starts the program once per case spends its time starting
 //! programs. Under this protocol the program is started once, through
-//! `sh -c`, with `{rule}` in its command line replaced (there is no
-//! `{input}`, `{width}` or `{height}`: each case says its own), and then:
+//! `sh -c`, with `{rule}` and `{msaa}` in its command line replaced
+//! (there is no `{input}`, `{width}` or `{height}`: each case says its
+//! own), and then:
 //!
 //! 1. rasterlab writes a case on the program's standard input, exactly as
 //!    the per-case protocol's input file holds it (a first line
-//!    `# size WxH`, then one primitive per line; other `#` lines are
-//!    comments), then a line `end`;
+//!    `# size WxH`, under `--msaa N` a line `# msaa N`, then one
+//!    primitive per line; other `#` lines are comments), then a line
+//!    `end`;
 //! 2. the program answers on its standard output with one fragment per
-//!    line, `x y id`, as under the per-case protocol, then a line `end`,
+//!    line, `x y id` (under `--msaa N`, `x y id mask`), as under the
+//!    per-case protocol, then a line `end`,
 //!    and flushes; or, when it cannot draw the case, with one line
 //!    `error MESSAGE` instead;
 //! 3. and so on, until its standard input closes: then it exits.
@@ -168,7 +171,7 @@ impl Session {
                     let word = line.trim();
                     if word == "end" {
                         self.answered += 1;
-                        return parse_fragments(&answer);
+                        return parse_fragments(&answer, case.samples);
                     }
                     if word == "error" || word.starts_with("error ") {
                         self.answered += 1;

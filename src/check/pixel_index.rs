@@ -207,11 +207,7 @@ pub fn fragments(case: &Case, walk: WholePixelWalk) -> Vec<Fragment> {
                 .unwrap_or_default()
                 .into_iter()
                 .filter(move |&(x, y)| (0..w).contains(&x) && (0..h).contains(&y))
-                .map(move |(x, y)| Fragment {
-                    x,
-                    y,
-                    id: id as u32,
-                })
+                .map(move |(x, y)| Fragment::at(x, y, id as u32))
         })
         .collect()
 }

@@ -4,6 +4,7 @@
 //! with every process it started, and its answer read as `x y id` lines.
 
 use super::{Fragment, SubjectError};
+use crate::raster::multisample::SamplePattern;
 use std::process::{Child, Command};
 
 /// Starts `command`'s program in a process group of its own, so that
@@ -31,8 +32,14 @@ pub(crate) fn kill_tree(child: &mut Child) {
     let _ = child.wait();
 }
 
-/// Reads `x y id` lines (a fourth number is allowed and ignored).
-pub fn parse_fragments(text: &str) -> Result<Vec<Fragment>, SubjectError> {
+/// Reads `x y id` lines. A fourth number is a coverage, allowed and
+/// ignored, for a case with one sample per pixel; for a multisampled case
+/// (`samples`) it is required, the coverage mask: a whole number from 1
+/// to 2^N - 1 whose bit `i` is sample `i` of the N-sample pattern.
+pub fn parse_fragments(
+    text: &str,
+    samples: Option<SamplePattern>,
+) -> Result<Vec<Fragment>, SubjectError> {
     let mut out = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let words: Vec<&str> = line.split_whitespace().collect();
@@ -43,20 +50,28 @@ pub fn parse_fragments(text: &str) -> Result<Vec<Fragment>, SubjectError> {
             line: i + 1,
             text: line.chars().take(120).collect(),
         };
-        if !(3..=4).contains(&words.len()) {
+        let columns = if samples.is_some() { 4..=4 } else { 3..=4 };
+        if !columns.contains(&words.len()) {
             return Err(malformed());
         }
         let x = whole(words[0]).ok_or_else(malformed)?;
         let y = whole(words[1]).ok_or_else(malformed)?;
         let id = whole(words[2]).ok_or_else(malformed)?;
-        if words.len() == 4 && words[3].parse::<f64>().is_err() {
-            return Err(malformed());
-        }
+        let mask = match samples {
+            Some(pattern) => words[3]
+                .parse::<u32>()
+                .ok()
+                .filter(|m| (1..=pattern.full_mask()).contains(m))
+                .ok_or_else(malformed)?,
+            None if words.len() == 4 && words[3].parse::<f64>().is_err() => return Err(malformed()),
+            None => 0,
+        };
         out.push(Fragment {
             x,
             y,
             // A negative or huge index names no primitive: judged as such.
             id: u32::try_from(id).unwrap_or(u32::MAX),
+            mask,
         });
     }
     Ok(out)

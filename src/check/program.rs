@@ -15,11 +15,16 @@
 //! * `{rule}`: what the check asks for: the fill rule under an exact
 //!   check (`top-left`, ...), otherwise the property's name (`watertight`,
 //!   `crack-free`, `any`) or the line convention (`midpoint`, `diamond`,
-//!   `vulkan`, `pixel-index`).
+//!   `vulkan`, `pixel-index`);
+//! * `{msaa}`: the samples per pixel, 1 unless `check --msaa N` asks for
+//!   N on the standard pattern (the input file then says `# msaa N` on its
+//!   second line).
 //!
 //! It prints one fragment per line, `x y id` (`id` the 0-based index of
 //! the primitive), in any order; a fourth number (a coverage weight) is
-//! allowed and ignored, and so are blank lines.
+//! allowed and ignored, and so are blank lines. Under `--msaa N` the
+//! fourth number is required: the pixel's coverage mask, bit `i` for
+//! sample `i`, and a pixel with no sample covered is not printed.
 //!
 //! With [`Program::persistent`] the program is instead started once and
 //! answers case after case on its standard input (the protocol is in
@@ -176,7 +181,10 @@ impl Program {
         let session = match &mut self.session.0 {
             Some(s) => s,
             slot => {
-                let line = self.command.replace("{rule}", &shell_quote(&self.rule));
+                let line = self
+                    .command
+                    .replace("{rule}", &shell_quote(&self.rule))
+                    .replace("{msaa}", &samples(case));
                 slot.insert(Session::start(&line)?)
             }
         };
@@ -203,7 +211,13 @@ impl Program {
             .replace("{width}", &case.width.to_string())
             .replace("{height}", &case.height.to_string())
             .replace("{rule}", &shell_quote(&self.rule))
+            .replace("{msaa}", &samples(case))
     }
+}
+
+/// The value of `{msaa}`: the case's samples per pixel.
+fn samples(case: &Case) -> String {
+    case.samples.map_or(1, |p| p.count()).to_string()
 }
 
 /// Quotes a word for `sh`.
@@ -303,28 +317,52 @@ impl Subject for Program {
         if out.len() > cap {
             return Err(SubjectError::TooMuchOutput { bytes: cap });
         }
-        parse_fragments(&String::from_utf8_lossy(&out))
+        parse_fragments(&String::from_utf8_lossy(&out), case.samples)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::raster::multisample::SamplePattern;
 
     #[test]
     fn output_lines_are_read_strictly_and_huge_numbers_saturate() {
-        let f = parse_fragments("1 2 0\n\n3 4 1 0.5\n").unwrap();
+        let parse = |text: &str| parse_fragments(text, None);
+        let f = parse("1 2 0\n\n3 4 1 0.5\n").unwrap();
         assert_eq!(f.len(), 2);
-        assert_eq!(f[1], Fragment { x: 3, y: 4, id: 1 });
-        let f = parse_fragments("99999999999999999999999 -5 7\n").unwrap();
+        assert_eq!(f[1], Fragment::at(3, 4, 1));
+        let f = parse("99999999999999999999999 -5 7\n").unwrap();
         assert_eq!((f[0].x, f[0].y), (i64::MAX, -5));
         assert!(matches!(
-            parse_fragments("1 2\n"),
+            parse("1 2\n"),
             Err(SubjectError::Malformed { line: 1, .. })
         ));
-        assert!(parse_fragments("1.5 2 0\n").is_err());
-        assert!(parse_fragments("a b c\n").is_err());
-        assert_eq!(parse_fragments("1 2 -1\n").unwrap()[0].id, u32::MAX);
+        assert!(parse("1.5 2 0\n").is_err());
+        assert!(parse("a b c\n").is_err());
+        assert_eq!(parse("1 2 -1\n").unwrap()[0].id, u32::MAX);
         assert_eq!(shell_quote("it's"), r"'it'\''s'");
+    }
+
+    #[test]
+    fn under_msaa_the_fourth_number_is_a_mask_of_the_pattern() {
+        let four = SamplePattern::standard(4).ok();
+        let f = parse_fragments("1 2 0 5\n3 4 1 15\n", four).unwrap();
+        assert_eq!((f[0].mask, f[1].mask), (5, 15));
+        for bad in [
+            "1 2 0\n",
+            "1 2 0 0\n",
+            "1 2 0 16\n",
+            "1 2 0 0.5\n",
+            "1 2 0 -1\n",
+        ] {
+            assert!(
+                matches!(
+                    parse_fragments(bad, four),
+                    Err(SubjectError::Malformed { line: 1, .. })
+                ),
+                "{bad:?}"
+            );
+        }
     }
 }

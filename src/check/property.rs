@@ -4,6 +4,7 @@
 
 use super::pixel_index;
 use crate::raster::edge::FillRule;
+use crate::raster::multisample::SamplePattern;
 use std::fmt;
 
 /// How lines are judged.
@@ -171,5 +172,18 @@ impl fmt::Display for Property {
                 "lines, pixel-index endpoints as OpenCV's LINE_4 (clipped, a 4-connected staircase)",
             ),
         }
+    }
+}
+
+/// A property in words, with the samples per pixel of a multisampled
+/// check: `exact under the top-left rule, 4 samples per pixel (the
+/// standard pattern)`.
+pub(crate) fn with_samples(words: String, samples: Option<SamplePattern>) -> String {
+    match samples {
+        Some(p) => format!(
+            "{words}, {} samples per pixel (the standard pattern)",
+            p.count()
+        ),
+        None => words,
     }
 }

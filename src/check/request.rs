@@ -170,6 +170,10 @@ pub struct CheckRequest {
     pub command: String,
     /// The most runs of the subject while shrinking.
     pub shrink_runs: u32,
+    /// Triangles under one fill rule: the samples per pixel (1, 2, 4, 8
+    /// or 16, on the standard pattern) whose coverage masks are judged
+    /// (`--msaa N`); `None` for one sample at the pixel centre.
+    pub msaa: Option<u32>,
 }
 
 impl CheckRequest {
@@ -190,6 +194,7 @@ impl CheckRequest {
             out: None,
             command: String::new(),
             shrink_runs: 150,
+            msaa: None,
         }
     }
 }
@@ -350,6 +355,9 @@ pub struct CheckReport {
     pub property: String,
     /// The property in words.
     pub description: String,
+    /// Samples per pixel: 1, or under `--msaa N` the N whose coverage
+    /// masks were judged.
+    pub samples: u32,
     /// The subject: its command line, or `backend NAME`.
     pub subject: String,
     /// The check's own command line, as recorded by the caller.

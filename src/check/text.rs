@@ -1,5 +1,6 @@
 //! The report as text: what `rasterlab check` prints.
 
+use super::property::with_samples;
 use super::request::{CheckReport, VerdictWord};
 use std::fmt::{self, Write as _};
 
@@ -109,7 +110,7 @@ impl fmt::Display for CheckReport {
             let _ = writeln!(
                 out,
                 "FAIL: {}, case {} of seed {} (family {}); shrunk from {} to {} primitive(s) on a {}x{} target",
-                finding.property,
+                with_samples(finding.property.to_string(), finding.case.samples),
                 c.case_index,
                 self.seed,
                 c.family,
@@ -126,7 +127,15 @@ impl fmt::Display for CheckReport {
             if c.problems.len() > 5 {
                 let _ = writeln!(out, "  ... and {} more", c.problems.len() - 5);
             }
-            let _ = writeln!(out, "# correct   ! extra (or drawn twice)   ? missing");
+            let _ = writeln!(
+                out,
+                "# correct   ! extra (or drawn twice{})   ? missing",
+                if finding.case.samples.is_some() {
+                    ", or with another mask"
+                } else {
+                    ""
+                }
+            );
             out.push_str(&finding.ascii_grid());
             if let Some(d) = &c.diagnosis {
                 let _ = writeln!(out, "diagnosis: {d}");

@@ -2,6 +2,7 @@
 
 use clap::Args;
 use rasterlab::raster::line::{Connectivity, Endpoints, LineOptions};
+use rasterlab::raster::SamplePattern;
 
 /// A `WxH` size.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -62,4 +63,12 @@ pub fn samples(s: &str) -> Result<usize, String> {
         .ok()
         .filter(|n| (1..=MAX_SAMPLES).contains(n))
         .ok_or_else(|| format!("--samples must be between 1 and {MAX_SAMPLES}, not {s}"))
+}
+
+/// `--msaa N`: the standard pattern of N samples (1, 2, 4, 8 or 16).
+pub fn msaa(text: &str) -> Result<SamplePattern, String> {
+    let n: u32 = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a sample count (1, 2, 4, 8 or 16)"))?;
+    SamplePattern::standard(n).map_err(|e| e.to_string())
 }

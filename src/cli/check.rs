@@ -2,11 +2,13 @@
 //! cases, a failure shrunk to a counterexample. Wiring only: the check is
 //! [`rasterlab::check::run`].
 
+use super::args::msaa;
 use clap::Args;
 use rasterlab::check::{
     timeout_from_seconds, CheckRequest, ConventionChoice, Kind, Progress, ReportFormat, RuleChoice,
     SubjectSpec,
 };
+use rasterlab::raster::SamplePattern;
 use rasterlab::{check, Error, Result};
 use std::path::PathBuf;
 
@@ -14,15 +16,15 @@ use std::path::PathBuf;
 #[command(group(clap::ArgGroup::new("subject").required(true).args(["exec", "backend"])))]
 pub struct CheckArgs {
     /// The program under test: a command line run once per case, with
-    /// {input}, {width}, {height} and {rule} replaced; it prints `x y id`
-    /// per fragment.
+    /// {input}, {width}, {height}, {rule} and {msaa} replaced; it prints
+    /// `x y id` per fragment.
     #[arg(long)]
     exec: Option<String>,
     /// Start the --exec program once: it reads case after case on its
     /// standard input (the case as in the input file, then a line `end`)
     /// and answers each with its fragments, then a line `end` (or one
     /// line `error MESSAGE`). Many times faster for programs slow to
-    /// start; {rule} is still replaced.
+    /// start; {rule} and {msaa} are still replaced.
     #[arg(long)]
     persistent: bool,
     /// Check a built-in back-end instead (see `rasterlab backends`).
@@ -50,6 +52,12 @@ pub struct CheckArgs {
     /// (which convention does it follow?). Default: midpoint.
     #[arg(long)]
     convention: Option<ConventionChoice>,
+    /// Triangles under one fill rule, multisampled: N samples per pixel
+    /// on the standard pattern (1, 2, 4, 8 or 16). The program is told N
+    /// by {msaa} (and a line `# msaa N` in the case) and prints `x y id
+    /// mask`, bit i of the mask for sample i; the masks are judged exactly.
+    #[arg(long, value_name = "N", value_parser = msaa)]
+    msaa: Option<SamplePattern>,
     /// How many cases.
     #[arg(long, default_value_t = 150)]
     cases: u32,
@@ -122,6 +130,7 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         kind: args.kind,
         rule: args.rule,
         convention: args.convention,
+        msaa: args.msaa.map(SamplePattern::count),
         cases: args.cases,
         seed: args.seed,
         timeout: timeout_from_seconds(args.timeout)?,

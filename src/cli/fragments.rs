@@ -1,6 +1,6 @@
 //! `rasterlab fragments`: the fragments a back-end emits for a file.
 
-use super::args::{LineArgs, Size};
+use super::args::{msaa, LineArgs, Size};
 use clap::Args;
 use rasterlab::geometry::{list_fragments_in_file, FragmentsRequest};
 use rasterlab::raster::{backend, Backend, FillRule, SamplePattern};
@@ -26,14 +26,6 @@ pub struct FragmentsArgs {
     msaa: Option<SamplePattern>,
     /// Triangle soup (`x0 y0 x1 y1 x2 y2` per line) or line set (`x0 y0 x1 y1` per line).
     file: PathBuf,
-}
-
-/// `--msaa N`: the standard pattern of N samples.
-fn msaa(text: &str) -> std::result::Result<SamplePattern, String> {
-    let n: u32 = text
-        .parse()
-        .map_err(|_| format!("`{text}` is not a sample count (1, 2, 4, 8 or 16)"))?;
-    SamplePattern::standard(n).map_err(|e| e.to_string())
 }
 
 pub fn run(args: &FragmentsArgs) -> Result<()> {

@@ -218,6 +218,7 @@ impl LabRequest {
             } else {
                 Vec::new()
             },
+            samples: None,
         }
     }
 }

@@ -119,6 +119,11 @@ pub enum Cause {
     OnePerColumn,
     /// Lines: drawn 4-connected.
     FourConnected,
+    /// Multisampling: every sample decided at the pixel centre (a full
+    /// mask wherever the centre is covered).
+    CentreForEverySample,
+    /// Multisampling: the sample pattern mirrored in y.
+    MirroredPattern,
 }
 
 impl Cause {
@@ -158,6 +163,8 @@ impl Cause {
             Cause::EndpointDoubled(e) => format!("endpoint-doubled:{}", end(e)),
             Cause::OnePerColumn => "one-per-column".into(),
             Cause::FourConnected => "four-connected".into(),
+            Cause::CentreForEverySample => "centre-for-every-sample".into(),
+            Cause::MirroredPattern => "mirrored-pattern".into(),
         }
     }
 
@@ -232,6 +239,14 @@ impl fmt::Display for Cause {
             Cause::FourConnected => {
                 f.write_str("drawn 4-connected: a step along one axis at a time")
             }
+            Cause::CentreForEverySample => f.write_str(
+                "every sample decided at the pixel centre: a full mask wherever the centre is covered, \
+                 none elsewhere (one sample per pixel, not multisampling)",
+            ),
+            Cause::MirroredPattern => f.write_str(
+                "the sample pattern mirrored in y: OpenGL's sample positions, which are given with y up, \
+                 used in y-down screen coordinates",
+            ),
         }
     }
 }
@@ -263,6 +278,11 @@ enum Role {
 ///
 /// A box one row *longer* than needed is not in the catalogue: the pixels
 /// it adds are tested and rejected, so it draws what the rules draw.
+///
+/// Under `--msaa` ([`catalogue_multisampled`]) the triangle causes that
+/// change the case or the reference stay (each then decides every
+/// sample), the conditions about pixel centres go, and two come first:
+/// every sample decided at the centre, and the pattern mirrored in y.
 pub fn catalogue(property: Property) -> Vec<Cause> {
     let mut out = vec![Cause::OffTarget];
     match property {
@@ -319,6 +339,32 @@ pub fn catalogue(property: Property) -> Vec<Cause> {
         }
     }
     out
+}
+
+/// The catalogue for a multisampled check (`check --msaa N`) of
+/// `property`: see [`catalogue`].
+pub fn catalogue_multisampled(property: Property) -> Vec<Cause> {
+    let mut out = catalogue(property);
+    out.retain(|c| c.role() != Role::Condition);
+    let at = out
+        .iter()
+        .position(|c| *c == Cause::Duplicates)
+        .map_or(0, |i| i + 1);
+    out.splice(
+        at..at,
+        [Cause::CentreForEverySample, Cause::MirroredPattern],
+    );
+    out
+}
+
+/// The catalogue for the cases of a check: [`catalogue_multisampled`]
+/// when they are multisampled.
+fn catalogue_for(property: Property, case: &Case) -> Vec<Cause> {
+    if case.samples.is_some() {
+        catalogue_multisampled(property)
+    } else {
+        catalogue(property)
+    }
 }
 
 /// The cause a run's failures point to: one cause of the catalogue, or
@@ -434,7 +480,8 @@ pub fn explains(
         .iter()
         .filter(|c| c.role() == Role::Condition)
         .collect();
-    if conditions.len() > 1 {
+    // The conditions are about pixel centres: not a multisampled case's.
+    if conditions.len() > 1 || (!conditions.is_empty() && case.samples.is_some()) {
         return None;
     }
     // The answer under the model's changes; under watertight and
@@ -709,12 +756,17 @@ pub fn predict(causes: &[Cause], property: Property, case: &Case) -> Option<Vec<
 /// they draw differently tells them apart (a subject that culls one
 /// winding may drop small triangles too, which no failure seen so far
 /// showed).
-pub fn rivals(diagnosis: &Diagnosis, property: Property) -> Vec<Vec<Cause>> {
+pub fn rivals(diagnosis: &Diagnosis, property: Property, multisampled: bool) -> Vec<Vec<Cause>> {
     if diagnosis.found.len() != 1 || diagnosis.found[0].role() != Role::Model {
         return Vec::new();
     }
     let named = diagnosis.found[0];
-    catalogue(property)
+    let catalogue = if multisampled {
+        catalogue_multisampled(property)
+    } else {
+        catalogue(property)
+    };
+    catalogue
         .into_iter()
         .filter(|c| *c != named && c.role() == Role::Model)
         .map(|c| vec![named, c])
@@ -736,7 +788,7 @@ pub fn diagnose(
 ) -> Option<Diagnosis> {
     let (first, rest) = failing.split_first()?;
     let passing = &passing[..passing.len().min(PASSING_TRIED)];
-    let catalogue = catalogue(property);
+    let catalogue = catalogue_for(property, first.0);
     let confirmations = |causes: &[Cause]| -> u32 {
         1 + rest
             .iter()

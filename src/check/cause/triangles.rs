@@ -10,7 +10,11 @@
 //! mirrored (row `r` written as row `height - 1 - r`: the centre tested is
 //! the mirrored one, so ties go as the rule says in the given
 //! coordinates); a culled or dropped triangle is replaced by a point,
-//! which draws nothing and keeps the others' indices.
+//! which draws nothing and keeps the others' indices. Under
+//! multisampling the reference draws masks on the changed case; every
+//! sample decided at the centre is the one-sample answer with full masks,
+//! and the mirrored pattern is
+//! [`SamplePattern::mirrored_y`](crate::raster::SamplePattern::mirrored_y).
 
 use super::{Cause, Side, Winding};
 use crate::check::case::{Case, Point};
@@ -44,6 +48,10 @@ pub(super) struct Model {
     cull: Option<i8>,
     /// Triangles of area below this (px²) draw nothing.
     drop_below: Option<f64>,
+    /// A multisampled case: every sample decided at the pixel centre.
+    centre_for_every_sample: bool,
+    /// A multisampled case: the pattern mirrored in y.
+    mirrored_pattern: bool,
 }
 
 /// How a rounding breaks a tie (a coordinate exactly halfway between
@@ -111,6 +119,10 @@ impl Model {
             Cause::FlippedY => !std::mem::replace(&mut self.flip_y, true),
             Cause::Culls(w) => set(&mut self.cull, if w == Winding::Clockwise { -1 } else { 1 }),
             Cause::DropsBelow(a) => set(&mut self.drop_below, a),
+            Cause::CentreForEverySample => {
+                !std::mem::replace(&mut self.centre_for_every_sample, true)
+            }
+            Cause::MirroredPattern => !std::mem::replace(&mut self.mirrored_pattern, true),
             _ => false,
         }
     }
@@ -128,9 +140,23 @@ impl Model {
             }
             q
         };
+        // Under multisampling, a picture measured from the bottom takes
+        // its pattern upside down too.
+        let samples = case.samples.map(|p| {
+            if self.mirrored_pattern != self.flip_y {
+                p.mirrored_y()
+            } else {
+                p
+            }
+        });
         let mut changed = Case {
             triangles: case.triangles.iter().map(|t| t.map(point)).collect(),
             lines: Vec::new(),
+            samples: if self.centre_for_every_sample {
+                None
+            } else {
+                samples
+            },
             ..*case
         };
         for t in &mut changed.triangles {
@@ -154,6 +180,11 @@ impl Model {
             let last = i64::from(case.height) - 1;
             for f in &mut out {
                 f.y = last - f.y;
+            }
+        }
+        if let (true, Some(p)) = (self.centre_for_every_sample, case.samples) {
+            for f in &mut out {
+                f.mask = p.full_mask();
             }
         }
         out

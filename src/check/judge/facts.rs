@@ -30,7 +30,9 @@ pub(super) fn diagnose(finding: &Finding) -> Option<String> {
     if !case.lines.is_empty() {
         return diagnose_line(finding, pixel);
     }
-    if case.triangles.is_empty() {
+    // A multisampled case's problems name their samples themselves; the
+    // facts below are about pixel centres.
+    if case.triangles.is_empty() || case.samples.is_some() {
         return None;
     }
     let snapped = case.snapped_triangles();

@@ -109,7 +109,7 @@ fn double_draw(finding: &mut Finding, x: i64, y: i64, ids: &[u32], owner: Option
         .iter()
         .enumerate()
         .filter(|&(k, _)| k != keep)
-        .map(|(_, &id)| Fragment { x, y, id })
+        .map(|(_, &id)| Fragment::at(x, y, id))
         .collect();
     finding.add(
         FailureKind::DoubleDraw,
@@ -142,7 +142,7 @@ pub(super) fn watertight(case: &Case, drawn: &[Fragment], finding: &mut Finding)
                     t.edge_values(point).iter().all(|&v| v >= 0)
                 });
                 if !touches && id < case.len() as u32 {
-                    let f = Fragment { x, y, id };
+                    let f = Fragment::at(x, y, id);
                     finding.add(
                         FailureKind::Extra,
                         Some(f),
@@ -157,7 +157,7 @@ pub(super) fn watertight(case: &Case, drawn: &[Fragment], finding: &mut Finding)
             match (c, ids.len()) {
                 (Cover::Inside, 0) => {
                     let id = reference_at.get(&(x, y)).copied().unwrap_or(0);
-                    let f = Fragment { x, y, id };
+                    let f = Fragment::at(x, y, id);
                     finding.add(
                         FailureKind::Gap,
                         Some(f),
@@ -195,7 +195,7 @@ pub(super) fn crack_free(case: &Case, drawn: &[Fragment], finding: &mut Finding)
                 && !strictly_inside(&setups, p)
             {
                 let id = reference_at.get(&(x, y)).copied().unwrap_or(0);
-                let f = Fragment { x, y, id };
+                let f = Fragment::at(x, y, id);
                 finding.add(
                     FailureKind::Gap,
                     Some(f),

@@ -40,12 +40,12 @@ use mesh::{crack_free, watertight};
 
 use super::case::Case;
 use super::cause::Diagnosis;
-pub(crate) use super::property::{LineConvention, Property};
+pub(crate) use super::property::{with_samples, LineConvention, Property};
 use super::{reference, Fragment};
 use crate::raster::edge::{FillRule, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use serde::Serialize;
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
 
 /// The kind of a failure: what the shrinker keeps while it shrinks.
@@ -74,6 +74,9 @@ pub enum FailureKind {
     Connectivity,
     /// A line with too many or too few fragments.
     Count,
+    /// Under `--msaa`: a pixel drawn with another coverage mask than the
+    /// rule's.
+    Mask,
 }
 
 crate::names::named_enum!(
@@ -88,7 +91,8 @@ crate::names::named_enum!(
     Gap = "gap",
     DoubleDraw = "double-draw",
     Connectivity = "connectivity",
-    Count = "count"
+    Count = "count",
+    Mask = "mask"
 );
 
 /// Where a case came from: recorded in the counterexample file, the
@@ -248,7 +252,7 @@ fn always(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
                 ),
             );
             finding.extra.push(f);
-        } else if !seen.insert(f) {
+        } else if !seen.insert((f.x, f.y, f.id)) {
             finding.add(
                 FailureKind::ListedTwice,
                 Some(f),
@@ -280,8 +284,13 @@ fn on_an_edge(snapped: &[[FixedPoint; 3]], f: &Fragment) -> bool {
 }
 
 /// The fragment set must equal the reference's. Triangle fragments whose
-/// centre lies on an edge are ties; the others are missing or extra.
+/// centre lies on an edge are ties; the others are missing or extra. In a
+/// multisampled case a pixel drawn with another mask than the rule's is a
+/// mask problem, and ties are told apart sample by sample in its text.
 fn exact(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
+    if case.samples.is_some() {
+        return masks(case, drawn, finding);
+    }
     let want: BTreeSet<Fragment> = finding.expected.iter().copied().collect();
     let got: BTreeSet<Fragment> = drawn.iter().copied().collect();
     let already: BTreeSet<Fragment> = finding.extra.iter().copied().collect();
@@ -349,6 +358,136 @@ fn exact(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
     finding.extra.extend(extra);
 }
 
+/// [`exact`] for a multisampled case: pixels missing, pixels extra, and
+/// pixels whose mask differs from the rule's, each sample that differs
+/// named and, where it lies exactly on an edge, called a tie.
+fn masks(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
+    let Some(pattern) = case.samples else {
+        return;
+    };
+    let key = |f: &Fragment| (f.x, f.y, f.id);
+    let want: BTreeMap<(i64, i64, u32), Fragment> =
+        finding.expected.iter().map(|f| (key(f), *f)).collect();
+    let already: BTreeSet<Fragment> = finding.extra.iter().copied().collect();
+    let mut got: BTreeMap<(i64, i64, u32), Fragment> = BTreeMap::new();
+    for f in drawn.iter().filter(|f| !already.contains(f)) {
+        got.entry(key(f)).or_insert(*f);
+    }
+    let missing: Vec<Fragment> = want
+        .iter()
+        .filter(|(k, _)| !got.contains_key(k))
+        .map(|(_, f)| *f)
+        .collect();
+    let extra: Vec<Fragment> = got
+        .iter()
+        .filter(|(k, _)| !want.contains_key(k))
+        .map(|(_, f)| *f)
+        .collect();
+    let wrong: Vec<(Fragment, Fragment)> = got
+        .iter()
+        .filter_map(|(k, f)| want.get(k).filter(|w| w.mask != f.mask).map(|w| (*f, *w)))
+        .collect();
+    let rule = match finding.property {
+        Property::Exact(rule) => rule,
+        _ => FillRule::TopLeft,
+    };
+    let snapped = case.snapped_triangles();
+    // The samples of `bits` in pixel `f` that lie exactly on an edge of
+    // its triangle.
+    let on_an_edge = |f: &Fragment, bits: u32| -> Vec<usize> {
+        let Some(t) = snapped
+            .get(f.id as usize)
+            .and_then(|v| TriangleSetup::new(f.id, *v, rule))
+        else {
+            return Vec::new();
+        };
+        (0..pattern.count() as usize)
+            .filter(|i| bits & (1 << i) != 0)
+            .filter(|&i| {
+                let (px, py) = pattern.sample_point(f.x, f.y, i);
+                let e = t.edges.map(|e| e.eval_raw(px, py));
+                e.iter().all(|&v| v >= 0) && e.contains(&0)
+            })
+            .collect()
+    };
+    let samples = |bits: u32| -> String {
+        let list: Vec<String> = (0..32)
+            .filter(|i| bits & (1 << i) != 0)
+            .map(|i: u32| i.to_string())
+            .collect();
+        list.join(", ")
+    };
+    if let Some(&f) = extra.first() {
+        finding.add(
+            FailureKind::Extra,
+            Some(f),
+            format!(
+                "{} pixel(s) drawn that the rule leaves uncovered, first ({}, {}) of primitive {} (mask {})",
+                extra.len(),
+                f.x,
+                f.y,
+                f.id,
+                f.mask
+            ),
+        );
+    }
+    if let Some(&(f, w)) = wrong.first() {
+        let (more, fewer) = (f.mask & !w.mask, w.mask & !f.mask);
+        let mut parts = Vec::new();
+        if more != 0 {
+            parts.push(format!("sample(s) {} drawn but not covered", samples(more)));
+        }
+        if fewer != 0 {
+            parts.push(format!(
+                "sample(s) {} covered but not drawn",
+                samples(fewer)
+            ));
+        }
+        let ties = on_an_edge(&f, more | fewer);
+        if !ties.is_empty() {
+            let list: Vec<String> = ties.iter().map(usize::to_string).collect();
+            parts.push(format!(
+                "sample(s) {} lie exactly on an edge: a tie decided against the {} rule",
+                list.join(", "),
+                rule.name()
+            ));
+        }
+        finding.add(
+            FailureKind::Mask,
+            Some(f),
+            format!(
+                "{} pixel(s) drawn with another mask than the rule's, first ({}, {}) of primitive {}: mask {:#0width$b}, the rule's {:#0width$b} ({})",
+                wrong.len(),
+                f.x,
+                f.y,
+                f.id,
+                f.mask,
+                w.mask,
+                parts.join("; "),
+                width = pattern.count() as usize + 2
+            ),
+        );
+    }
+    if let Some(&f) = missing.first() {
+        finding.add(
+            FailureKind::Missing,
+            Some(f),
+            format!(
+                "{} pixel(s) missing, first ({}, {}) of primitive {} (the rule's mask {})",
+                missing.len(),
+                f.x,
+                f.y,
+                f.id,
+                f.mask
+            ),
+        );
+    }
+    finding.missing.extend(missing);
+    finding.missing.extend(wrong.iter().map(|w| w.1));
+    finding.extra.extend(extra);
+    finding.extra.extend(wrong.iter().map(|w| w.0));
+}
+
 /// The fixed-point sample point of pixel `(x, y)`.
 pub(super) fn centre(x: i64, y: i64) -> (i64, i64) {
     (
@@ -410,7 +549,13 @@ impl Finding {
     /// then the primitives, so that the program can be run on it again.
     pub fn counterexample_text(&self) -> String {
         let mut out = format!("# size {}x{}\n", self.case.width, self.case.height);
-        let (id, words) = (self.property.id(), self.property.to_string());
+        if let Some(p) = self.case.samples {
+            let _ = writeln!(out, "# msaa {}", p.count());
+        }
+        let (id, words) = (
+            self.property.id(),
+            with_samples(self.property.to_string(), self.case.samples),
+        );
         if id == words {
             let _ = writeln!(out, "# property: {id}");
         } else {
@@ -434,7 +579,10 @@ impl Finding {
         let list = |v: &[Fragment]| -> String {
             v.iter()
                 .take(40)
-                .map(|f| format!("({},{}) t{}", f.x, f.y, f.id))
+                .map(|f| match self.case.samples {
+                    Some(_) => format!("({},{}) t{} mask {}", f.x, f.y, f.id, f.mask),
+                    None => format!("({},{}) t{}", f.x, f.y, f.id),
+                })
                 .collect::<Vec<_>>()
                 .join(" ")
         };
@@ -444,7 +592,8 @@ impl Finding {
             let _ = writeln!(out, "# diagnosis: {d}");
         }
         let body = self.case.to_text();
-        out.push_str(body.split_once('\n').map_or("", |(_, rest)| rest));
+        let header = if self.case.samples.is_some() { 2 } else { 1 };
+        out.extend(body.split_inclusive('\n').skip(header));
         out
     }
 }
