@@ -300,7 +300,7 @@ impl Subject for Builtin {
 
 /// The fragments `backend` draws for the case's triangles under `rule`;
 /// for a multisampled case, each with its coverage mask
-/// ([`masks_of`](crate::raster::masks_of): the back-end's own walk, once
+/// ([`masks_of`]: the back-end's own walk, once
 /// per sample).
 pub fn triangle_fragments(
     backend: &dyn TriangleRasterizer,
