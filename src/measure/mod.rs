@@ -19,7 +19,9 @@
 //! * the commit, machine and load a run was measured on: [`Context`];
 //! * where the Stanford models that are not bundled are found, and the
 //!   skipped row when they are not: [`find`], [`Skipped`];
-//! * plain-text tables with aligned columns: [`Table`].
+//! * plain-text tables with aligned columns: [`Table`];
+//! * anti-aliasing compared: each sampling method's coverage against the
+//!   exact area ([`compare_antialiasing`], [`Method`]).
 //!
 //! ```
 //! use rasterlab::measure::{sized, time_runs};
@@ -36,6 +38,7 @@
 //! assert!(t.min_ms <= t.median_ms && t.median_ms <= t.max_ms);
 //! ```
 
+pub(crate) mod antialias;
 pub(crate) mod benchmark;
 pub(crate) mod context;
 mod cpu;
@@ -46,6 +49,10 @@ mod table;
 mod timing;
 pub(crate) mod workload;
 
+pub use antialias::{
+    compare_antialiasing, coverage_error, coverage_of, AntialiasRow, Coverage, ErrorSummary,
+    Method, METHODS,
+};
 #[cfg(feature = "png-text")]
 pub use benchmark::chart_png;
 pub use benchmark::{

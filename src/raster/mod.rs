@@ -18,7 +18,10 @@
 //!   [`backend`]);
 //! * multisampling: a triangle's coverage mask at the standard sample
 //!   patterns of Direct3D and Vulkan ([`SamplePattern`], [`masks_of`],
-//!   checked against [`reference_masks`]);
+//!   checked against [`reference_masks`]); supersampling on a regular
+//!   `k x k` grid ([`supersample`]); and the exact area each triangle
+//!   covers in each pixel ([`area_coverage`]), which anti-aliasing
+//!   approximates;
 //! * fragments and the [`FragmentSink`] they go into, with
 //!   [`WorkCounters`];
 //! * what the stage reads of a draw ([`ShadedVertex`], [`ShadedTriangle`],
@@ -46,6 +49,7 @@
 //! }
 //! ```
 
+pub(crate) mod area;
 pub(crate) mod compact;
 pub(crate) mod descriptor;
 pub(crate) mod edge;
@@ -57,10 +61,12 @@ pub(crate) mod primitive;
 pub(crate) mod registry;
 pub(crate) mod shader;
 pub(crate) mod stage;
+pub(crate) mod supersample;
 pub(crate) mod target;
 pub mod triangle;
 pub(crate) mod vector;
 
+pub use area::{area_coverage, AreaFragment};
 pub use compact::{SmallTriangle, MAX_SPAN};
 pub use descriptor::{within_budget, CostClass, Descriptor, Role, WorkBudget};
 pub use edge::{
@@ -87,4 +93,5 @@ pub use shader::{
     FragmentShader, Gouraud, NormalColors, Texture, Textured,
 };
 pub use stage::{FragmentStage, Interpolation};
+pub use supersample::{supersample, SampleCount, MAX_SUPERSAMPLING};
 pub use target::{Clear, DepthState, DepthTest, RenderTarget, TargetRows, MAX_TARGET_SIDE};
