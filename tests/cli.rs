@@ -485,11 +485,20 @@ fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
             out_dir.to_str().unwrap(),
         ]);
         let table = success_stdout(out);
-        // The reference line, the header, a row per back-end, the report line.
-        assert_eq!(table.lines().count(), rows + 3, "{table}");
+        // The reference line, the header, a row per back-end, the report
+        // line; for 2D triangles the anti-aliasing table's header and a
+        // row per method.
+        let two_d = input == polygon.to_str().unwrap();
+        let antialias = if two_d {
+            1 + rasterlab::measure::METHODS.len()
+        } else {
+            0
+        };
+        assert_eq!(table.lines().count(), rows + 3 + antialias, "{table}");
         assert!(table.starts_with("reference: "), "{table}");
         let html = std::fs::read_to_string(out_dir.join("index.html")).unwrap();
         assert!(html.contains("<table id=\"work\">"));
+        assert_eq!(html.contains("<table id=\"antialias\">"), two_d, "{input}");
         assert!(
             !html.contains("src=\"http"),
             "the report loads nothing from outside"

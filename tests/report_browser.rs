@@ -63,23 +63,24 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
     let dom = run_chromium(&browser, &profile, &page, &["--dump-dom"]);
     let images = body_data(&dom, "images");
     // An image per back-end, a difference image per back-end but the
-    // reference, and a heat map per fill rule for the input and for the
-    // pinwheel.
+    // reference, a heat map per fill rule for the input and for the
+    // pinwheel, and the anti-aliasing section's five coverage pictures.
     let backends = rasterlab::raster::triangle_backends().len();
     let rules = rasterlab::raster::FillRule::ALL.len();
-    assert_eq!(images, backends + (backends - 1) + 2 * rules);
+    assert_eq!(images, backends + (backends - 1) + 2 * rules + 5);
     assert_eq!(
         body_data(&dom, "images-loaded"),
         images,
         "an image failed to decode"
     );
-    // Work table, the input's fill rules, the pinwheel's.
-    assert_eq!(body_data(&dom, "tables"), 3);
+    // Work table, the input's fill rules, the pinwheel's, anti-aliasing.
+    assert_eq!(body_data(&dom, "tables"), 4);
     // One grid picture per back-end.
     assert_eq!(body_data(&dom, "svgs"), backends);
     // Every section with coloured pictures shows the palette's legend:
-    // differences, the input's fill rules, the pinwheel's, the grids.
-    assert_eq!(body_data(&dom, "legends"), 4);
+    // differences, the input's fill rules, the pinwheel's,
+    // anti-aliasing, the grids.
+    assert_eq!(body_data(&dom, "legends"), 5);
     for role in [
         Role::Differs,
         Role::Gap,

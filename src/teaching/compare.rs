@@ -114,6 +114,30 @@ impl fmt::Display for CompareSummary {
                 run.differing_pixels
             )?;
         }
+        if let Some(aa) = &report.antialias {
+            writeln!(
+                f,
+                "anti-aliasing, against the exact area: {:<24} {:>7} {:>9} {:>7} {:>9} {:>7}",
+                "method", "samples", "RMS/tri", "worst", "RMS/pic", "worst"
+            )?;
+            for r in &aa.rows {
+                writeln!(
+                    f,
+                    "{:>39}{:<24} {:>7} {:>9.4} {:>7.3} {:>9.4} {:>7.3}",
+                    "",
+                    r.name,
+                    if r.samples == 0 {
+                        "exact".to_string()
+                    } else {
+                        r.samples.to_string()
+                    },
+                    r.per_triangle.rms,
+                    r.per_triangle.worst,
+                    r.picture.rms,
+                    r.picture.worst
+                )?;
+            }
+        }
         writeln!(f, "report: {}", self.path.display())
     }
 }

@@ -52,8 +52,8 @@ pub use palette::{
     MAX_TRIANGLES, TRIANGLE_COLOURS, TRIANGLE_MARKS,
 };
 pub use report::{
-    BackendRun, CompareInput, Report, RulePicture, GRID_PICTURE_PIXELS, MAX_REPORT_BYTES,
-    REPORT_BYTES_PER_PIXEL,
+    Antialiasing, BackendRun, CompareInput, Report, RulePicture, ANTIALIAS_PIXELS,
+    GRID_PICTURE_PIXELS, MAX_REPORT_BYTES, REPORT_BYTES_PER_PIXEL,
 };
 pub use trace::{trace_depth_buffer, trace_line, trace_triangle, LineEnds, MAX_TRACE_LINES};
 pub use trace_table::{Column, Trace, TraceRow};

@@ -17,6 +17,11 @@
 //!   heat maps of each pixel's fragment count against the watertight
 //!   rules ([`GridPicture::coverage_heat_map`]), then the same for the line-drawing
 //!   slides' edge-drawing problem (the pinwheel);
+//! * for 2D triangles, **anti-aliasing**: each way of sampling a pixel
+//!   (one sample, multisampling on the standard patterns, supersampling
+//!   on regular grids) against the exact area each triangle covers
+//!   ([`compare_antialiasing`]), as a table of errors and as pictures
+//!   shaded by coverage;
 //! * for small targets, the **zoomed grid pictures** of each back-end
 //!   ([`GridPicture`]): which pixels it tested, which it emitted.
 //!
@@ -38,6 +43,7 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::render::{MeshRenderer, RenderSettings};
 use crate::geometry::scene::Scene2D;
 use crate::markup::Markup;
+use crate::measure::antialias::{compare_antialiasing, coverage_of, AntialiasRow, Method};
 use crate::measure::benchmark::median_time;
 use crate::measure::workload::LineWorkload;
 use crate::raster::descriptor::{within_budget, WorkBudget};
@@ -59,6 +65,84 @@ use std::time::Duration;
 
 /// Largest target (in pixels) that gets zoomed grid pictures.
 pub const GRID_PICTURE_PIXELS: u32 = 48 * 48;
+
+/// Largest target (in pixels) whose anti-aliasing is compared: 8 x 8
+/// supersampling draws 64 samples a pixel.
+pub const ANTIALIAS_PIXELS: u32 = 512 * 512;
+
+/// The methods whose pictures the anti-aliasing section shows.
+const ANTIALIAS_PICTURES: [Method; 5] = [
+    Method::Multisample(1),
+    Method::Multisample(4),
+    Method::Multisample(16),
+    Method::Supersample(4),
+    Method::Area,
+];
+
+/// The anti-aliasing section: each method's error against the exact
+/// area, and pictures shaded by coverage.
+#[derive(Clone, Debug)]
+pub struct Antialiasing {
+    /// One row per method ([`compare_antialiasing`]).
+    pub rows: Vec<AntialiasRow>,
+    /// Each pixel shaded by its triangles' coverage summed, for the
+    /// methods of the pictures: the drawn colour over white, cut to the
+    /// pixels the triangles cover and a margin of one.
+    pub pictures: Vec<(Method, image::RgbImage)>,
+    /// The first column and row of the pictures in the target.
+    pub origin: (u32, u32),
+}
+
+impl Antialiasing {
+    /// The comparison on `triangles` in a `width` x `height` target, under
+    /// the top-left rule.
+    pub fn of(
+        triangles: &[[crate::raster::fixed::FixedPoint; 3]],
+        width: u32,
+        height: u32,
+    ) -> Result<Antialiasing> {
+        let rows = compare_antialiasing(triangles, width, height, FillRule::TopLeft)?;
+        let rect = crate::raster::edge::PixelRect::of_target(width, height);
+        let backend = default_triangle_backend();
+        let [r, g, b] = Role::Drawn.rgb();
+        // The pixels the triangles touch, and a margin of one.
+        let touched = coverage_of(Method::Area, backend, triangles, rect, FillRule::TopLeft)?;
+        let (x0, y0, x1, y1) = touched.iter().fold(
+            (i64::from(width), i64::from(height), -1, -1),
+            |(x0, y0, x1, y1), c| (x0.min(c.x), y0.min(c.y), x1.max(c.x), y1.max(c.y)),
+        );
+        let (x0, y0) = ((x0 - 1).max(0) as u32, (y0 - 1).max(0) as u32);
+        let (x1, y1) = (
+            (x1 + 1).clamp(0, i64::from(width) - 1) as u32,
+            (y1 + 1).clamp(0, i64::from(height) - 1) as u32,
+        );
+        let (w, h) = (
+            (x1 + 1).saturating_sub(x0).max(1),
+            (y1 + 1).saturating_sub(y0).max(1),
+        );
+        let pictures = ANTIALIAS_PICTURES
+            .iter()
+            .map(|&method| {
+                let mut shade = vec![0.0f64; (width * height) as usize];
+                for c in coverage_of(method, backend, triangles, rect, FillRule::TopLeft)? {
+                    let i = (c.y * i64::from(width) + c.x) as usize;
+                    shade[i] = (shade[i] + c.value).min(1.0);
+                }
+                let mix = |ink: u8, a: f64| (255.0 + (f64::from(ink) - 255.0) * a).round() as u8;
+                let picture = image::RgbImage::from_fn(w, h, |x, y| {
+                    let a = shade[((y + y0) * width + x + x0) as usize];
+                    image::Rgb([mix(r, a), mix(g, a), mix(b, a)])
+                });
+                Ok((method, picture))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Antialiasing {
+            rows,
+            pictures,
+            origin: (x0, y0),
+        })
+    }
+}
 
 /// What to compare.
 #[derive(Clone, Debug)]
@@ -155,6 +239,9 @@ pub struct Report {
     pub pinwheel_rules: Vec<RulePicture>,
     /// Zoomed grid pictures per back-end (small targets only).
     pub grids: Vec<(&'static str, GridPicture)>,
+    /// Anti-aliasing compared (2D triangles on targets of at most
+    /// [`ANTIALIAS_PIXELS`] pixels).
+    pub antialias: Option<Antialiasing>,
 }
 
 /// Whether pixel `i` of two targets differs in colour, depth or coverage.
@@ -256,6 +343,7 @@ impl Report {
         let mut runs = Vec::new();
         let mut rules = Vec::new();
         let mut grids = Vec::new();
+        let mut antialias = None;
         let description;
         match input {
             CompareInput::Triangles(scene) => {
@@ -291,6 +379,9 @@ impl Report {
                 rules = rule_pictures(width, height, |rule| {
                     Ok(scene.render(scanline, rule, &Flat)?.0.coverage)
                 })?;
+                if width * height <= ANTIALIAS_PIXELS {
+                    antialias = Some(Antialiasing::of(&scene.triangles, width, height)?);
+                }
             }
             CompareInput::Lines(lines) => {
                 description = format!("{} line segments", lines.len());
@@ -387,6 +478,7 @@ impl Report {
             rules,
             pinwheel_rules,
             grids,
+            antialias,
         })
     }
 
@@ -562,6 +654,10 @@ figure.grid svg {{ max-width: 100%; height: auto; }}
             m.close("div").newline();
         }
 
+        if let Some(aa) = &self.antialias {
+            antialias_section(&mut m, aa);
+        }
+
         if let Some((_, first)) = self.grids.first() {
             m.element("h2", &[], "Pixels tested and emitted").newline();
             m.element("p", &[], "Which pixel centres each back-end tested, and which became fragments; pixel indices on the axes.").newline();
@@ -662,6 +758,69 @@ fn heat_figure(m: &mut Markup, r: &RulePicture, zoom: u32) {
         .expect("a heat map of a checked target size can be drawn");
     let src = png_data(&png);
     figure(m, &src, png.width(), &r.picture.caption);
+}
+
+fn antialias_section(m: &mut Markup, aa: &Antialiasing) {
+    m.element("h2", &[], "Anti-aliasing").newline();
+    m.element(
+        "p",
+        &[],
+        "How much of each pixel each triangle covers, estimated from samples (one at the centre; \
+         multisampling, MSAA, on the standard patterns; supersampling, SSAA, on a regular grid), \
+         against the exact area of the triangle inside the pixel. Per triangle: over every \
+         (pixel, triangle) pair either covers. In the picture: each pixel's triangles summed, \
+         which for triangles that share edges and never overlap is exact inside them.",
+    )
+    .newline();
+    m.open("table", &[("id", &"antialias")]).open("tr", &[]);
+    for head in [
+        "method",
+        "samples a pixel",
+        "RMS error per triangle",
+        "worst per triangle",
+        "RMS error in the picture",
+        "worst in the picture",
+    ] {
+        m.element("th", &[], head);
+    }
+    m.close("tr").newline();
+    for r in &aa.rows {
+        let samples = if r.samples == 0 {
+            "exact".to_string()
+        } else {
+            r.samples.to_string()
+        };
+        m.open("tr", &[]);
+        m.element("td", &[], &r.name)
+            .element("td", &[], &samples)
+            .element("td", &[], &format!("{:.4}", r.per_triangle.rms))
+            .element("td", &[], &format!("{:.3}", r.per_triangle.worst))
+            .element("td", &[], &format!("{:.4}", r.picture.rms))
+            .element("td", &[], &format!("{:.3}", r.picture.worst));
+        m.close("tr").newline();
+    }
+    m.close("table").newline();
+    let legend = Legend::default().with_mark(
+        Role::Drawn,
+        palette::Mark::Fill,
+        "covered: the shade is the share of the pixel covered, from none (white) to all",
+    );
+    m.raw(&legend.to_html()).newline();
+    m.open("div", &[("class", &"row")]).newline();
+    for (method, picture) in &aa.pictures {
+        // Each pixel a square of at least 4 screen pixels, the picture
+        // about 360 wide.
+        let zoom = (360 / picture.width().max(picture.height())).max(4);
+        let caption = format!(
+            "{method}: pixels ({}, {}) to ({}, {})",
+            aa.origin.0,
+            aa.origin.1,
+            aa.origin.0 + picture.width() - 1,
+            aa.origin.1 + picture.height() - 1
+        );
+        figure(m, &png_data(picture), picture.width() * zoom, &caption);
+    }
+    m.close("div").newline();
 }
 
 fn rule_table(m: &mut Markup, id: &str, rules: &[RulePicture]) {
