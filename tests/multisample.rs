@@ -489,3 +489,99 @@ fn check_msaa_refuses_what_it_cannot_judge() {
         );
     }
 }
+
+/// `explain --msaa 4` traces the partly covered pixels of a triangle
+/// sample by sample: its masks are those `fragments --msaa 4` prints,
+/// each sample's verdict agrees with its bit, and lines and the depth
+/// buffer are refused (exit 2).
+#[test]
+fn explain_traces_the_samples_fragments_prints() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("one.txt");
+    std::fs::write(&file, "0.3 0.2 9.6 2.9 2.1 7.7\n").unwrap();
+    let fragments = rasterlab(&[
+        "fragments",
+        "--backend",
+        "tiled",
+        "--size",
+        "12x10",
+        "--msaa",
+        "4",
+        file.to_str().unwrap(),
+    ]);
+    assert!(fragments.status.success(), "{fragments:?}");
+    let partial: Vec<(i64, i64, u32)> = String::from_utf8(fragments.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| {
+            let v: Vec<i64> = l.split(' ').map(|w| w.parse().unwrap()).collect();
+            (v[0], v[1], v[3] as u32)
+        })
+        .filter(|&(_, _, m)| m != 15)
+        .collect();
+    let explain = rasterlab(&[
+        "explain",
+        "--backend",
+        "bbox",
+        "--size",
+        "12x10",
+        "--msaa",
+        "4",
+        "0.3",
+        "0.2",
+        "9.6",
+        "2.9",
+        "2.1",
+        "7.7",
+    ]);
+    assert!(explain.status.success(), "{explain:?}");
+    let text = String::from_utf8(explain.stdout).unwrap();
+    let mut traced = Vec::new();
+    let mut lines = text.lines().skip_while(|l| !l.starts_with("multisampling"));
+    while let Some(line) = lines.next() {
+        let Some(rest) = line.strip_prefix("pixel (") else {
+            continue;
+        };
+        let (xy, mask) = rest.split_once("): mask ").unwrap();
+        let (x, y) = xy.split_once(", ").unwrap();
+        let mask: u32 = mask.split(' ').next().unwrap().parse().unwrap();
+        // Its four sample rows: "inside" exactly where the bit is set.
+        for i in 0..4 {
+            let row = lines.next().unwrap();
+            assert_eq!(row.contains("inside"), mask & (1 << i) != 0, "{row}");
+        }
+        traced.push((x.parse().unwrap(), y.parse().unwrap(), mask));
+    }
+    assert!(!traced.is_empty());
+    assert_eq!(traced, partial);
+    for args in [
+        &[
+            "explain",
+            "--backend",
+            "bresenham",
+            "--msaa",
+            "4",
+            "0",
+            "0",
+            "5",
+            "3",
+        ][..],
+        &["explain", "--backend", "depth-buffer", "--msaa", "4"],
+        &[
+            "explain",
+            "--backend",
+            "bbox",
+            "--msaa",
+            "5",
+            "0",
+            "0",
+            "4",
+            "0",
+            "0",
+            "4",
+        ],
+    ] {
+        let out = rasterlab(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {out:?}");
+    }
+}

@@ -1,8 +1,8 @@
 //! `rasterlab explain`: one algorithm traced step by step, and its grid picture.
 
-use super::args::Size;
+use super::args::{msaa, Size};
 use clap::Args;
-use rasterlab::raster::FillRule;
+use rasterlab::raster::{FillRule, SamplePattern};
 use rasterlab::teaching::{explain, ExplainRequest, GridPicture};
 use rasterlab::Result;
 use std::path::PathBuf;
@@ -33,6 +33,11 @@ pub struct ExplainArgs {
     /// `.png`): the pixels tested and the fragments emitted.
     #[arg(long)]
     picture: Option<PathBuf>,
+    /// A triangle's samples too: N samples a pixel on the standard
+    /// pattern (1, 2, 4, 8 or 16), each partly covered pixel traced
+    /// sample by sample.
+    #[arg(long, value_name = "N", value_parser = msaa)]
+    msaa: Option<SamplePattern>,
     /// The coordinates.
     #[arg(allow_negative_numbers = true)]
     coordinates: Vec<f64>,
@@ -49,6 +54,7 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
         screen: args.screen,
         coordinates: args.coordinates.clone(),
         picture: args.picture.is_some(),
+        msaa: args.msaa,
     })?;
     if let (Some(path), Some(picture)) = (&args.picture, &explanation.picture) {
         picture.save(path)?;

@@ -17,6 +17,7 @@ use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
 use crate::raster::edge::FillRule;
 use crate::raster::line::LineOptions;
+use crate::raster::multisample::SamplePattern;
 use crate::raster::registry::{all_backends, backend, triangle_backend, Backend};
 use crate::raster::target::RenderTarget;
 use crate::teaching::grid_picture::GridPicture;
@@ -45,6 +46,9 @@ pub struct ExplainRequest {
     pub coordinates: Vec<f64>,
     /// Also draw the grid picture.
     pub picture: bool,
+    /// Triangles: also trace their samples on this multisample pattern
+    /// ([`trace_samples`](super::trace_samples)).
+    pub msaa: Option<SamplePattern>,
 }
 
 impl ExplainRequest {
@@ -58,6 +62,7 @@ impl ExplainRequest {
             screen: false,
             coordinates,
             picture: false,
+            msaa: None,
         }
     }
 
@@ -121,6 +126,11 @@ pub struct Explanation {
 pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     let rule = request.rule;
     if request.backend == DEPTH_BUFFER {
+        if request.msaa.is_some() {
+            return Err(Error::InvalidArgument(
+                "--msaa traces one triangle's samples, not the depth buffer".into(),
+            ));
+        }
         let scene = request.depth_scene()?;
         let text = trace::trace_depth_buffer(&scene, triangle_backend("bbox")?, rule)?.to_text();
         let picture = request
@@ -143,12 +153,24 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     let (text, picture) = match chosen {
         Backend::Triangle(b) => {
             let triangle = request.triangle()?;
-            let text = trace::trace_triangle(b, triangle, rule, width, height)?.to_text();
+            let mut text = trace::trace_triangle(b, triangle, rule, width, height)?.to_text();
+            if let Some(pattern) = &request.msaa {
+                text.push('\n');
+                text.push_str(
+                    &super::sample_trace::trace_samples(triangle, rule, width, height, pattern)?
+                        .to_text(),
+                );
+            }
             let picture = request
                 .picture
                 .then(|| GridPicture::of_triangles(b, &[triangle], rule, width, height))
                 .transpose()?;
             (text, picture)
+        }
+        Backend::Line(_) if request.msaa.is_some() => {
+            return Err(Error::InvalidArgument(
+                "--msaa traces a triangle's samples; lines are not multisampled".into(),
+            ))
         }
         Backend::Line(b) => {
             let line = request.line()?;

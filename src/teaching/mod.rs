@@ -35,6 +35,7 @@ pub(crate) mod explain;
 pub(crate) mod grid_picture;
 pub(crate) mod palette;
 pub(crate) mod report;
+pub(crate) mod sample_trace;
 pub(crate) mod trace;
 pub(crate) mod trace_table;
 
@@ -55,5 +56,6 @@ pub use report::{
     Antialiasing, BackendRun, CompareInput, Report, RulePicture, ANTIALIAS_PIXELS,
     GRID_PICTURE_PIXELS, MAX_REPORT_BYTES, REPORT_BYTES_PER_PIXEL,
 };
+pub use sample_trace::trace_samples;
 pub use trace::{trace_depth_buffer, trace_line, trace_triangle, LineEnds, MAX_TRACE_LINES};
 pub use trace_table::{Column, Trace, TraceRow};

@@ -62,7 +62,7 @@ use crate::teaching::trace_table::{Column, Trace, TraceRow};
 pub const MAX_TRACE_LINES: u64 = 65_536;
 
 /// Refuses a trace that would print more than [`MAX_TRACE_LINES`] lines.
-fn check_trace_length(lines: u64, what: &str) -> Result<()> {
+pub(crate) fn check_trace_length(lines: u64, what: &str) -> Result<()> {
     if lines > MAX_TRACE_LINES {
         return Err(Error::TooMuchWork(format!(
             "this trace would print {lines} {what} (at most {MAX_TRACE_LINES}): trace a smaller grid (--size) or triangle"
@@ -72,7 +72,7 @@ fn check_trace_length(lines: u64, what: &str) -> Result<()> {
 }
 
 /// Square pixels per fixed-point edge unit.
-const AREA_UNIT: f64 = (SUBPIXEL_SCALE * SUBPIXEL_SCALE) as f64;
+pub(crate) const AREA_UNIT: f64 = (SUBPIXEL_SCALE * SUBPIXEL_SCALE) as f64;
 
 /// A line's two endpoints, snapped, and how they were given.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -342,20 +342,7 @@ impl Recorded<'_> {
         for &(x, y, e, inside, _) in &samples {
             let [alpha, beta, gamma] = t.barycentric(e);
             inside_count += usize::from(inside);
-            let verdict = match t.rejecting_edge(e) {
-                Some(k) if e[k] < 0 => format!("outside: E{k} < 0"),
-                Some(k) => format!(
-                    "outside: on E{k}, a {} edge that does not own its ties",
-                    t.edges[k].kind()
-                ),
-                None => match (0..3).find(|&k| e[k] == 0) {
-                    Some(k) => format!(
-                        "inside: on E{k}, a {} edge that owns its ties",
-                        t.edges[k].kind()
-                    ),
-                    None => "inside".to_string(),
-                },
-            };
+            let verdict = verdict(t, e);
             let edge = |k: usize| format!("{:.4}", e[k] as f64 / AREA_UNIT);
             out.rows.push(TraceRow::at_pixel(
                 vec![
@@ -729,7 +716,26 @@ fn print_matrix(out: &mut Trace, depth: &[f32], width: u32) {
 /// The triangle snapped and set up under `rule`, or, when it has zero
 /// area once snapped, `None` after writing "the snapped triangle has zero
 /// area: {nothing}" to the trace.
-fn snapped_or_say(
+/// Why a sample with edge values `e` is inside triangle `t` or not: the
+/// edge that rejects it, or the edge whose tie it sits on.
+pub(crate) fn verdict(t: &TriangleSetup, e: [i64; 3]) -> String {
+    match t.rejecting_edge(e) {
+        Some(k) if e[k] < 0 => format!("outside: E{k} < 0"),
+        Some(k) => format!(
+            "outside: on E{k}, a {} edge that does not own its ties",
+            t.edges[k].kind()
+        ),
+        None => match (0..3).find(|&k| e[k] == 0) {
+            Some(k) => format!(
+                "inside: on E{k}, a {} edge that owns its ties",
+                t.edges[k].kind()
+            ),
+            None => "inside".to_string(),
+        },
+    }
+}
+
+pub(crate) fn snapped_or_say(
     vertices: [(f64, f64); 3],
     rule: FillRule,
     out: &mut Trace,
