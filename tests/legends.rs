@@ -285,7 +285,8 @@ fn fan(n: usize) -> Vec<[(f64, f64); 3]> {
 fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
     let mut closest = [f64::INFINITY; 3];
 
-    // explain --picture: one triangle, tiled's blocks, a Wu line.
+    // explain --picture: one triangle, tiled's blocks, a Wu line, a
+    // triangle's samples.
     for args in [
         &[
             "--backend",
@@ -312,6 +313,20 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
             "23",
         ],
         &["--backend", "wu", "--size", "14x8", "0", "1", "13", "6"],
+        &[
+            "--backend",
+            "bbox",
+            "--size",
+            "8x6",
+            "--msaa",
+            "4",
+            "0.5",
+            "0.2",
+            "7.3",
+            "1.9",
+            "1.4",
+            "5.8",
+        ],
     ] {
         let svg = explain_svg(args);
         let entries = legend_entries(&svg);

@@ -554,6 +554,60 @@ fn explain_traces_the_samples_fragments_prints() {
     }
     assert!(!traced.is_empty());
     assert_eq!(traced, partial);
+    // The picture: a dot or a ring for each of the 4 x 12 x 10 samples,
+    // the dots as many as the masks' bits, and both in the legend.
+    let svg = tmp.path().join("samples.svg");
+    let pictured = rasterlab(&[
+        "explain",
+        "--backend",
+        "bbox",
+        "--size",
+        "12x10",
+        "--msaa",
+        "4",
+        "--picture",
+        svg.to_str().unwrap(),
+        "0.3",
+        "0.2",
+        "9.6",
+        "2.9",
+        "2.1",
+        "7.7",
+    ]);
+    assert!(pictured.status.success(), "{pictured:?}");
+    let svg = std::fs::read_to_string(svg).unwrap();
+    let covered_bits: u32 = String::from_utf8(
+        rasterlab(&[
+            "fragments",
+            "--backend",
+            "bbox",
+            "--size",
+            "12x10",
+            "--msaa",
+            "4",
+            file.to_str().unwrap(),
+        ])
+        .stdout,
+    )
+    .unwrap()
+    .lines()
+    .map(|l| {
+        l.rsplit(' ')
+            .next()
+            .unwrap()
+            .parse::<u32>()
+            .unwrap()
+            .count_ones()
+    })
+    .sum();
+    assert_eq!(
+        svg.matches("class=\"sample covered\"").count() as u32,
+        covered_bits
+    );
+    assert_eq!(svg.matches("class=\"sample").count(), 4 * 12 * 10);
+    for role in ["sample-covered", "sample-outside"] {
+        assert!(svg.contains(&format!("data-role=\"{role}\"")), "{role}");
+    }
     for args in [
         &[
             "explain",

@@ -16,6 +16,7 @@
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
 use crate::raster::edge::FillRule;
+use crate::raster::fixed::FixedPoint;
 use crate::raster::line::LineOptions;
 use crate::raster::multisample::SamplePattern;
 use crate::raster::registry::{all_backends, backend, triangle_backend, Backend};
@@ -165,6 +166,14 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
                 .picture
                 .then(|| GridPicture::of_triangles(b, &[triangle], rule, width, height))
                 .transpose()?;
+            let picture = match (picture, &request.msaa) {
+                (Some(p), Some(pattern)) => {
+                    let [a, b, c] = triangle.map(|(x, y)| FixedPoint::snap_f64(x, y));
+                    let snapped = [a?, b?, c?];
+                    Some(p.with_samples(&[snapped], rule, pattern))
+                }
+                (p, _) => p,
+            };
             (text, picture)
         }
         Backend::Line(_) if request.msaa.is_some() => {

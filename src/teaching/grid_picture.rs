@@ -55,6 +55,7 @@ use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fixed::FixedPoint;
 use crate::raster::fragment::{FragmentList, FragmentSink, LineFragment, TriangleFragment};
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
+use crate::raster::multisample::{reference_masks, SamplePattern};
 use crate::raster::shader::Flat;
 use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
@@ -117,6 +118,9 @@ pub struct GridPicture {
     pub blocks: Vec<(PixelRect, BlockClass)>,
     /// Pixels where the depth test hid a fragment, with how many.
     pub hidden: Vec<(u32, u32, u32)>,
+    /// Multisample points, in pixel coordinates, and whether a triangle
+    /// covers each ([`GridPicture::with_samples`]).
+    pub samples: Vec<(f64, f64, bool)>,
     /// One line saying what the picture shows.
     pub caption: String,
     /// What the colours say.
@@ -216,6 +220,7 @@ impl GridPicture {
             segments: Vec::new(),
             blocks: Vec::new(),
             hidden: Vec::new(),
+            samples: Vec::new(),
             caption,
             legend: Legend::default(),
         }
@@ -295,6 +300,56 @@ impl GridPicture {
                 .with(Role::BlockOutside);
         }
         Ok(picture)
+    }
+
+    /// This picture with the samples of `pattern` in every pixel: a dot
+    /// where one of `triangles` covers the sample under `rule`, a ring
+    /// where none does, each decided as a pixel centre is
+    /// ([`reference_masks`](crate::raster::reference_masks)). The cells
+    /// still say what the back-end did with one sample a pixel.
+    pub fn with_samples(
+        mut self,
+        triangles: &[[FixedPoint; 3]],
+        rule: FillRule,
+        pattern: &SamplePattern,
+    ) -> GridPicture {
+        let grid = PixelRect::of_target(self.width, self.height);
+        let setups = setup_triangles(triangles, rule);
+        let mut covered = vec![0u32; (self.width * self.height) as usize];
+        for m in reference_masks(&setups, grid, pattern) {
+            covered[(m.y as u32 * self.width + m.x as u32) as usize] |= m.mask;
+        }
+        let sixteenth = |v: i8| f64::from(v) / 16.0;
+        self.samples = (0..self.height)
+            .flat_map(|y| (0..self.width).map(move |x| (x, y)))
+            .flat_map(|(x, y)| {
+                let mask = covered[(y * self.width + x) as usize];
+                (0..pattern.count() as usize).map(move |i| {
+                    let (dx, dy) = pattern.offset(i);
+                    (
+                        f64::from(x) + 0.5 + sixteenth(dx),
+                        f64::from(y) + 0.5 + sixteenth(dy),
+                        mask & (1 << i) != 0,
+                    )
+                })
+            })
+            .collect();
+        let inside = self.samples.iter().filter(|s| s.2).count();
+        self.caption.push_str(&format!(
+            "; {} samples a pixel: {inside} of {} covered",
+            pattern.count(),
+            self.samples.len()
+        ));
+        for e in &mut self.legend.entries {
+            if e.key == Role::PixelCentre.key() {
+                e.label = "pixel centre (the one sample without multisampling)".into();
+            }
+        }
+        self.legend = self
+            .legend
+            .with(Role::SampleCovered)
+            .with(Role::SampleOutside);
+        self
     }
 
     /// Lines given by their snapped ends ([`LineEnds`](crate::teaching::trace::LineEnds):
@@ -637,6 +692,28 @@ impl GridPicture {
                 }
             }
         }
+        let sample_colour = Role::SampleCovered.hex();
+        let r = (s * 0.07).clamp(1.2, 4.0);
+        for &(x, y, inside) in &self.samples {
+            let (fill, stroke) = if inside {
+                (sample_colour.as_str(), "none")
+            } else {
+                ("white", sample_colour.as_str())
+            };
+            m.empty(
+                "circle",
+                &[
+                    ("class", &if inside { "sample covered" } else { "sample" }),
+                    ("cx", &(x * s)),
+                    ("cy", &(y * s)),
+                    ("r", &r),
+                    ("fill", &fill),
+                    ("stroke", &stroke),
+                    ("stroke-width", &(r * 0.45)),
+                ],
+            )
+            .newline();
+        }
         for &(x, y, n) in &self.hidden {
             // A grey corner: a fragment hidden here, with how many.
             let (x0, y0) = (f64::from(x) * s, f64::from(y) * s);
@@ -892,6 +969,27 @@ impl GridPicture {
                 ((x0, y1), (x0, y0)),
             ] {
                 stroke(a, b, colour, Mark::Block);
+            }
+        }
+        if zoom >= 8 {
+            // Each sample a 3 x 3 square: filled when covered, hollow not.
+            let black = image::Rgb(Role::SampleCovered.rgb());
+            for &(x, y, inside) in &self.samples {
+                let (cx, cy) = ((x * z).round() as i64, (y * z).round() as i64);
+                for dy in -1..=1i64 {
+                    for dx in -1..=1i64 {
+                        let (px, py) = (cx + dx, cy + dy);
+                        if (0..i64::from(w)).contains(&px) && (0..i64::from(h)).contains(&py) {
+                            let ring = dx != 0 || dy != 0;
+                            let c = if inside || ring {
+                                black
+                            } else {
+                                image::Rgb([255, 255, 255])
+                            };
+                            img.put_pixel(px as u32, py as u32, c);
+                        }
+                    }
+                }
             }
         }
         Ok(img)

@@ -106,6 +106,8 @@ pub enum Mark {
     Cross,
     /// A dot at the cell's centre.
     Dot,
+    /// A ring: a hollow dot.
+    Ring,
     /// A block's dashed frame, with the block's letter.
     Block,
     /// A solid line: an edge.
@@ -127,6 +129,7 @@ impl Mark {
             Mark::Frame => "frame",
             Mark::Cross => "cross",
             Mark::Dot => "dot",
+            Mark::Ring => "ring",
             Mark::Block => "block",
             Mark::Line => "line",
             Mark::Dashed => "dashed",
@@ -200,11 +203,15 @@ pub enum Role {
     /// A pixel off the target, shown around it (a counterexample's
     /// margin).
     OffTarget,
+    /// A sample of a pixel's multisample pattern that the triangle covers.
+    SampleCovered,
+    /// A sample of a pixel's multisample pattern that no triangle covers.
+    SampleOutside,
 }
 
 impl Role {
     /// Every role, in legend order.
-    pub const ALL: [Role; 19] = [
+    pub const ALL: [Role; 21] = [
         Role::Untested,
         Role::Drawn,
         Role::TestedOutside,
@@ -224,6 +231,8 @@ impl Role {
         Role::Differs,
         Role::PixelCentre,
         Role::OffTarget,
+        Role::SampleCovered,
+        Role::SampleOutside,
     ];
 
     /// The role's colour.
@@ -242,7 +251,7 @@ impl Role {
             Role::DrawnTwiceMore => REDDISH_PURPLE,
             Role::Hidden | Role::BlockOutside => GREY,
             Role::BlockInside => BLUE,
-            Role::Geometry => BLACK,
+            Role::Geometry | Role::SampleCovered | Role::SampleOutside => BLACK,
             Role::PixelCentre => DARK_GREY,
             Role::OffTarget => LIGHT_GREY,
         }
@@ -254,7 +263,8 @@ impl Role {
             Role::Hidden => Mark::Corner,
             Role::Geometry => Mark::Line,
             Role::BlockInside | Role::BlockOutside | Role::BlockPartial => Mark::Block,
-            Role::PixelCentre => Mark::Dot,
+            Role::PixelCentre | Role::SampleCovered => Mark::Dot,
+            Role::SampleOutside => Mark::Ring,
             _ => Mark::Fill,
         }
     }
@@ -286,6 +296,8 @@ impl Role {
             Role::Differs => "differs",
             Role::PixelCentre => "pixel-centre",
             Role::OffTarget => "off-target",
+            Role::SampleCovered => "sample-covered",
+            Role::SampleOutside => "sample-outside",
         }
     }
 
@@ -311,6 +323,8 @@ impl Role {
             Role::Differs => "differs from the reference",
             Role::PixelCentre => "pixel centre (the sample point)",
             Role::OffTarget => "off the target",
+            Role::SampleCovered => "sample covered (multisampling)",
+            Role::SampleOutside => "sample not covered",
         }
     }
 }
@@ -596,6 +610,20 @@ fn swatch(m: &mut Markup, e: &LegendEntry, x: f64, y: f64) {
                     ("cy", &(y + s / 2.0)),
                     ("r", &2.5),
                     ("fill", &colour),
+                ],
+            );
+        }
+        Mark::Ring => {
+            frame(m, "white");
+            m.empty(
+                "circle",
+                &[
+                    ("cx", &(x + s / 2.0)),
+                    ("cy", &(y + s / 2.0)),
+                    ("r", &3.0),
+                    ("fill", &"white"),
+                    ("stroke", &colour),
+                    ("stroke-width", &1.2),
                 ],
             );
         }
