@@ -13,7 +13,7 @@
 //! * `delaunay`: the Delaunay triangulation (by spade) of 1,500 random
 //!   points of the target and its corners: 3,000 triangles of about 26 px²,
 //!   most pixels crossed by an edge;
-//! * `star`: a star of 40 points, 110 px across, triangulated by spade:
+//! * `star`: a star of 40 points, 220 px across, triangulated by spade:
 //!   long thin triangles meeting at the centre.
 //!
 //! Each method of `rasterlab::measure::METHODS` estimates every pixel's
@@ -183,7 +183,7 @@ fn main() {
             "worst per triangle",
             "RMS in the picture",
             "worst in the picture",
-            "ns per pixel",
+            "ns per pair",
         ],
     );
     for (name, triangles) in [("delaunay", delaunay(1500)), ("star", star())] {

@@ -169,3 +169,24 @@ fn blending_exact_coverage_triangle_by_triangle_loses_a_quarter_on_a_shared_edge
     let (one, _) = coverage_error(&stray, &[], None);
     assert_eq!((one.count, one.worst), (1, 0.5));
 }
+
+/// `compare` draws a triangle reaching 5,000 px off a 16 x 16 target
+/// (inside the guard band) with every back-end, and says why its
+/// anti-aliasing is not compared: 8 x 8 supersampling would take the
+/// vertex out of the guard band.
+#[test]
+fn compare_says_why_it_leaves_anti_aliasing_out() {
+    use rasterlab::geometry::Scene2D;
+    use rasterlab::teaching::{CompareInput, Report};
+    let far = Scene2D::from_triangles(
+        16,
+        16,
+        vec![[(0.5, 0.5), (5000.0, 1.5), (0.5, 20.0)]
+            .map(|(x, y)| FixedPoint::snap_f64(x, y).unwrap())],
+    );
+    let report = Report::compare(&CompareInput::Triangles(far), 16, 16, 1).unwrap();
+    assert!(report.runs.iter().all(|r| r.differing_pixels == 0));
+    assert!(report.antialias.is_none());
+    let why = report.antialias_skipped.unwrap();
+    assert!(why.contains("guard band when scaled by 8"), "{why}");
+}

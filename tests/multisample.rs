@@ -639,3 +639,74 @@ fn explain_traces_the_samples_fragments_prints() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {out:?}");
     }
 }
+
+/// Regressions of `check --msaa`, each found by trying it as a newcomer:
+/// a pixel listed twice is a listed-twice problem only (its first line
+/// judged, not counted missing); a subject that breaks only on far
+/// vertices is broken on some inputs, not on every one (the simplest
+/// case it is tried on is multisampled as the check is); and the JSON
+/// report's pixels carry their masks.
+#[test]
+fn check_msaa_regressions() {
+    let four = SamplePattern::standard(4).ok();
+    let tiled = triangle_backend("tiled").unwrap();
+    let case = Case {
+        samples: four,
+        ..Case::from_text("# size 3x3\n0.2 0.1 2.9 0.4 0.3 2.8\n").unwrap()
+    };
+    let mut drawn = triangle_fragments(tiled, &case, FillRule::TopLeft);
+    drawn.push(drawn[0]);
+    let finding = rasterlab::check::judge(Property::Exact(FillRule::TopLeft), &case, &drawn)
+        .expect("a pixel listed twice fails");
+    assert_eq!(
+        finding.kinds,
+        [FailureKind::ListedTwice],
+        "{:?}",
+        finding.problems
+    );
+
+    let mut far_breaks = |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        if c.samples.is_none() {
+            return Err(SubjectError::Start("no # msaa line".into()));
+        }
+        if c.triangles
+            .iter()
+            .flatten()
+            .any(|p| p.0.abs().max(p.1.abs()) > 1000.0)
+        {
+            return Err(SubjectError::Start("too far".into()));
+        }
+        Ok(triangle_fragments(tiled, c, FillRule::TopLeft))
+    };
+    let options = CheckOptions {
+        samples: four,
+        ..CheckOptions::new(Property::Exact(FillRule::TopLeft))
+    };
+    let broken = check(&options, &mut far_breaks).expect_err("far vertices break it");
+    assert!(!broken.on_every_input, "{broken}");
+
+    let tmp = tempfile::tempdir().unwrap();
+    let json = rasterlab(&[
+        "check",
+        "--msaa",
+        "4",
+        "--format",
+        "json",
+        "--out",
+        tmp.path().to_str().unwrap(),
+        "--persistent",
+        "--exec",
+        concat!(
+            "python3 ",
+            env!("CARGO_MANIFEST_DIR"),
+            "/examples/student/multisample.py {msaa} centre"
+        ),
+    ]);
+    assert_eq!(json.status.code(), Some(1), "{json:?}");
+    let report: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    let c = &report["counterexample"];
+    // The centre's full mask drawn, the rule's mask missing.
+    assert_eq!(c["extra"][0][3], 15, "{c}");
+    assert!(c["missing"][0][3].as_i64().unwrap() < 15, "{c}");
+    assert_eq!(report["samples"], 4);
+}

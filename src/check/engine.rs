@@ -1002,8 +1002,17 @@ impl Checker<'_> {
                 files.push(path.display().to_string());
             }
         }
-        let pixels = |v: &[Fragment]| -> Vec<[i64; 3]> {
-            v.iter().map(|f| [f.x, f.y, i64::from(f.id)]).collect()
+        let multisampled = shrunk.case.samples.is_some();
+        let pixels = |v: &[Fragment]| -> Vec<Vec<i64>> {
+            v.iter()
+                .map(|f| {
+                    let mut p = vec![f.x, f.y, i64::from(f.id)];
+                    if multisampled {
+                        p.push(i64::from(f.mask));
+                    }
+                    p
+                })
+                .collect()
         };
         report.counterexample = Some(Counterexample {
             property: shrunk.property.id(),

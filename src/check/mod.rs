@@ -152,7 +152,8 @@ pub enum SubjectError {
         /// The start of its standard error.
         stderr: String,
     },
-    /// A line of its output is not `x y id`.
+    /// A line of its output is not `x y id` (under `--msaa`, `x y id
+    /// mask`).
     Malformed {
         /// The 1-based output line.
         line: usize,
@@ -193,7 +194,7 @@ impl fmt::Display for SubjectError {
             }
             SubjectError::Malformed { line, text } => write!(
                 f,
-                "output line {line} is not `x y id` (whole numbers): `{text}`"
+                "output line {line} is not `x y id` (whole numbers; under --msaa N, `x y id mask` with a mask from 1 to 2^N - 1): `{text}`"
             ),
             SubjectError::Refused { message, stderr } => {
                 write!(f, "the program answered `error`: {message}")?;
@@ -506,7 +507,11 @@ pub(crate) fn broken(
             (case.clone(), false, false)
         }
         _ if subject
-            .draw(&simplest_case(!case.lines.is_empty()))
+            .draw(&Case {
+                // Multisampled as the case is: the subject reads masks.
+                samples: case.samples,
+                ..simplest_case(!case.lines.is_empty())
+            })
             .as_ref()
             .err()
             .is_some_and(same) =>

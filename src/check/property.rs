@@ -180,6 +180,7 @@ impl fmt::Display for Property {
 /// standard pattern)`.
 pub(crate) fn with_samples(words: String, samples: Option<SamplePattern>) -> String {
     match samples {
+        Some(p) if p.count() == 1 => format!("{words}, 1 sample per pixel (the pixel centre)"),
         Some(p) => format!(
             "{words}, {} samples per pixel (the standard pattern)",
             p.count()

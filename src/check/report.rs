@@ -13,7 +13,7 @@
 //! ([`crate::teaching::palette`]): correct, extra, missing, off the
 //! target, pixel centres, and the triangles' colours and line patterns.
 
-use super::judge::{Finding, Property};
+use super::judge::{with_samples, Finding, Property};
 use crate::markup::Markup;
 use crate::teaching::palette::{colour_hex, triangle_colour, triangle_mark, Legend, Role};
 use std::collections::BTreeSet;
@@ -235,7 +235,11 @@ impl Finding {
             .max()
             .unwrap_or(1) as f64;
         let left = 10.0 + 7.0 * digits;
-        let caption = format!("Counterexample: {} ({})", self.property, self.kind());
+        let caption = format!(
+            "Counterexample: {} ({})",
+            with_samples(self.property.to_string(), self.case.samples),
+            self.kind()
+        );
         let top = 26.0 + 18.0;
         let primitives = self.primitives();
         let legend = self.legend(&primitives);
@@ -608,8 +612,15 @@ impl Finding {
         )
         .newline();
         m.close("head").open("body", &[]).newline();
-        m.element("h1", &[], &format!("Counterexample: {}", self.property))
-            .newline();
+        m.element(
+            "h1",
+            &[],
+            &format!(
+                "Counterexample: {}",
+                with_samples(self.property.to_string(), self.case.samples)
+            ),
+        )
+        .newline();
         self.provenance_html(&mut m);
         m.newline();
         let expected = match self.property {

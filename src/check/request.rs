@@ -274,10 +274,13 @@ pub struct Counterexample {
     pub diagnosis: Option<String>,
     /// The cause the reference confirmed, if any.
     pub cause: Option<Diagnosis>,
-    /// Pixels missing, as `[x, y, primitive]`.
-    pub missing: Vec<[i64; 3]>,
-    /// Fragments extra, as `[x, y, primitive]`.
-    pub extra: Vec<[i64; 3]>,
+    /// Pixels missing, as `[x, y, primitive]`; under `--msaa`,
+    /// `[x, y, primitive, mask]` with the rule's mask.
+    pub missing: Vec<Vec<i64>>,
+    /// Fragments extra, as `[x, y, primitive]`; under `--msaa`,
+    /// `[x, y, primitive, mask]` with the mask drawn (a pixel drawn with
+    /// another mask is both missing and extra).
+    pub extra: Vec<Vec<i64>>,
     /// The counterexample file's text (an input the program can be rerun
     /// on).
     pub input: String,

@@ -114,17 +114,23 @@ impl fmt::Display for CompareSummary {
                 run.differing_pixels
             )?;
         }
+        if let Some(why) = &report.antialias_skipped {
+            writeln!(f, "{why}")?;
+        }
         if let Some(aa) = &report.antialias {
             writeln!(
                 f,
-                "anti-aliasing, against the exact area: {:<24} {:>7} {:>9} {:>7} {:>9} {:>7}",
+                "anti-aliasing, each method's coverage against the exact area (per triangle, in the picture):"
+            )?;
+            writeln!(
+                f,
+                "{:<24} {:>7} {:>9} {:>7} {:>9} {:>7}",
                 "method", "samples", "RMS/tri", "worst", "RMS/pic", "worst"
             )?;
             for r in &aa.rows {
                 writeln!(
                     f,
-                    "{:>39}{:<24} {:>7} {:>9.4} {:>7.3} {:>9.4} {:>7.3}",
-                    "",
+                    "{:<24} {:>7} {:>9.4} {:>7.3} {:>9.4} {:>7.3}",
                     r.name,
                     if r.samples == 0 {
                         "exact".to_string()

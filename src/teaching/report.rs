@@ -242,6 +242,8 @@ pub struct Report {
     /// Anti-aliasing compared (2D triangles on targets of at most
     /// [`ANTIALIAS_PIXELS`] pixels).
     pub antialias: Option<Antialiasing>,
+    /// Why 2D triangles' anti-aliasing was not compared, when it was not.
+    pub antialias_skipped: Option<String>,
 }
 
 /// Whether pixel `i` of two targets differs in colour, depth or coverage.
@@ -344,6 +346,7 @@ impl Report {
         let mut rules = Vec::new();
         let mut grids = Vec::new();
         let mut antialias = None;
+        let mut antialias_skipped = None;
         let description;
         match input {
             CompareInput::Triangles(scene) => {
@@ -379,8 +382,18 @@ impl Report {
                 rules = rule_pictures(width, height, |rule| {
                     Ok(scene.render(scanline, rule, &Flat)?.0.coverage)
                 })?;
-                if width * height <= ANTIALIAS_PIXELS {
-                    antialias = Some(Antialiasing::of(&scene.triangles, width, height)?);
+                if width * height > ANTIALIAS_PIXELS {
+                    antialias_skipped = Some(format!(
+                        "anti-aliasing not compared: the target has more than {ANTIALIAS_PIXELS} pixels"
+                    ));
+                } else {
+                    match Antialiasing::of(&scene.triangles, width, height) {
+                        Ok(a) => antialias = Some(a),
+                        // A vertex too far off for 8 x 8 supersampling.
+                        Err(e) => {
+                            antialias_skipped = Some(format!("anti-aliasing not compared: {e}"))
+                        }
+                    }
                 }
             }
             CompareInput::Lines(lines) => {
@@ -479,6 +492,7 @@ impl Report {
             pinwheel_rules,
             grids,
             antialias,
+            antialias_skipped,
         })
     }
 
@@ -656,6 +670,9 @@ figure.grid svg {{ max-width: 100%; height: auto; }}
 
         if let Some(aa) = &self.antialias {
             antialias_section(&mut m, aa);
+        } else if let Some(why) = &self.antialias_skipped {
+            m.element("h2", &[], "Anti-aliasing").newline();
+            m.element("p", &[], why).newline();
         }
 
         if let Some((_, first)) = self.grids.first() {

@@ -368,9 +368,11 @@ fn masks(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
     let key = |f: &Fragment| (f.x, f.y, f.id);
     let want: BTreeMap<(i64, i64, u32), Fragment> =
         finding.expected.iter().map(|f| (key(f), *f)).collect();
+    // Off the target, unknown or listed twice: already reported.
     let already: BTreeSet<Fragment> = finding.extra.iter().copied().collect();
+    // A pixel listed twice is judged by its first line.
     let mut got: BTreeMap<(i64, i64, u32), Fragment> = BTreeMap::new();
-    for f in drawn.iter().filter(|f| !already.contains(f)) {
+    for f in drawn {
         got.entry(key(f)).or_insert(*f);
     }
     let missing: Vec<Fragment> = want
@@ -380,7 +382,7 @@ fn masks(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
         .collect();
     let extra: Vec<Fragment> = got
         .iter()
-        .filter(|(k, _)| !want.contains_key(k))
+        .filter(|(k, f)| !want.contains_key(k) && !already.contains(f))
         .map(|(_, f)| *f)
         .collect();
     let wrong: Vec<(Fragment, Fragment)> = got
