@@ -641,3 +641,65 @@ fn a_students_program_gets_a_legend_entry_and_a_count_of_wrong_pixels() {
         assert!(keys.iter().any(|k| k == role.key()), "{role:?} in {keys:?}");
     }
 }
+
+/// The MSAA control: at 4 samples the main grid marks every sample of
+/// the default triangle's grid, the dots exactly where the library's
+/// masks have bits, the resolve is drawn beside it, and the legend
+/// names both marks; switched off, they go.
+#[test]
+fn the_msaa_control_shows_samples_and_the_resolve() {
+    let Some(mut browser) = Browser::start("the lab's MSAA browser test") else {
+        return;
+    };
+    let lab = Lab::start();
+    let dev = &mut browser.dev;
+    dev.open(&format!("http://{}/", lab.address));
+    let before = updates(dev);
+    dev.eval(
+        "(() => { const m = document.getElementById('msaa'); m.value = '4'; m.onchange(); })()",
+    );
+    settle(dev, before);
+    dev.wait_for("document.getElementById('samples-summary') !== null");
+    // What the library covers for the page's own request.
+    let request: String = dev
+        .eval("JSON.stringify(request())")
+        .as_str()
+        .unwrap()
+        .to_string();
+    let request = rasterlab::lab::LabRequest::parse(&request).unwrap();
+    let (w, h) = (request.width, request.height);
+    let answer = rasterlab::lab::answer(&request, None).unwrap();
+    let samples = answer.samples.expect("samples under msaa 4");
+    let covered = samples.points.iter().filter(|p| p[2] == 1.0).count();
+    assert!(covered > 0);
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#grid circle.sample').length"),
+        json!(4 * w * h)
+    );
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#grid circle.sample.covered').length"),
+        json!(covered)
+    );
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#resolved rect.resolved').length"),
+        json!(samples.resolved.len())
+    );
+    let keys = legend(dev);
+    for role in [Role::SampleCovered, Role::SampleOutside] {
+        assert!(keys.iter().any(|k| k == role.key()), "{keys:?}");
+    }
+    let before = updates(dev);
+    dev.eval(
+        "(() => { const m = document.getElementById('msaa'); m.value = '1'; m.onchange(); })()",
+    );
+    settle(dev, before);
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#grid circle.sample, #resolved').length"),
+        json!(0)
+    );
+    let keys = legend(dev);
+    assert!(
+        !keys.iter().any(|k| k == Role::SampleCovered.key()),
+        "{keys:?}"
+    );
+}

@@ -8,7 +8,8 @@
 //! as data ([`Trace`]: the rows `rasterlab explain` prints, each with the
 //! pixels it is about, so the page highlights a row by its pixels), the
 //! fill rule's heat map (gaps,
-//! double draws) when there are several triangles, and, with `--exec`, the
+//! double draws) when there are several triangles, with `msaa` every
+//! sample and the resolve ([`SamplesView`]), and, with `--exec`, the
 //! student's own rasterizer against the exact answer.
 //!
 //! Triangles that carry a depth are the course's depth-buffer example:
@@ -42,10 +43,11 @@
 use crate::check::judge::{cover, Cover};
 use crate::check::{Case, Program, Subject};
 use crate::error::{Error, Result};
-use crate::geometry::scene::Scene2D;
-use crate::raster::edge::{FillRule, TriangleSetup};
+use crate::geometry::scene::{setup_triangles, Scene2D};
+use crate::raster::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::line::LineOptions;
+use crate::raster::multisample::{reference_masks, SamplePattern};
 use crate::raster::registry::{backend, line_backends, triangle_backends, Backend};
 use crate::teaching::explain::DEPTH_BUFFER;
 use crate::teaching::grid_picture::{
@@ -126,6 +128,10 @@ pub struct LabRequest {
     /// Run the `--exec` program on this input too.
     #[serde(default)]
     pub student: bool,
+    /// Triangles: multisample on the standard pattern of this many
+    /// samples (2, 4, 8 or 16; 1 or none: one sample at the centre).
+    #[serde(default)]
+    pub msaa: Option<u32>,
 }
 
 impl LabRequest {
@@ -191,6 +197,9 @@ impl LabRequest {
         }
         if let Some(rule) = &self.rule {
             rule.parse::<FillRule>()?;
+        }
+        if let Some(n) = self.msaa {
+            SamplePattern::standard(n)?;
         }
         Ok(())
     }
@@ -324,6 +333,9 @@ pub struct LabResponse {
     pub depth: Option<DepthView>,
     /// The student's program, when asked for and available.
     pub student: Option<StudentView>,
+    /// Under `msaa`: every sample and whether a triangle covers it, and
+    /// each pixel's resolved coverage.
+    pub samples: Option<SamplesView>,
     /// What the answer draws: every (colour, mark) pair with its meaning
     /// (the page leaves out the entries of layers it hides: the heat map
     /// when switched off, pixel centres on cells too small to dot).
@@ -403,12 +415,25 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         (true, Some(program)) => Some(student_view(request, rule, program)),
         _ => None,
     };
-    let legend = legend(
+    let samples = match request.msaa {
+        Some(n) if n > 1 && request.kind == "triangles" => Some(SamplesView::of(
+            &snapped,
+            rule,
+            w,
+            h,
+            &SamplePattern::standard(n)?,
+        )),
+        _ => None,
+    };
+    let mut legend = legend(
         request,
         (&gaps, &doubles),
         depth.as_ref(),
         student.is_some(),
     );
+    if samples.is_some() {
+        legend = legend.with(Role::SampleCovered).with(Role::SampleOutside);
+    }
     Ok(LabResponse {
         backends: views,
         trace,
@@ -417,6 +442,7 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         doubles,
         depth,
         student,
+        samples,
         legend_html: legend.to_html(),
         legend,
     })
@@ -473,6 +499,64 @@ fn legend(
             .with_mark(Role::Extra, Mark::Cross, &mine(Role::Extra, "crossed"));
     }
     legend
+}
+
+/// Multisampling in the lab: each sample of the grid, and what a resolve
+/// makes of each pixel.
+#[derive(Clone, Debug, Serialize)]
+pub struct SamplesView {
+    /// Samples a pixel.
+    pub count: u32,
+    /// Every sample of every pixel, `[x, y, covered]` in pixel
+    /// coordinates (`covered` 1 when a triangle covers it, else 0).
+    pub points: Vec<[f64; 3]>,
+    /// Each pixel with a sample covered, `[x, y, share]`: the share of its
+    /// samples covered, which a box-filter resolve gives its colour.
+    pub resolved: Vec<[f64; 3]>,
+}
+
+impl SamplesView {
+    fn of(
+        triangles: &[[FixedPoint; 3]],
+        rule: FillRule,
+        width: u32,
+        height: u32,
+        pattern: &SamplePattern,
+    ) -> SamplesView {
+        let setups = setup_triangles(triangles, rule);
+        let mut union = vec![0u32; (width * height) as usize];
+        for m in reference_masks(&setups, PixelRect::of_target(width, height), pattern) {
+            union[(m.y as u32 * width + m.x as u32) as usize] |= m.mask;
+        }
+        let n = pattern.count();
+        let mut points = Vec::with_capacity((width * height * n) as usize);
+        let mut resolved = Vec::new();
+        for y in 0..height {
+            for x in 0..width {
+                let mask = union[(y * width + x) as usize];
+                for i in 0..n as usize {
+                    let (dx, dy) = pattern.offset(i);
+                    points.push([
+                        f64::from(x) + 0.5 + f64::from(dx) / 16.0,
+                        f64::from(y) + 0.5 + f64::from(dy) / 16.0,
+                        f64::from(u8::from(mask & (1 << i) != 0)),
+                    ]);
+                }
+                if mask != 0 {
+                    resolved.push([
+                        f64::from(x),
+                        f64::from(y),
+                        f64::from(mask.count_ones()) / f64::from(n),
+                    ]);
+                }
+            }
+        }
+        SamplesView {
+            count: n,
+            points,
+            resolved,
+        }
+    }
 }
 
 /// The tested and drawn cells of a grid picture.
