@@ -117,6 +117,34 @@ impl Markup {
         self
     }
 
+    /// A name on a picture: bold 14 px text centred at `(x, y)`, in
+    /// `colour` on a white halo (a stroke painted under the fill), so it
+    /// reads over cells and edges alike.
+    pub(crate) fn halo_label(
+        &mut self,
+        class: &str,
+        (x, y): (f64, f64),
+        colour: &str,
+        text: &str,
+    ) -> &mut Markup {
+        self.element(
+            "text",
+            &[
+                ("class", &class),
+                ("x", &format_args!("{x:.1}")),
+                ("y", &format_args!("{y:.1}")),
+                ("font-size", &14),
+                ("font-weight", &"bold"),
+                ("text-anchor", &"middle"),
+                ("fill", &colour),
+                ("stroke", &"white"),
+                ("stroke-width", &3),
+                ("paint-order", &"stroke"),
+            ],
+            text,
+        )
+    }
+
     /// A line break, to keep long pictures readable as text.
     pub(crate) fn newline(&mut self) -> &mut Markup {
         self.out.push('\n');

@@ -450,23 +450,7 @@ impl Finding {
                 (lo + hi) / 2.0
             };
             let y = y.clamp(view.y0 * s + 14.0, view.y1 * s - 4.0);
-            out.element(
-                "text",
-                &[
-                    ("class", &class),
-                    ("x", &format_args!("{x:.1}")),
-                    ("y", &format_args!("{y:.1}")),
-                    ("font-size", &14),
-                    ("font-weight", &"bold"),
-                    ("text-anchor", &"middle"),
-                    ("fill", &colour),
-                    ("stroke", &"white"),
-                    ("stroke-width", &3),
-                    ("paint-order", &"stroke"),
-                ],
-                text,
-            )
-            .newline();
+            out.halo_label(class, (x, y), colour, text).newline();
         };
         for (i, p) in primitives.iter().enumerate() {
             let colour = colour_hex(triangle_colour(i));

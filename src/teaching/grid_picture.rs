@@ -824,23 +824,8 @@ impl GridPicture {
         let label = |m: &mut Markup, (x, y): (f64, f64), text: &str, colour: &str| {
             // Kept inside the grid, on a white halo.
             let (x, y) = (x.clamp(8.0, w - 8.0), y.clamp(12.0, h - 4.0));
-            m.element(
-                "text",
-                &[
-                    ("class", &"geometry-label"),
-                    ("x", &format_args!("{x:.1}")),
-                    ("y", &format_args!("{y:.1}")),
-                    ("font-size", &14),
-                    ("font-weight", &"bold"),
-                    ("text-anchor", &"middle"),
-                    ("fill", &colour),
-                    ("stroke", &"white"),
-                    ("stroke-width", &3),
-                    ("paint-order", &"stroke"),
-                ],
-                text,
-            )
-            .newline();
+            m.halo_label("geometry-label", (x, y), colour, text)
+                .newline();
         };
         if self.names_triangles() {
             for (t, outline) in self.outlines.iter().enumerate() {
