@@ -21,7 +21,8 @@
 //!   checked against [`reference_masks`]); supersampling on a regular
 //!   `k x k` grid ([`supersample`]); and the exact area each triangle
 //!   covers in each pixel ([`area_coverage`]), which anti-aliasing
-//!   approximates;
+//!   approximates; the multisampled stage, with a depth and a colour per
+//!   sample and a resolve ([`draw_multisampled`], [`MultisampleTarget`]);
 //! * fragments and the [`FragmentSink`] they go into, with
 //!   [`WorkCounters`];
 //! * what the stage reads of a draw ([`ShadedVertex`], [`ShadedTriangle`],
@@ -57,6 +58,7 @@ pub(crate) mod fixed;
 pub(crate) mod fragment;
 pub mod line;
 pub(crate) mod multisample;
+pub(crate) mod multisample_stage;
 pub(crate) mod primitive;
 pub(crate) mod registry;
 pub(crate) mod shader;
@@ -81,6 +83,7 @@ pub use fragment::{
     FragmentList, FragmentSink, LineFragment, TriangleFragment, TriangleSpan, WorkCounters,
 };
 pub use multisample::{masks_of, reference_masks, MaskFragment, SamplePattern, SAMPLE_COUNTS};
+pub use multisample_stage::{draw_multisampled, MultisampleTarget, MAX_TARGET_SAMPLES};
 pub use primitive::{DepthPlane, ShadedLine, ShadedTriangle, ShadedVertex, TriangleData, Varyings};
 pub use registry::{
     all_backends, backend, default_line_backend, default_triangle_backend,

@@ -103,7 +103,7 @@ const STANDARD: [&[(i8, i8)]; 5] = [
 pub const SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
 
 /// Fixed-point units in 1/16 pixel.
-const SIXTEENTH: i64 = SUBPIXEL_SCALE / 16;
+pub(crate) const SIXTEENTH: i64 = SUBPIXEL_SCALE / 16;
 
 /// Where a pixel's samples are: offsets from the pixel centre.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -186,7 +186,7 @@ pub struct MaskFragment {
 
 /// The set-up of the triangle moved by `(dx, dy)` fixed-point units, its
 /// edges' tie ownership kept as `setup` has it.
-fn moved(setup: &TriangleSetup, dx: i64, dy: i64) -> TriangleSetup {
+pub(crate) fn moved(setup: &TriangleSetup, dx: i64, dy: i64) -> TriangleSetup {
     // The offsets are under a pixel and the vertices inside the guard
     // band, so the moved coordinates fit the fixed-point type.
     let vertices = setup.vertices.map(|v| FixedPoint {

@@ -149,6 +149,15 @@ impl DepthPlane {
     pub fn at(&self, x: u32, y: u32) -> f32 {
         self.in_row(self.row(y), x)
     }
+
+    /// The depth `(dx, dy)` pixels from the centre of pixel `(x, y)` (a
+    /// multisample's offset), clamped as [`in_row`](Self::in_row). At
+    /// offset `(0, 0)` it is the very bits of [`at`](Self::at).
+    #[inline]
+    pub fn at_offset(&self, x: u32, y: u32, dx: f32, dy: f32) -> f32 {
+        let row = self.z_origin + self.dz_dy * ((i64::from(y) - self.origin_y) as f32 + dy);
+        self.in_row_at_offset(row, (i64::from(x) - self.origin_x) as f32 + dx)
+    }
 }
 
 /// A triangle as the fragment stage needs it: which vertices, and its

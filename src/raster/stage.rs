@@ -181,27 +181,6 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
         self.target.rect()
     }
 
-    /// Interpolation weights for the varyings from screen-space weights.
-    #[inline]
-    fn varying_weights<const N: usize>(&self, screen: [f32; N], v: &[ShadedVertex; N]) -> [f32; N] {
-        match self.interpolation {
-            Interpolation::Linear => screen,
-            Interpolation::PerspectiveCorrect => {
-                let mut w = [0.0; N];
-                let mut sum = 0.0;
-                for i in 0..N {
-                    w[i] = screen[i] * v[i].inv_w;
-                    sum += w[i];
-                }
-                if sum > 0.0 {
-                    w.map(|wi| wi / sum)
-                } else {
-                    screen
-                }
-            }
-        }
-    }
-
     /// When triangle `id` is not the one whose fragments came last: asks
     /// for the vertices, and the first depth and colour, of the triangle
     /// [`PREFETCH_AHEAD`] ids further on, so that they are in the cache
@@ -272,26 +251,6 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
         Some([a?, b?, c?])
     }
 
-    /// The shader's input for a sample that passed the depth test.
-    #[inline]
-    fn fragment_input<const N: usize>(&self, s: &Sample<N>) -> FragmentInput {
-        let weights = self.varying_weights(s.screen, &s.vertices);
-        FragmentInput {
-            x: s.x,
-            y: s.y,
-            depth: s.depth,
-            varyings: Varyings::weighted(&s.vertices.map(|v| v.varyings), weights),
-            flat: s.vertices[0].varyings,
-            primitive: s.primitive,
-        }
-    }
-
-    /// The shader's colour for `input`, clamped to `[0, 1]`.
-    #[inline]
-    fn color_of(&self, input: &FragmentInput) -> Vec4 {
-        self.shader.shade(input).clamp(Vec4::ZERO, Vec4::ONE)
-    }
-
     /// Counts a fragment of depth `z` at pixel `(x, y)` and depth-tests it;
     /// the pixel's buffer index when it passes.
     #[inline(always)]
@@ -315,7 +274,7 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
     /// dragon's diffuse raster took 33.1 ms a frame instead of 22.9).
     #[inline(always)]
     fn write<const N: usize>(&mut self, idx: usize, s: Sample<N>) {
-        let color = self.color_of(&self.fragment_input(&s));
+        let color = color_of(self.shader, self.interpolation, &s);
         self.target.color[idx] = if s.coverage >= 1.0 {
             to_rgba8(color)
         } else {
@@ -512,6 +471,72 @@ impl vector::Kernel for SpanFill<'_> {
     }
 }
 
+/// Interpolation weights for the varyings from screen-space weights.
+#[inline]
+fn varying_weights<const N: usize>(
+    interpolation: Interpolation,
+    screen: [f32; N],
+    v: &[ShadedVertex; N],
+) -> [f32; N] {
+    match interpolation {
+        Interpolation::Linear => screen,
+        Interpolation::PerspectiveCorrect => {
+            let mut w = [0.0; N];
+            let mut sum = 0.0;
+            for i in 0..N {
+                w[i] = screen[i] * v[i].inv_w;
+                sum += w[i];
+            }
+            if sum > 0.0 {
+                w.map(|wi| wi / sum)
+            } else {
+                screen
+            }
+        }
+    }
+}
+
+/// The shader's colour for a sample that passed the depth test, clamped
+/// to `[0, 1]`.
+#[inline(always)]
+fn color_of<S: FragmentShader + ?Sized, const N: usize>(
+    shader: &S,
+    interpolation: Interpolation,
+    s: &Sample<N>,
+) -> Vec4 {
+    let weights = varying_weights(interpolation, s.screen, &s.vertices);
+    let input = FragmentInput {
+        x: s.x,
+        y: s.y,
+        depth: s.depth,
+        varyings: Varyings::weighted(&s.vertices.map(|v| v.varyings), weights),
+        flat: s.vertices[0].varyings,
+        primitive: s.primitive,
+    };
+    shader.shade(&input).clamp(Vec4::ZERO, Vec4::ONE)
+}
+
+/// The colour `shader` gives triangle fragment `f` of a triangle with
+/// `vertices`, at depth `depth`: steps 4 to 6 of the stage, as
+/// [`FragmentStage`] runs them. The multisampled stage shades once per
+/// pixel with it, at the pixel centre, whose edge values `f` carries
+/// even when the centre lies outside the triangle (the barycentrics are
+/// then extrapolated, as the APIs do).
+#[inline]
+pub(crate) fn shade_triangle_fragment<S: FragmentShader + ?Sized>(
+    shader: &S,
+    interpolation: Interpolation,
+    vertices: [ShadedVertex; 3],
+    depth: f32,
+    f: &TriangleFragment,
+) -> [u8; 4] {
+    to_rgba8(color_of(
+        shader,
+        interpolation,
+        &Sample::of_triangle(depth, vertices, f),
+    ))
+}
+
 /// A fragment that passed the depth test, with what shading it needs.
 struct Sample<const N: usize> {
     x: u32,
@@ -583,8 +608,13 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
                     return;
                 };
                 let depth = plane.at(first.x, first.y);
-                let input = self.fragment_input(&Sample::of_triangle(depth, vertices, &first));
-                let color = to_rgba8(self.color_of(&input));
+                let color = shade_triangle_fragment(
+                    self.shader,
+                    self.interpolation,
+                    vertices,
+                    depth,
+                    &first,
+                );
                 self.span_colour = Some((span.triangle, color));
                 color
             }

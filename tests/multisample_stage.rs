@@ -1,0 +1,202 @@
+//! The multisampled fragment stage: with one sample it is the one-sample
+//! stage bit for bit; with 4, 8 and 16 every back-end gives the same
+//! samples and the same resolved image; each sample keeps the colour of
+//! the nearest triangle covering it (depth tested per sample, ties to the
+//! first drawn); shading happens once per pixel, at its centre.
+
+mod common;
+
+use common::*;
+use glam::Vec4;
+use proptest::prelude::*;
+use rasterlab::geometry::{draw, setup_triangles, Geometry};
+use rasterlab::raster::{
+    draw_multisampled, reference_masks, triangle_backends, DepthState, FillRule, FixedPoint,
+    Gouraud, Interpolation, MultisampleTarget, RenderTarget, SamplePattern, ShadedVertex,
+    SAMPLE_COUNTS,
+};
+
+const LERP: Interpolation = Interpolation::PerspectiveCorrect;
+
+/// A vertex of colour `rgb` at depth `z`.
+fn vertex(z: f32, rgb: [f32; 3]) -> ShadedVertex {
+    ShadedVertex::flat(z, Vec4::new(rgb[0], rgb[1], rgb[2], 1.0))
+}
+
+/// Triangles with a colour and depth per vertex, 1 to 6 of them.
+fn shaded_soup() -> impl Strategy<Value = Vec<([FixedPoint; 3], [ShadedVertex; 3])>> {
+    let channel = 0.0f32..=1.0;
+    let v = (0.05f32..0.95, [channel.clone(), channel.clone(), channel])
+        .prop_map(|(z, c)| vertex(z, c));
+    let p = point(-4.0, SIZE as f32 + 4.0, Some(1.0 / 16.0));
+    proptest::collection::vec(
+        ([p.clone(), p.clone(), p], [v.clone(), v.clone(), v]),
+        1..=6,
+    )
+}
+
+/// The set-ups of `soup` under the top-left rule and their stage data.
+fn setup(soup: &[([FixedPoint; 3], [ShadedVertex; 3])]) -> Geometry {
+    let triangles: Vec<[FixedPoint; 3]> = soup.iter().map(|(t, _)| *t).collect();
+    let vertices: Vec<[ShadedVertex; 3]> = soup.iter().map(|(_, v)| *v).collect();
+    Geometry::of_screen_triangles(setup_triangles(&triangles, FillRule::TopLeft), &vertices)
+}
+
+/// `geometry` drawn with Gouraud shading by every back-end on `pattern`:
+/// the first back-end's target, after checking the others give the same.
+fn multisampled(geometry: &Geometry, pattern: SamplePattern) -> Result<MultisampleTarget, String> {
+    let mut first: Option<MultisampleTarget> = None;
+    for b in triangle_backends() {
+        let mut target = MultisampleTarget::new(SIZE, SIZE, pattern).unwrap();
+        let (setups, data) = (&geometry.setups, &geometry.shaded);
+        draw_multisampled(
+            setups,
+            data,
+            *b,
+            &Gouraud,
+            DepthState::DEFAULT,
+            LERP,
+            &mut target,
+        );
+        match &first {
+            None => first = Some(target),
+            Some(f) if *f != target => {
+                return Err(format!(
+                    "{} draws other samples than the first back-end",
+                    b.name()
+                ))
+            }
+            Some(_) => {}
+        }
+    }
+    Ok(first.expect("there are back-ends"))
+}
+
+proptest! {
+    #![proptest_config(crate::common::proptest_config(200, "tests/proptest-regressions/multisample_stage.txt"))]
+
+    /// One sample: the resolved colour and depth buffers are those of the
+    /// one-sample stage, bit for bit, for every back-end.
+    #[test]
+    fn one_sample_is_the_one_sample_stage(soup in shaded_soup()) {
+        let geometry = setup(&soup);
+        let target = multisampled(&geometry, SamplePattern::standard(1).unwrap())
+            .map_err(TestCaseError::fail)?;
+        let mut one = RenderTarget::without_coverage(SIZE, SIZE).unwrap();
+        draw(&geometry, triangle_backends()[0], &Gouraud, DepthState::DEFAULT, LERP, &mut one);
+        let resolved = target.resolve();
+        prop_assert_eq!(&resolved.color, &one.color);
+        prop_assert_eq!(&resolved.depth, &one.depth);
+    }
+
+    /// Constant depth and one colour per triangle: each sample holds the
+    /// colour of the nearest triangle covering it by the reference masks
+    /// (the first drawn among equals, as `less` keeps it), or the clear
+    /// colour; every back-end gives the same samples.
+    #[test]
+    fn each_sample_keeps_its_nearest_triangle(
+        soup in shaded_soup(),
+        count in proptest::sample::select(&SAMPLE_COUNTS[1..]),
+        mirrored in any::<bool>(),
+    ) {
+        let flat: Vec<_> = soup.iter().map(|(t, v)| (*t, [v[0]; 3])).collect();
+        let geometry = setup(&flat);
+        let mut pattern = SamplePattern::standard(count).unwrap();
+        if mirrored {
+            pattern = pattern.mirrored_y();
+        }
+        let target = multisampled(&geometry, pattern).map_err(TestCaseError::fail)?;
+        let n = count as usize;
+        let mut expected = vec![(RenderTarget::FAR_DEPTH, RenderTarget::BLACK); (SIZE * SIZE) as usize * n];
+        for m in reference_masks(&geometry.setups, viewport(), &pattern) {
+            let v = flat[m.triangle as usize].1[0];
+            let colour = rasterlab::raster::to_rgba8(v.varyings.color);
+            for i in 0..n {
+                let slot = &mut expected[(m.y as usize * SIZE as usize + m.x as usize) * n + i];
+                if m.mask & (1 << i) != 0 && v.depth < slot.0 {
+                    *slot = (v.depth, colour);
+                }
+            }
+        }
+        for (k, (depth, colour)) in expected.iter().enumerate() {
+            prop_assert_eq!(target.color[k], *colour, "sample {} of pixel {}", k % n, k / n);
+            prop_assert_eq!(target.depth[k], *depth, "sample {} of pixel {}", k % n, k / n);
+        }
+    }
+}
+
+/// A Gouraud triangle alone: a pixel whose centre it covers has, in each
+/// covered sample, the colour the one-sample stage gives the pixel, and
+/// the clear colour in the others; the resolve is the mean, rounded.
+#[test]
+fn shading_is_once_per_pixel_at_its_centre() {
+    let p = |x: f32, y: f32| FixedPoint::snap(x, y).unwrap();
+    let triangle = [p(1.3, 0.7), p(33.1, 9.4), p(7.9, 36.2)];
+    let colours = [[1.0, 0.2, 0.0], [0.0, 0.9, 0.3], [0.1, 0.0, 1.0]];
+    let soup = [(triangle, [0, 1, 2].map(|i| vertex(0.5, colours[i])))];
+    let geometry = setup(&soup);
+    let mut one = RenderTarget::without_coverage(SIZE, SIZE).unwrap();
+    draw(
+        &geometry,
+        triangle_backends()[0],
+        &Gouraud,
+        DepthState::DEFAULT,
+        LERP,
+        &mut one,
+    );
+    let pattern = SamplePattern::standard(8).unwrap();
+    let target = multisampled(&geometry, pattern).unwrap();
+    let resolved = target.resolve();
+    let masks = reference_masks(&geometry.setups, viewport(), &pattern);
+    let mut partial = 0;
+    for m in &masks {
+        let (x, y) = (m.x as u32, m.y as u32);
+        let centre = one.color[one.index(x, y)];
+        if centre == RenderTarget::BLACK {
+            continue;
+        }
+        let base = target.index(x, y);
+        for i in 0..8 {
+            let want = if m.mask & (1 << i) != 0 {
+                centre
+            } else {
+                RenderTarget::BLACK
+            };
+            assert_eq!(
+                target.color[base + i],
+                want,
+                "sample {i} of pixel ({x}, {y})"
+            );
+        }
+        let covered = m.mask.count_ones();
+        partial += usize::from(covered < 8);
+        let mean = centre.map(|c| ((u32::from(c) * covered + 4) / 8) as u8);
+        assert_eq!(
+            resolved.color[resolved.index(x, y)][..3],
+            mean[..3],
+            "pixel ({x}, {y})"
+        );
+    }
+    assert!(
+        partial > 20,
+        "the edges cross {partial} pixels whose centre is inside"
+    );
+}
+
+/// A target beyond the sample budget is refused with the memory it
+/// would take, never allocated.
+#[test]
+fn a_huge_multisample_target_is_refused_with_its_size() {
+    let pattern = SamplePattern::standard(16).unwrap();
+    let err = MultisampleTarget::new(16_384, 16_384, pattern)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("34.4 GB") && err.contains("fewer samples"),
+        "{err}"
+    );
+    assert!(MultisampleTarget::new(0, 4, pattern).is_err());
+    // Within the budget: a full HD frame at 16 samples.
+    let target = MultisampleTarget::new(1920, 1080, pattern).unwrap();
+    assert_eq!(target.color.len(), 1920 * 1080 * 16);
+}
