@@ -2,12 +2,12 @@
 //! scene drawn to a PNG file, with the time per frame
 //! ([`rasterlab::measure::render_request`]).
 
-use super::args::Size;
+use super::args::{msaa, Size};
 use super::print::progress_bar;
 use clap::Args;
 use rasterlab::geometry::{CullMode, FrontFace, Shading};
 use rasterlab::measure::{MeshOverrides, RenderInput, RenderRequest};
-use rasterlab::raster::{DepthState, FillRule, Filter, Interpolation};
+use rasterlab::raster::{DepthState, FillRule, Filter, Interpolation, SamplePattern};
 use rasterlab::{Error, Result};
 use std::path::PathBuf;
 
@@ -51,6 +51,11 @@ pub struct RenderArgs {
     /// (the file is loaded once).
     #[arg(long, default_value_t = 1)]
     frames: u32,
+    /// Multisample triangles on the standard pattern of N samples (1, 2,
+    /// 4, 8 or 16): depth per sample, shading once per pixel, the samples
+    /// averaged into the image.
+    #[arg(long, value_name = "N", value_parser = msaa)]
+    msaa: Option<SamplePattern>,
     #[command(flatten)]
     mesh: MeshArgs,
 }
@@ -119,6 +124,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         frames: args.frames,
         scale: args.scale,
         force: args.force,
+        msaa: args.msaa,
         ..RenderRequest::new(input, &args.out)
     };
     let bar = progress_bar(u64::from(args.frames), "frames");

@@ -26,6 +26,7 @@ use crate::geometry::pipeline::{
 };
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
+use crate::raster::multisample_stage::{draw_multisampled, MultisampleTarget};
 use crate::raster::primitive::ShadedLine;
 use crate::raster::shader::DirectionalLight;
 use crate::raster::shader::FragmentShader;
@@ -423,6 +424,87 @@ impl MeshRenderer {
         drop(reused);
         Ok(FrameStats {
             geometry: geometry_stats,
+            work,
+            geometry_time,
+            raster_time,
+            times: FrameTimes::new(frame_start.elapsed(), None, geometry_time, raster_time),
+        })
+    }
+
+    /// Clears `target` and renders one frame into it multisampled, on the
+    /// target's sample pattern ([`draw_multisampled`]): the set-up keeps
+    /// every triangle that may cover a sample, not only a pixel centre,
+    /// and the draw runs on one thread. Resolve the target for the image.
+    ///
+    /// Errors if `target` is not the size of the settings, and with a
+    /// wireframe (lines are not multisampled).
+    ///
+    /// ```
+    /// use rasterlab::geometry::{Mesh, MeshRenderer, RenderSettings};
+    /// use rasterlab::raster::{triangle_backend, MultisampleTarget, SamplePattern};
+    /// use std::path::Path;
+    ///
+    /// let bunny = Mesh::load(Path::new("assets/bunny.ply")).unwrap();
+    /// let settings = RenderSettings { width: 64, height: 48, ..RenderSettings::default() };
+    /// let renderer = MeshRenderer::new(&bunny, settings).unwrap();
+    /// let mut target = MultisampleTarget::new(64, 48, SamplePattern::standard(4).unwrap()).unwrap();
+    /// renderer.render_multisampled_into(triangle_backend("tiled").unwrap(), &mut target).unwrap();
+    /// let image = target.resolve();
+    /// assert_eq!((image.width(), image.height()), (64, 48));
+    /// ```
+    pub fn render_multisampled_into(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        target: &mut MultisampleTarget,
+    ) -> Result<FrameStats> {
+        let (width, height) = (self.settings.width, self.settings.height);
+        if (target.width(), target.height()) != (width, height) {
+            return Err(Error::InvalidArgument(format!(
+                "the target is {}x{}, the renderer draws {width}x{height}",
+                target.width(),
+                target.height()
+            )));
+        }
+        if self.settings.wireframe.is_some() {
+            return Err(Error::InvalidArgument(
+                "a wireframe is drawn with lines, which are not multisampled: leave out --wireframe or --msaa".into(),
+            ));
+        }
+        let frame_start = Instant::now();
+        let options = PipelineOptions {
+            multisample: true,
+            ..self.settings.pipeline
+        };
+        let geometry = pipeline::process_triangles(
+            &self.vertices,
+            &self.triangles,
+            &self.transform,
+            self.viewport(),
+            &options,
+        )?;
+        let geometry_time = frame_start.elapsed();
+        let start = Instant::now();
+        target.clear(self.settings.background);
+        let (setups, data) = (&geometry.setups, &geometry.shaded);
+        let (depth, lerp) = (self.settings.depth, self.settings.interpolation);
+        let work = match &self.shader {
+            MeshShader::Flat(s) => draw_multisampled(setups, data, backend, s, depth, lerp, target),
+            MeshShader::Gouraud(s) => {
+                draw_multisampled(setups, data, backend, s, depth, lerp, target)
+            }
+            MeshShader::Diffuse(s) => {
+                draw_multisampled(setups, data, backend, s, depth, lerp, target)
+            }
+            MeshShader::Normals(s) => {
+                draw_multisampled(setups, data, backend, s, depth, lerp, target)
+            }
+            MeshShader::Texture(s) => {
+                draw_multisampled(setups, data, backend, s, depth, lerp, target)
+            }
+        };
+        let raster_time = start.elapsed();
+        Ok(FrameStats {
+            geometry: geometry.stats,
             work,
             geometry_time,
             raster_time,

@@ -25,6 +25,7 @@
 use crate::error::{Error, Result};
 use crate::geometry::input::{read_shapes, Shapes};
 use crate::geometry::mesh::Mesh;
+use crate::geometry::pipeline::Geometry;
 use crate::geometry::pipeline::{CullMode, FrontFace, GeometryStats, PipelineOptions};
 use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::geometry::scene::Scene2D;
@@ -34,6 +35,8 @@ use crate::raster::descriptor::{within_budget, WorkBudget};
 use crate::raster::edge::FillRule;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::LineSetup;
+use crate::raster::multisample::SamplePattern;
+use crate::raster::multisample_stage::{draw_multisampled, MultisampleTarget};
 use crate::raster::registry::{
     backend, default_line_backend, default_triangle_backend, line_backend, Backend,
 };
@@ -156,6 +159,10 @@ pub struct RenderRequest {
     /// Run even when the work is estimated beyond an hour's (the naive
     /// loop on a large mesh).
     pub force: bool,
+    /// Multisample triangles on this pattern through the multisampled
+    /// stage, and write the resolved image; `None`: one sample per pixel,
+    /// the one-sample stage.
+    pub msaa: Option<SamplePattern>,
     /// The PNG file written.
     pub out: PathBuf,
 }
@@ -174,6 +181,7 @@ impl RenderRequest {
             frames: 1,
             scale: 1,
             force: false,
+            msaa: None,
             out: out.as_ref().to_path_buf(),
         }
     }
@@ -236,7 +244,10 @@ impl RenderRequest {
         })?;
         let renderer = MeshRenderer::new(&mesh, settings)?;
         if !self.force {
-            let triangles = mesh.triangles.len() as u64 * u64::from(self.frames);
+            // A multisampled frame walks the triangles once per sample.
+            let passes = self.msaa.map_or(1, SamplePattern::count);
+            let triangles =
+                mesh.triangles.len() as u64 * u64::from(self.frames) * u64::from(passes);
             let pixels = u64::from(width) * u64::from(height);
             within_budget(&backend.descriptor(), triangles, pixels, WorkBudget::Run).map_err(
                 |e| match e {
@@ -250,18 +261,34 @@ impl RenderRequest {
         // One framebuffer, redrawn frame after frame as an application
         // does; coverage is not counted (nothing here reads it). The
         // per-frame buffers are readied (and timed) before the frames.
-        let mut target = RenderTarget::without_coverage(width, height)?;
-        let prepare_time = renderer.prepare()?;
         let mut times = Vec::with_capacity(self.frames as usize);
         let mut last = None;
-        for _ in 0..self.frames {
-            let stats = renderer.render_into(backend, &mut target)?;
-            times.push(stats.times);
-            last = Some(stats);
-            frame_done();
-        }
+        let prepare_time = match self.msaa {
+            None => {
+                let mut target = RenderTarget::without_coverage(width, height)?;
+                let prepare_time = renderer.prepare()?;
+                for _ in 0..self.frames {
+                    let stats = renderer.render_into(backend, &mut target)?;
+                    times.push(stats.times);
+                    last = Some(stats);
+                    frame_done();
+                }
+                target.save_png(&self.out)?;
+                prepare_time
+            }
+            Some(pattern) => {
+                let mut target = MultisampleTarget::new(width, height, pattern)?;
+                for _ in 0..self.frames {
+                    let stats = renderer.render_multisampled_into(backend, &mut target)?;
+                    times.push(stats.times);
+                    last = Some(stats);
+                    frame_done();
+                }
+                target.resolve().save_png(&self.out)?;
+                Duration::ZERO
+            }
+        };
         let last = last.expect("at least one frame");
-        target.save_png(&self.out)?;
         Ok(MeshReport {
             mesh: path.to_path_buf(),
             vertices: mesh.positions.len(),
@@ -272,6 +299,7 @@ impl RenderRequest {
             backend: backend.name().to_string(),
             width,
             height,
+            samples: self.msaa.map_or(1, SamplePattern::count),
             work: last.work,
             frames: self.frames,
             median: FrameTimes::median(&times).unwrap_or(last.times),
@@ -346,20 +374,54 @@ impl RenderRequest {
             Drawing::Triangles(_) => self.backend(default_triangle_backend().name())?,
             Drawing::Lines(..) => self.backend(default_line_backend().name())?,
         };
-        // An application's framebuffer: colour and depth, no coverage
-        // count (nothing here reads it).
-        let mut target = RenderTarget::without_coverage(width, height)?;
         let mut times = Vec::with_capacity(self.frames as usize);
         let mut work = WorkCounters::default();
-        for _ in 0..self.frames {
-            let (w, t) = drawing.frame(chosen, self.rule, self.depth, &mut target)?;
-            work = w;
-            times.push(t);
-            frame_done();
-        }
-        crate::output::write_png(&self.out, &target.to_image_scaled(self.scale))?;
+        let image = match (self.msaa, &drawing, chosen) {
+            (None, ..) => {
+                // An application's framebuffer: colour and depth, no
+                // coverage count (nothing here reads it).
+                let mut target = RenderTarget::without_coverage(width, height)?;
+                for _ in 0..self.frames {
+                    let (w, t) = drawing.frame(chosen, self.rule, self.depth, &mut target)?;
+                    work = w;
+                    times.push(t);
+                    frame_done();
+                }
+                target
+            }
+            (Some(pattern), Drawing::Triangles(scene), Backend::Triangle(b)) => {
+                let mut target = MultisampleTarget::new(width, height, pattern)?;
+                for _ in 0..self.frames {
+                    let start = Instant::now();
+                    let geometry =
+                        Geometry::of_screen_triangles(scene.setups(self.rule), &scene.vertices);
+                    let geometry_time = start.elapsed();
+                    let raster_start = Instant::now();
+                    target.clear(RenderTarget::BLACK);
+                    let (setups, data) = (&geometry.setups, &geometry.shaded);
+                    let lerp = Interpolation::PerspectiveCorrect;
+                    work = draw_multisampled(setups, data, b, &Flat, self.depth, lerp, &mut target);
+                    let raster = raster_start.elapsed();
+                    times.push(FrameTimes::new(start.elapsed(), None, geometry_time, raster));
+                    frame_done();
+                }
+                target.resolve()
+            }
+            (Some(_), Drawing::Lines(..), _) => {
+                return Err(Error::InvalidArgument(
+                    "--msaa multisamples triangles; a line set is drawn with lines, which are not multisampled".into(),
+                ))
+            }
+            (Some(_), Drawing::Triangles(_), _) => {
+                return Err(Error::InvalidArgument(
+                    "triangles are drawn by a triangle back-end (see `rasterlab backends`)".into(),
+                ))
+            }
+        };
+        crate::output::write_png(&self.out, &image.to_image_scaled(self.scale))?;
         Ok(DrawingReport {
             backend: name,
+            samples: self.msaa.map_or(1, SamplePattern::count),
             work,
             frames: self.frames,
             median: FrameTimes::median(&times).unwrap_or_default(),
@@ -442,6 +504,8 @@ pub struct MeshReport {
     pub width: u32,
     /// Target height.
     pub height: u32,
+    /// Samples per pixel (1 without multisampling).
+    pub samples: u32,
     /// The back-end's work (last frame).
     pub work: WorkCounters,
     /// Frames drawn.
@@ -457,6 +521,8 @@ pub struct MeshReport {
 pub struct DrawingReport {
     /// The back-end.
     pub backend: String,
+    /// Samples per pixel (1 without multisampling).
+    pub samples: u32,
     /// Its work (last frame).
     pub work: WorkCounters,
     /// Frames drawn.
@@ -489,8 +555,13 @@ impl fmt::Display for RenderReport {
                 )?;
                 writeln!(
                     f,
-                    "{} at {}x{}: {} samples tested, {} fragments",
-                    r.backend, r.width, r.height, r.work.samples_tested, r.work.fragments
+                    "{} at {}x{}{}: {} samples tested, {} fragments",
+                    r.backend,
+                    r.width,
+                    r.height,
+                    multisampled(r.samples),
+                    r.work.samples_tested,
+                    r.work.fragments
                 )?;
                 writeln!(f, "time per frame (median of {}): {}", r.frames, r.median)?;
                 writeln!(f, "wrote {}", r.out.display())
@@ -498,8 +569,9 @@ impl fmt::Display for RenderReport {
             RenderReport::Drawing(r) => {
                 writeln!(
                     f,
-                    "{}: {} primitives, {} samples tested, {} fragments -> {}",
+                    "{}{}: {} primitives, {} samples tested, {} fragments -> {}",
                     r.backend,
+                    multisampled(r.samples),
                     r.work.primitives,
                     r.work.samples_tested,
                     r.work.fragments,
@@ -511,5 +583,14 @@ impl fmt::Display for RenderReport {
                 Ok(())
             }
         }
+    }
+}
+
+/// ", N samples per pixel" after a multisampled draw's back-end.
+fn multisampled(samples: u32) -> String {
+    if samples > 1 {
+        format!(", {samples} samples per pixel")
+    } else {
+        String::new()
     }
 }

@@ -71,7 +71,9 @@ pub const MAX_TARGET_SAMPLES: u64 = 1 << 27;
 const CHUNK: usize = 4096;
 
 /// A colour and a depth buffer with a value per sample of each pixel.
-#[derive(Clone, Debug, PartialEq)]
+///
+/// Two targets are equal when their size, pattern and buffers are.
+#[derive(Clone, Debug)]
 pub struct MultisampleTarget {
     width: u32,
     height: u32,
@@ -81,6 +83,26 @@ pub struct MultisampleTarget {
     pub color: Vec<[u8; 4]>,
     /// Depth of each sample, laid out as `color`.
     pub depth: Vec<f32>,
+    /// The draw's buffers, kept from one draw to the next so that a frame
+    /// after the first allocates nothing.
+    scratch: Scratch,
+}
+
+impl PartialEq for MultisampleTarget {
+    fn eq(&self, other: &Self) -> bool {
+        (self.width, self.height, self.pattern) == (other.width, other.height, other.pattern)
+            && self.color == other.color
+            && self.depth == other.depth
+    }
+}
+
+/// What [`draw_multisampled`] fills and empties for each chunk of
+/// triangles.
+#[derive(Clone, Debug, Default)]
+struct Scratch {
+    list: FragmentList,
+    shifted: Vec<TriangleSetup>,
+    hits: Vec<u64>,
 }
 
 impl MultisampleTarget {
@@ -107,6 +129,7 @@ impl MultisampleTarget {
             pattern,
             color: vec![RenderTarget::BLACK; samples as usize],
             depth: vec![RenderTarget::FAR_DEPTH; samples as usize],
+            scratch: Scratch::default(),
         })
     }
 
@@ -183,12 +206,14 @@ pub fn draw_multisampled<S: FragmentShader + ?Sized>(
         primitives: setups.len() as u64,
         ..WorkCounters::default()
     };
-    let mut list = FragmentList::default();
-    let mut shifted = Vec::with_capacity(CHUNK.min(setups.len()));
-    // One entry per covered sample: the triangle's index in `setups`,
-    // its pixel and the sample, packed so that sorting puts a pixel's
-    // samples together and the triangles in order.
-    let mut hits: Vec<u64> = Vec::new();
+    let Scratch {
+        mut list,
+        mut shifted,
+        // One entry per covered sample: the triangle's index in `setups`,
+        // its pixel and the sample, packed so that sorting puts a pixel's
+        // samples together and the triangles in order.
+        mut hits,
+    } = std::mem::take(&mut target.scratch);
     for (c, chunk) in setups.chunks(CHUNK).enumerate() {
         let first = (c * CHUNK) as u64;
         hits.clear();
@@ -213,7 +238,9 @@ pub fn draw_multisampled<S: FragmentShader + ?Sized>(
                 index << 32 | u64::from(f.y) << 18 | u64::from(f.x) << 4 | i as u64
             }));
         }
-        hits.sort_unstable();
+        // Each pass gave its hits nearly in order, triangle by triangle:
+        // the stable sort finds those runs and merges them.
+        hits.sort();
         let mut k = 0;
         while k < hits.len() {
             let key = hits[k] >> 4;
@@ -238,6 +265,11 @@ pub fn draw_multisampled<S: FragmentShader + ?Sized>(
             );
         }
     }
+    target.scratch = Scratch {
+        list,
+        shifted,
+        hits,
+    };
     work
 }
 

@@ -48,4 +48,10 @@ pub struct PipelineOptions {
     pub cull: CullMode,
     /// Which winding faces the viewer.
     pub front_face: FrontFace,
+    /// Keep every triangle that may cover a sample of a multisample
+    /// pattern (any point of its pixels), not only a pixel centre: the
+    /// set-up for [`draw_multisampled`](crate::raster::draw_multisampled).
+    /// Triangles are then dropped only when their box, one pixel wider
+    /// each way, misses the viewport.
+    pub multisample: bool,
 }

@@ -629,7 +629,7 @@ mod tests {
             for cull in [CullMode::None, CullMode::Back, CullMode::Front] {
                 for front_face in [FrontFace::CounterClockwise, FrontFace::Clockwise] {
                     for rule in [FillRule::TopLeft, FillRule::BottomRight] {
-                        let options = PipelineOptions { rule, cull, front_face };
+                        let options = PipelineOptions { rule, cull, front_face, multisample: false };
                         let expected = geometry_with(Width::Baseline, &vertices, &triangles, &options);
                         for copy in vector::copies() {
                             let lanes = geometry_with(copy, &vertices, &triangles, &options);

@@ -139,10 +139,23 @@ impl Part {
             self.stats.culled += 1;
             return;
         }
-        let whole = TriangleSetup::sample_bounds(points);
+        let mut whole = TriangleSetup::sample_bounds(points);
+        if options.multisample {
+            // A sample lies within half a pixel of its centre.
+            whole = PixelRect {
+                x0: whole.x0 - 1,
+                y0: whole.y0 - 1,
+                x1: whole.x1 + 1,
+                y1: whole.y1 + 1,
+            };
+        }
         let bounds = whole.intersect(viewport);
         if bounds.is_empty() {
             self.stats.empty_bounds += 1;
+            return;
+        }
+        if options.multisample {
+            self.keep(vertices, points, depths, source, bounds, options);
             return;
         }
         // Most triangles of a dense mesh have a box of one to four pixel
@@ -412,7 +425,10 @@ impl<V, S: VertexShader<V>> vector::Kernel for Assemble<'_, '_, V, S> {
             part.stats.primitives += 8;
             // What `push` would have counted, for the triangles inside
             // the clip volume that the vector tests drop.
-            let Some(dropped) = triangles::classify(&rules, &corners) else {
+            // The vector tests drop what covers no pixel centre: not
+            // for a multisampled draw.
+            let lanes = (!options.multisample).then(|| triangles::classify(&rules, &corners));
+            let Some(dropped) = lanes.flatten() else {
                 for (i, t) in group.iter().enumerate() {
                     input.assemble_one(t, corners_of(t), source + i, pixels, part, &mut polygon);
                 }
