@@ -11,9 +11,9 @@ use glam::Vec4;
 use proptest::prelude::*;
 use rasterlab::geometry::{draw, setup_triangles, Geometry};
 use rasterlab::raster::{
-    draw_multisampled, reference_masks, triangle_backends, DepthState, FillRule, FixedPoint,
-    Gouraud, Interpolation, MultisampleTarget, RenderTarget, SamplePattern, ShadedVertex,
-    SAMPLE_COUNTS,
+    draw_multisampled, reference_masks, triangle_backends, DepthState, FillRule, FixedPoint, Flat,
+    FragmentShader, Gouraud, Interpolation, MultisampleTarget, RenderTarget, SamplePattern,
+    ShadedVertex, SAMPLE_COUNTS,
 };
 
 const LERP: Interpolation = Interpolation::PerspectiveCorrect;
@@ -42,9 +42,13 @@ fn setup(soup: &[([FixedPoint; 3], [ShadedVertex; 3])]) -> Geometry {
     Geometry::of_screen_triangles(setup_triangles(&triangles, FillRule::TopLeft), &vertices)
 }
 
-/// `geometry` drawn with Gouraud shading by every back-end on `pattern`:
-/// the first back-end's target, after checking the others give the same.
-fn multisampled(geometry: &Geometry, pattern: SamplePattern) -> Result<MultisampleTarget, String> {
+/// `geometry` drawn with `shader` by every back-end on `pattern`: the
+/// first back-end's target, after checking the others give the same.
+fn multisampled(
+    geometry: &Geometry,
+    shader: &dyn FragmentShader,
+    pattern: SamplePattern,
+) -> Result<MultisampleTarget, String> {
     let mut first: Option<MultisampleTarget> = None;
     for b in triangle_backends() {
         let mut target = MultisampleTarget::new(SIZE, SIZE, pattern).unwrap();
@@ -53,7 +57,7 @@ fn multisampled(geometry: &Geometry, pattern: SamplePattern) -> Result<Multisamp
             setups,
             data,
             *b,
-            &Gouraud,
+            shader,
             DepthState::DEFAULT,
             LERP,
             &mut target,
@@ -80,13 +84,14 @@ proptest! {
     #[test]
     fn one_sample_is_the_one_sample_stage(soup in shaded_soup()) {
         let geometry = setup(&soup);
-        let target = multisampled(&geometry, SamplePattern::standard(1).unwrap())
+        let target = multisampled(&geometry, &Gouraud, SamplePattern::standard(1).unwrap())
             .map_err(TestCaseError::fail)?;
-        let mut one = RenderTarget::without_coverage(SIZE, SIZE).unwrap();
+        let mut one = RenderTarget::new(SIZE, SIZE).unwrap();
         draw(&geometry, triangle_backends()[0], &Gouraud, DepthState::DEFAULT, LERP, &mut one);
         let resolved = target.resolve();
         prop_assert_eq!(&resolved.color, &one.color);
         prop_assert_eq!(&resolved.depth, &one.depth);
+        prop_assert_eq!(&resolved.coverage, &one.coverage);
     }
 
     /// Constant depth and one colour per triangle: each sample holds the
@@ -99,18 +104,22 @@ proptest! {
         count in proptest::sample::select(&SAMPLE_COUNTS[1..]),
         mirrored in any::<bool>(),
     ) {
+        // Flat shading: the first vertex's colour, exactly (Gouraud
+        // weights extrapolated to a centre outside the triangle need not
+        // sum to exactly 1).
         let flat: Vec<_> = soup.iter().map(|(t, v)| (*t, [v[0]; 3])).collect();
         let geometry = setup(&flat);
         let mut pattern = SamplePattern::standard(count).unwrap();
         if mirrored {
             pattern = pattern.mirrored_y();
         }
-        let target = multisampled(&geometry, pattern).map_err(TestCaseError::fail)?;
+        let target = multisampled(&geometry, &Flat, pattern).map_err(TestCaseError::fail)?;
         let n = count as usize;
         let mut expected = vec![(RenderTarget::FAR_DEPTH, RenderTarget::BLACK); (SIZE * SIZE) as usize * n];
         for m in reference_masks(&geometry.setups, viewport(), &pattern) {
             let v = flat[m.triangle as usize].1[0];
             let colour = rasterlab::raster::to_rgba8(v.varyings.color);
+
             for i in 0..n {
                 let slot = &mut expected[(m.y as usize * SIZE as usize + m.x as usize) * n + i];
                 if m.mask & (1 << i) != 0 && v.depth < slot.0 {
@@ -145,7 +154,7 @@ fn shading_is_once_per_pixel_at_its_centre() {
         &mut one,
     );
     let pattern = SamplePattern::standard(8).unwrap();
-    let target = multisampled(&geometry, pattern).unwrap();
+    let target = multisampled(&geometry, &Gouraud, pattern).unwrap();
     let resolved = target.resolve();
     let masks = reference_masks(&geometry.setups, viewport(), &pattern);
     let mut partial = 0;
@@ -307,6 +316,7 @@ fn a_mesh_multisampled_through_the_pipeline() {
     let resolved = target.resolve();
     assert_eq!(resolved.color, frame.target.color);
     assert_eq!(resolved.depth, frame.target.depth);
+    assert_eq!(resolved.coverage, frame.target.coverage);
 
     let four = SamplePattern::standard(4).unwrap();
     let mut first: Option<(MultisampleTarget, u64)> = None;
@@ -323,4 +333,49 @@ fn a_mesh_multisampled_through_the_pipeline() {
         pixels > frame.stats.work.fragments,
         "{pixels} pixels with a mask"
     );
+}
+
+/// `compare --msaa 4`: every back-end's resolved image equals the
+/// reference's, and the summary says the images are multisampled; a line
+/// set is refused.
+#[test]
+fn compare_msaa_finds_the_backends_agree() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let run = rasterlab(&[
+        "compare",
+        "assets/polygon.txt",
+        "--msaa",
+        "4",
+        "--samples",
+        "1",
+        "--out",
+        out,
+    ]);
+    let said = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{said}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(
+        said.starts_with("multisampled: 4 samples per pixel"),
+        "{said}"
+    );
+    let rows: Vec<&str> = said
+        .lines()
+        .skip_while(|l| !l.starts_with("back-end"))
+        .skip(1)
+        .take_while(|l| !l.starts_with("anti-aliasing"))
+        .collect();
+    assert_eq!(rows.len(), triangle_backends().len(), "{said}");
+    for row in rows {
+        assert!(
+            row.trim_end().ends_with(" 0"),
+            "differs from the reference: {row}"
+        );
+    }
+    let run = rasterlab(&["compare", "assets/lines.txt", "--msaa", "4", "--out", out]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("not multisampled"));
 }

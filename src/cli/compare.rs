@@ -1,7 +1,8 @@
 //! `rasterlab compare`: every back-end on one input, side by side in HTML.
 
-use super::args::Size;
+use super::args::{msaa, Size};
 use clap::Args;
+use rasterlab::raster::SamplePattern;
 use rasterlab::teaching::{compare, default_compare_size, CompareRequest};
 use rasterlab::Result;
 use std::path::PathBuf;
@@ -21,6 +22,11 @@ pub struct CompareArgs {
     /// Timed runs per back-end (the median is reported).
     #[arg(long, default_value = "3", value_parser = super::args::samples)]
     samples: usize,
+    /// Multisample triangles on the standard pattern of N samples (1, 2,
+    /// 4, 8 or 16): each back-end's resolved image, the grids with their
+    /// samples.
+    #[arg(long, value_name = "N", value_parser = msaa)]
+    msaa: Option<SamplePattern>,
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
@@ -34,6 +40,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         height,
         samples: args.samples,
         out: &args.out,
+        msaa: args.msaa,
     })?;
     super::print::out(summary)
 }

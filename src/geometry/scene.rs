@@ -11,6 +11,7 @@ use crate::geometry::pipeline::{draw_clearing, Geometry};
 use crate::raster::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::raster::fixed::FixedPoint;
 use crate::raster::fragment::{FragmentList, WorkCounters};
+use crate::raster::multisample_stage::{draw_multisampled, MultisampleTarget};
 use crate::raster::primitive::{ShadedVertex, TriangleData};
 use crate::raster::shader::FragmentShader;
 use crate::raster::stage::{FragmentStage, Interpolation};
@@ -280,6 +281,33 @@ impl Scene2D {
             Clear::all(background),
             target,
         );
+        let raster_time = raster_start.elapsed();
+        drop(geometry);
+        let times = FrameTimes::new(start.elapsed(), None, geometry_time, raster_time);
+        (work, times)
+    }
+
+    /// [`render_frame`](Self::render_frame) multisampled: the target
+    /// (of the scene's size) cleared to `background`, then the triangles
+    /// drawn through the multisampled stage on its pattern
+    /// ([`draw_multisampled`]). Resolve the target for the image.
+    pub fn render_frame_multisampled(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        rule: FillRule,
+        depth: DepthState,
+        shader: &dyn FragmentShader,
+        background: [u8; 4],
+        target: &mut MultisampleTarget,
+    ) -> (WorkCounters, FrameTimes) {
+        let start = Instant::now();
+        let geometry = Geometry::of_screen_triangles(self.setups(rule), &self.vertices);
+        let geometry_time = start.elapsed();
+        let raster_start = Instant::now();
+        target.clear(background);
+        let (setups, data) = (&geometry.setups, &geometry.shaded);
+        let lerp = Interpolation::PerspectiveCorrect;
+        let work = draw_multisampled(setups, data, backend, shader, depth, lerp, target);
         let raster_time = raster_start.elapsed();
         drop(geometry);
         let times = FrameTimes::new(start.elapsed(), None, geometry_time, raster_time);

@@ -25,7 +25,6 @@
 use crate::error::{Error, Result};
 use crate::geometry::input::{read_shapes, Shapes};
 use crate::geometry::mesh::Mesh;
-use crate::geometry::pipeline::Geometry;
 use crate::geometry::pipeline::{CullMode, FrontFace, GeometryStats, PipelineOptions};
 use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::geometry::scene::Scene2D;
@@ -36,7 +35,7 @@ use crate::raster::edge::FillRule;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::LineSetup;
 use crate::raster::multisample::SamplePattern;
-use crate::raster::multisample_stage::{draw_multisampled, MultisampleTarget};
+use crate::raster::multisample_stage::MultisampleTarget;
 use crate::raster::registry::{
     backend, default_line_backend, default_triangle_backend, line_backend, Backend,
 };
@@ -392,17 +391,16 @@ impl RenderRequest {
             (Some(pattern), Drawing::Triangles(scene), Backend::Triangle(b)) => {
                 let mut target = MultisampleTarget::new(width, height, pattern)?;
                 for _ in 0..self.frames {
-                    let start = Instant::now();
-                    let geometry =
-                        Geometry::of_screen_triangles(scene.setups(self.rule), &scene.vertices);
-                    let geometry_time = start.elapsed();
-                    let raster_start = Instant::now();
-                    target.clear(RenderTarget::BLACK);
-                    let (setups, data) = (&geometry.setups, &geometry.shaded);
-                    let lerp = Interpolation::PerspectiveCorrect;
-                    work = draw_multisampled(setups, data, b, &Flat, self.depth, lerp, &mut target);
-                    let raster = raster_start.elapsed();
-                    times.push(FrameTimes::new(start.elapsed(), None, geometry_time, raster));
+                    let (w, t) = scene.render_frame_multisampled(
+                        b,
+                        self.rule,
+                        self.depth,
+                        &Flat,
+                        RenderTarget::BLACK,
+                        &mut target,
+                    );
+                    work = w;
+                    times.push(t);
                     frame_done();
                 }
                 target.resolve()

@@ -83,6 +83,10 @@ pub struct MultisampleTarget {
     pub color: Vec<[u8; 4]>,
     /// Depth of each sample, laid out as `color`.
     pub depth: Vec<f32>,
+    /// Per pixel (`y * width + x`), how many triangles covered at least
+    /// one of its samples: the one-sample stage's coverage count, counted
+    /// before the depth test.
+    pub coverage: Vec<u16>,
     /// The draw's buffers, kept from one draw to the next so that a frame
     /// after the first allocates nothing.
     scratch: Scratch,
@@ -93,6 +97,7 @@ impl PartialEq for MultisampleTarget {
         (self.width, self.height, self.pattern) == (other.width, other.height, other.pattern)
             && self.color == other.color
             && self.depth == other.depth
+            && self.coverage == other.coverage
     }
 }
 
@@ -129,6 +134,7 @@ impl MultisampleTarget {
             pattern,
             color: vec![RenderTarget::BLACK; samples as usize],
             depth: vec![RenderTarget::FAR_DEPTH; samples as usize],
+            coverage: vec![0; width as usize * height as usize],
             scratch: Scratch::default(),
         })
     }
@@ -153,19 +159,22 @@ impl MultisampleTarget {
         (y as usize * self.width as usize + x as usize) * self.pattern.count() as usize
     }
 
-    /// Every sample set to `color` and the far depth.
+    /// Every sample set to `color` and the far depth, every coverage
+    /// count to 0.
     pub fn clear(&mut self, color: [u8; 4]) {
         self.color.fill(color);
         self.depth.fill(RenderTarget::FAR_DEPTH);
+        self.coverage.fill(0);
     }
 
     /// The image: each pixel's colour the mean of its samples' (a box
     /// filter), each channel rounded to nearest; its depth the nearest of
-    /// its samples'. The target returned counts no coverage.
+    /// its samples'; its coverage count as drawn.
     pub fn resolve(&self) -> RenderTarget {
         let n = self.pattern.count() as usize;
-        let mut image = RenderTarget::without_coverage(self.width, self.height)
+        let mut image = RenderTarget::new(self.width, self.height)
             .expect("the size was checked when the target was made");
+        image.coverage.copy_from_slice(&self.coverage);
         for (pixel, (colors, depths)) in self
             .color
             .chunks_exact(n)
@@ -291,6 +300,8 @@ fn shade_pixel<S: FragmentShader + ?Sized>(
     let Some(t) = data.triangles.get(setup.id as usize) else {
         return;
     };
+    let pixel = y as usize * target.width as usize + x as usize;
+    target.coverage[pixel] = target.coverage[pixel].saturating_add(1);
     let base = target.index(x, y);
     let mut passed = 0u32;
     let mut depths = [0.0f32; 16];

@@ -11,6 +11,7 @@
 //!     height: 64,
 //!     samples: 3,
 //!     out: Path::new("compare-output"),
+//!     msaa: None,
 //! })
 //! .unwrap();
 //! print!("{summary}");
@@ -21,6 +22,7 @@ use crate::geometry::input::{read_shapes, Shapes};
 use crate::geometry::mesh::Mesh;
 use crate::geometry::scene::Scene2D;
 use crate::raster::line::LineSetup;
+use crate::raster::multisample::SamplePattern;
 use crate::teaching::report::{CompareInput, Report};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -38,6 +40,9 @@ pub struct CompareRequest<'a> {
     pub samples: usize,
     /// The folder the report (`index.html`) is written to.
     pub out: &'a Path,
+    /// Multisample the triangles on this pattern (`--msaa N`); `None`:
+    /// one sample per pixel.
+    pub msaa: Option<SamplePattern>,
 }
 
 /// The comparison, and where its report was written.
@@ -75,7 +80,8 @@ pub fn compare(request: &CompareRequest<'_>) -> Result<CompareSummary> {
     // output directory, which is checked (and created) before the work.
     let input = load(request.input, width, height)?;
     crate::output::check_dir(request.out)?;
-    let report = Report::compare(&input, width, height, request.samples)?;
+    let report =
+        Report::compare_multisampled(&input, width, height, request.samples, request.msaa)?;
     let path = report.write(request.out)?;
     Ok(CompareSummary { report, path })
 }
@@ -96,6 +102,13 @@ fn load(path: &Path, width: u32, height: u32) -> Result<CompareInput> {
 impl fmt::Display for CompareSummary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let report = &self.report;
+        if report.samples_per_pixel > 1 {
+            writeln!(
+                f,
+                "multisampled: {} samples per pixel, the images resolved by a box filter",
+                report.samples_per_pixel
+            )?;
+        }
         writeln!(f, "reference: {}", report.reference_note)?;
         writeln!(
             f,

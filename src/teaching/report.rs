@@ -50,12 +50,14 @@ use crate::raster::descriptor::{within_budget, WorkBudget};
 use crate::raster::edge::FillRule;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::LineSetup;
+use crate::raster::multisample::SamplePattern;
+use crate::raster::multisample_stage::MultisampleTarget;
 use crate::raster::registry::{
     default_triangle_backend, fallback_triangle_backend, line_backends, reference_triangle_backend,
     triangle_backends,
 };
 use crate::raster::shader::Flat;
-use crate::raster::target::RenderTarget;
+use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use crate::teaching::grid_picture::{GridPicture, GAP, OVERDRAWN, OVERDRAWN_MORE};
 use crate::teaching::palette::{self, Legend, Role};
@@ -229,6 +231,9 @@ pub struct Report {
     pub reference: &'static str,
     /// Why it is the reference (and what was left out, if anything).
     pub reference_note: String,
+    /// Samples per pixel the triangles were drawn with (1 without
+    /// multisampling).
+    pub samples_per_pixel: u32,
     /// True for a line set: no fill rules apply.
     pub lines: bool,
     /// One entry per back-end, the reference first.
@@ -338,6 +343,29 @@ impl Report {
         height: u32,
         samples: usize,
     ) -> Result<Report> {
+        Self::compare_multisampled(input, width, height, samples, None)
+    }
+
+    /// [`compare`](Self::compare), each triangle back-end drawing through
+    /// the multisampled stage on `msaa`'s pattern when it is given (the
+    /// images are the resolved ones, and the grid pictures show the
+    /// samples). Lines are not multisampled: a line set is refused.
+    pub fn compare_multisampled(
+        input: &CompareInput,
+        width: u32,
+        height: u32,
+        samples: usize,
+        msaa: Option<SamplePattern>,
+    ) -> Result<Report> {
+        if let (Some(_), CompareInput::Lines(_)) = (msaa, input) {
+            return Err(Error::InvalidArgument(
+                "--msaa multisamples triangles; a line set is drawn with lines, which are not multisampled".into(),
+            ));
+        }
+        if let Some(pattern) = msaa {
+            // The sample buffers of one back-end at a time.
+            MultisampleTarget::new(width, height, pattern)?;
+        }
         RenderTarget::check_size(width, height)?;
         Self::check_memory(width, height)?;
         let pixels = u64::from(width) * u64::from(height);
@@ -357,8 +385,21 @@ impl Report {
                 };
                 description = format!("{} triangles", scene.triangles.len());
                 for b in triangle_backends_within_budget(pixels, scene.triangles.len()) {
-                    let (time, drawn) =
-                        median_time(samples, || scene.render(b, FillRule::TopLeft, &Flat));
+                    let (time, drawn) = median_time(samples, || match msaa {
+                        None => scene.render(b, FillRule::TopLeft, &Flat),
+                        Some(pattern) => {
+                            let mut target = MultisampleTarget::new(width, height, pattern)?;
+                            let (work, _) = scene.render_frame_multisampled(
+                                b,
+                                FillRule::TopLeft,
+                                DepthState::DEFAULT,
+                                &Flat,
+                                RenderTarget::BLACK,
+                                &mut target,
+                            );
+                            Ok((target.resolve(), work))
+                        }
+                    });
                     let (target, work) = drawn?;
                     runs.push(BackendRun::new(
                         b.name(),
@@ -375,6 +416,12 @@ impl Report {
                             width,
                             height,
                         )?;
+                        let picture = match &msaa {
+                            Some(pattern) => {
+                                picture.with_samples(&scene.triangles, FillRule::TopLeft, pattern)
+                            }
+                            None => picture,
+                        };
                         grids.push((b.name(), picture));
                     }
                 }
@@ -428,14 +475,21 @@ impl Report {
                 };
                 let renderer = MeshRenderer::new(mesh, settings(FillRule::TopLeft))?;
                 for b in triangle_backends_within_budget(pixels, mesh.triangles.len()) {
-                    let (time, frame) = median_time(samples, || renderer.render(b));
-                    let frame = frame?;
+                    let (time, frame) = median_time(samples, || match msaa {
+                        None => renderer.render(b).map(|f| (f.target, f.stats.work)),
+                        Some(pattern) => {
+                            let mut target = MultisampleTarget::new(width, height, pattern)?;
+                            let stats = renderer.render_multisampled_into(b, &mut target)?;
+                            Ok((target.resolve(), stats.work))
+                        }
+                    });
+                    let (target, work) = frame?;
                     runs.push(BackendRun::new(
                         b.name(),
                         b.description(),
-                        frame.stats.work,
+                        work,
                         time,
-                        frame.target,
+                        target,
                     ));
                 }
                 let scanline = default_triangle_backend();
@@ -480,12 +534,20 @@ impl Report {
         let pinwheel_rules = rule_pictures(pinwheel.width, pinwheel.height, |rule| {
             Ok(pinwheel.render(bbox, rule, &Flat)?.0.coverage)
         })?;
+        let description = match msaa {
+            Some(pattern) => format!(
+                "{description}, multisampled: {} samples per pixel on the standard pattern, resolved by a box filter",
+                pattern.count()
+            ),
+            None => description,
+        };
         Ok(Report {
             input: description,
             width,
             height,
             reference: runs[0].name,
             reference_note,
+            samples_per_pixel: msaa.map_or(1, SamplePattern::count),
             lines: matches!(input, CompareInput::Lines(_)),
             runs,
             rules,
