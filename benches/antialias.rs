@@ -27,11 +27,29 @@
 //! (conflation). The cost is each method's median time over the rounds
 //! (interleaved, one thread) per (pixel, triangle) pair of the exact
 //! area; tiny-skia's is its fill of the whole mesh.
+//!
+//! Then the cost of multisampling a mesh through the stage: the full
+//! Stanford dragon (871,414 triangles, from the data folder; the bundled
+//! small dragon when it is not there) rendered as `rasterlab render`
+//! draws it (640 x 480, diffuse, back faces culled, `scanline`), on one
+//! thread, with one sample through the one-sample stage and with 1, 2, 4,
+//! 8 and 16 samples through the multisampled stage, in interleaved
+//! rounds: each frame's median and its ratio to the one-sample frame (the
+//! median of the per-round ratios).
 
-use rasterlab::measure::{coverage_error, coverage_of, Coverage, Method, Table, METHODS};
-use rasterlab::raster::{default_triangle_backend, FillRule, FixedPoint, PixelRect};
+use rasterlab::geometry::{CullMode, Mesh, MeshRenderer, RenderSettings};
+use rasterlab::measure::{
+    coverage_error, coverage_of, find, Contender, Coverage, Method, Side, Table, Workload,
+    FULL_DRAGON, METHODS,
+};
+use rasterlab::raster::{
+    default_triangle_backend, FillRule, FixedPoint, MultisampleTarget, PixelRect, RenderTarget,
+    SamplePattern, SAMPLE_COUNTS,
+};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::sync::Mutex;
 use std::time::Instant;
 
 const W: u32 = 320;
@@ -158,6 +176,112 @@ fn median(samples: &mut [f64]) -> f64 {
     samples[samples.len() / 2]
 }
 
+/// The cost of multisampling the dragon, frame by frame, on one thread.
+fn multisampled_dragon(rounds: usize) {
+    let (name, path) = match find(FULL_DRAGON) {
+        Ok(path) => ("full dragon", path),
+        Err(why) => {
+            println!("{why}; the bundled small dragon instead");
+            let bundled = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+            (
+                "dragon_res4",
+                bundled.join("assets/dragon_vrip_res4.ply.gz"),
+            )
+        }
+    };
+    let mesh = Mesh::load(&path).expect("the dragon loads");
+    let mut settings = RenderSettings::default();
+    settings.pipeline.cull = CullMode::Back;
+    let renderer = MeshRenderer::new(&mesh, settings).expect("a renderer");
+    let backend = default_triangle_backend();
+    let (w, h) = (settings.width, settings.height);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a thread pool");
+    let pixels = Mutex::new(Vec::new());
+    let mut work = Workload::new(name);
+    let mut one = RenderTarget::without_coverage(w, h).expect("a target");
+    renderer.prepare().expect("the buffers");
+    work.add(Contender::new(
+        "one sample, one-sample stage",
+        Side::Rasterlab,
+        1,
+        move || pool.install(|| renderer_frame(&renderer, backend, &mut one)),
+    ));
+    for count in SAMPLE_COUNTS {
+        let pattern = SamplePattern::standard(count).expect("a standard count");
+        let mut target = MultisampleTarget::new(w, h, pattern).expect("a target");
+        let renderer = MeshRenderer::new(&mesh, settings).expect("a renderer");
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .expect("a thread pool");
+        let pixels = &pixels;
+        work.add(Contender::new(
+            &format!("MSAA {count}"),
+            Side::Rasterlab,
+            1,
+            move || {
+                pool.install(|| {
+                    let stats = renderer
+                        .render_multisampled_into(backend, &mut target)
+                        .expect("a frame");
+                    pixels
+                        .lock()
+                        .expect("not poisoned")
+                        .push((count, stats.work.fragments));
+                })
+            },
+        ));
+    }
+    let result = work.run(rounds);
+    let base = &result.figures[0].rounds_ms;
+    let mut table = Table::with_text_columns(
+        1,
+        &["frame", "median ms", "x one sample", "pixels with a mask"],
+    );
+    for figure in &result.figures {
+        let mut ratios: Vec<f64> = figure
+            .rounds_ms
+            .iter()
+            .zip(base)
+            .map(|(m, b)| m / b)
+            .collect();
+        let count: u32 = figure
+            .name
+            .strip_prefix("MSAA ")
+            .map_or(0, |c| c.parse().unwrap_or(0));
+        let masked = pixels
+            .lock()
+            .expect("not poisoned")
+            .iter()
+            .find(|(c, _)| *c == count)
+            .map_or("-".to_string(), |(_, p)| p.to_string());
+        table.row(vec![
+            figure.name.clone(),
+            format!("{:.1}", figure.spread.median_ms),
+            format!("{:.2}", median(&mut ratios)),
+            masked,
+        ]);
+    }
+    println!(
+        "{name} ({} triangles), {w}x{h}, diffuse, back faces culled, {}, one thread, {rounds} interleaved rounds (median)",
+        mesh.triangles.len(),
+        backend.name()
+    );
+    print!("{table}");
+}
+
+/// One frame of `renderer` into `target`, the one-sample stage.
+fn renderer_frame(
+    renderer: &MeshRenderer,
+    backend: &dyn rasterlab::raster::triangle::TriangleRasterizer,
+    target: &mut RenderTarget,
+) {
+    renderer.render_into(backend, target).expect("a frame");
+}
+
 fn main() {
     let mut rounds = 5usize;
     let mut args = std::env::args().skip(1);
@@ -239,4 +363,5 @@ fn main() {
         backend.name()
     );
     print!("{table}");
+    multisampled_dragon(rounds);
 }

@@ -194,6 +194,9 @@ pub struct MeshRenderer {
     /// The geometry buffers, filled again for each frame so that a frame
     /// allocates nothing for them once the first is drawn.
     geometry: Mutex<GeometryInParts>,
+    /// The same for multisampled frames, whose set-up keeps more
+    /// triangles and whose draw reads them as one array.
+    multisampled: Mutex<Geometry>,
 }
 
 /// The largest zoom a camera accepts: beyond it the view is a fraction of
@@ -290,6 +293,7 @@ impl MeshRenderer {
             transform,
             shader,
             geometry: Mutex::new(GeometryInParts::default()),
+            multisampled: Mutex::new(Geometry::default()),
         })
     }
 
@@ -475,13 +479,20 @@ impl MeshRenderer {
             multisample: true,
             ..self.settings.pipeline
         };
-        let geometry = pipeline::process_triangles(
+        // A renderer drawing from several threads at once gives the other
+        // threads buffers of their own.
+        let mut reused = self.multisampled.try_lock().ok();
+        let mut own = Geometry::default();
+        let geometry = reused.as_deref_mut().unwrap_or(&mut own);
+        pipeline::process_triangles_into(
+            geometry,
             &self.vertices,
             &self.triangles,
             &self.transform,
             self.viewport(),
             &options,
         )?;
+        let geometry = &*geometry;
         let geometry_time = frame_start.elapsed();
         let start = Instant::now();
         target.clear(self.settings.background);
