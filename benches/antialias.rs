@@ -36,16 +36,23 @@
 //! 8 and 16 samples through the multisampled stage, in interleaved
 //! rounds: each frame's median and its ratio to the one-sample frame (the
 //! median of the per-round ratios).
+//!
+//! cairo's anti-aliased fill is compared as tiny-skia's is, through
+//! pycairo (`examples/adapters/cairo_antialias.py`, its time measured in
+//! the script around the fills); without Python or pycairo its rows say
+//! why they are missing. Each mesh's error against cost is charted in
+//! `bench-output/antialias-MESH.svg`.
 
 use rasterlab::geometry::{CullMode, Mesh, MeshRenderer, RenderSettings};
 use rasterlab::measure::{
-    coverage_error, coverage_of, find, Contender, Coverage, Method, Side, Table, Workload,
-    FULL_DRAGON, METHODS,
+    coverage_error, coverage_of, find, Contender, Coverage, ErrorSummary, Method, Side, Table,
+    Workload, FULL_DRAGON, METHODS,
 };
 use rasterlab::raster::{
     default_triangle_backend, FillRule, FixedPoint, MultisampleTarget, PixelRect, RenderTarget,
     SamplePattern, SAMPLE_COUNTS,
 };
+use rasterlab::teaching::{antialias_chart_svg, ChartPoint};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -99,6 +106,9 @@ fn star() -> Vec<[FixedPoint; 3]> {
         .expect("the star triangulates")
 }
 
+/// A peer's picture: each pixel's alpha in `[0, 1]` by (row, column).
+type Picture = BTreeMap<(i64, i64), f64>;
+
 /// tiny-skia's anti-aliased fill of `triangles` into `pixmap`, each over
 /// the others.
 fn tiny_skia_fill(triangles: &[[FixedPoint; 3]], pixmap: &mut tiny_skia::Pixmap) {
@@ -128,7 +138,7 @@ fn tiny_skia_fill(triangles: &[[FixedPoint; 3]], pixmap: &mut tiny_skia::Pixmap)
 /// tiny-skia's coverage of each pixel by each triangle (each filled
 /// alone), and its picture (the mesh filled, each triangle over the
 /// others).
-fn tiny_skia_coverage(triangles: &[[FixedPoint; 3]]) -> (Vec<Coverage>, BTreeMap<(i64, i64), f64>) {
+fn tiny_skia_coverage(triangles: &[[FixedPoint; 3]]) -> (Vec<Coverage>, Picture) {
     let mut pixmap = tiny_skia::Pixmap::new(W, H).expect("a pixmap");
     let alpha = |pixmap: &tiny_skia::Pixmap, x: u32, y: u32| {
         f64::from(pixmap.pixel(x, y).expect("inside").alpha()) / 255.0
@@ -169,6 +179,69 @@ fn tiny_skia_coverage(triangles: &[[FixedPoint; 3]]) -> (Vec<Coverage>, BTreeMap
         }
     }
     (per_triangle, picture)
+}
+
+/// cairo's anti-aliased fill of `triangles` (`examples/adapters/cairo_antialias.py`,
+/// through pycairo): its coverage of each pixel by each triangle filled
+/// alone, its picture, and its median time to fill the mesh over
+/// `rounds`, in nanoseconds; or why it could not run.
+fn cairo_coverage(
+    triangles: &[[FixedPoint; 3]],
+    rounds: usize,
+) -> Result<(Vec<Coverage>, Picture, f64), String> {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let script =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/adapters/cairo_antialias.py");
+    let mut child = Command::new("python3")
+        .arg(&script)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("python3 did not start: {e}"))?;
+    let mut input = format!("{W} {H} {rounds}\n");
+    for t in triangles {
+        let p = t.map(|v| v.to_f64());
+        input.push_str(&format!(
+            "{} {} {} {} {} {}\n",
+            p[0].0, p[0].1, p[1].0, p[1].1, p[2].0, p[2].1
+        ));
+    }
+    child
+        .stdin
+        .take()
+        .expect("piped")
+        .write_all(input.as_bytes())
+        .map_err(|e| format!("writing to the cairo script: {e}"))?;
+    let output = child.wait_with_output().map_err(|e| e.to_string())?;
+    if !output.status.success() {
+        let err = String::from_utf8_lossy(&output.stderr);
+        return Err(err
+            .lines()
+            .last()
+            .unwrap_or("the cairo script failed")
+            .to_string());
+    }
+    let (mut per_triangle, mut picture, mut ns) = (Vec::new(), BTreeMap::new(), f64::NAN);
+    for line in String::from_utf8_lossy(&output.stdout).lines() {
+        let f: Vec<&str> = line.split(' ').collect();
+        let num = |i: usize| f[i].parse::<f64>().expect("a number from the cairo script");
+        match f[0] {
+            "time" => ns = num(1),
+            "t" => per_triangle.push(Coverage {
+                triangle: num(1) as u32,
+                x: num(2) as i64,
+                y: num(3) as i64,
+                value: num(4) / 255.0,
+            }),
+            "p" => {
+                picture.insert((num(2) as i64, num(1) as i64), num(3) / 255.0);
+            }
+            other => return Err(format!("the cairo script wrote {other:?}")),
+        }
+    }
+    Ok((per_triangle, picture, ns))
 }
 
 fn median(samples: &mut [f64]) -> f64 {
@@ -326,32 +399,75 @@ fn main() {
             tiny_skia_fill(&triangles, &mut pixmap);
             times[METHODS.len()].push(start.elapsed().as_secs_f64() * 1e9 / pairs);
         }
-        for (i, &method) in METHODS.iter().enumerate() {
-            let estimate = coverage_of(method, backend, &triangles, rect, rule).expect("coverage");
-            let (per_triangle, picture) = coverage_error(&estimate, &exact, None);
+        let mut points = Vec::new();
+        let mut add = |method: String,
+                       samples: String,
+                       errors: (ErrorSummary, ErrorSummary),
+                       ns: f64,
+                       peer: bool| {
+            let (per_triangle, picture) = errors;
             table.row(vec![
                 name.to_string(),
-                method.to_string(),
-                method.samples().to_string(),
+                method.clone(),
+                samples,
                 format!("{:.4}", per_triangle.rms),
                 format!("{:.3}", per_triangle.worst),
                 format!("{:.4}", picture.rms),
                 format!("{:.3}", picture.worst),
-                format!("{:.0}", median(&mut times[i])),
+                format!("{ns:.0}"),
             ]);
+            points.push(ChartPoint {
+                name: method,
+                ns_per_pair: ns,
+                rms: per_triangle.rms,
+                peer,
+            });
+        };
+        for (i, &method) in METHODS.iter().enumerate() {
+            let estimate = coverage_of(method, backend, &triangles, rect, rule).expect("coverage");
+            let samples = match method.samples() {
+                0 => "-".to_string(),
+                n => n.to_string(),
+            };
+            let errors = coverage_error(&estimate, &exact, None);
+            add(
+                method.to_string(),
+                samples,
+                errors,
+                median(&mut times[i]),
+                false,
+            );
         }
         let (per, picture_of) = tiny_skia_coverage(&triangles);
-        let (per_triangle, picture) = coverage_error(&per, &exact, Some(&picture_of));
-        table.row(vec![
-            name.to_string(),
+        let errors = coverage_error(&per, &exact, Some(&picture_of));
+        let ns = median(&mut times[METHODS.len()]);
+        add(
             "tiny-skia, anti-aliased".into(),
             "-".into(),
-            format!("{:.4}", per_triangle.rms),
-            format!("{:.3}", per_triangle.worst),
-            format!("{:.4}", picture.rms),
-            format!("{:.3}", picture.worst),
-            format!("{:.0}", median(&mut times[METHODS.len()])),
-        ]);
+            errors,
+            ns,
+            true,
+        );
+        match cairo_coverage(&triangles, rounds) {
+            Ok((per, picture_of, ns)) => {
+                let errors = coverage_error(&per, &exact, Some(&picture_of));
+                add(
+                    "cairo, anti-aliased".into(),
+                    "-".into(),
+                    errors,
+                    ns / pairs,
+                    true,
+                );
+            }
+            Err(why) => println!("cairo not compared on {name}: {why}"),
+        }
+        let chart = antialias_chart_svg(&format!("{name}, {W} x {H}, {rounds} rounds"), &points);
+        let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("bench-output");
+        let file = out.join(format!("antialias-{name}.svg"));
+        match std::fs::create_dir_all(&out).and_then(|()| std::fs::write(&file, chart)) {
+            Ok(()) => println!("{name}: chart written to {}", file.display()),
+            Err(e) => println!("{name}: chart not written to {}: {e}", file.display()),
+        }
         println!(
             "{name}: {} triangles, {} (pixel, triangle) pairs of the exact area",
             triangles.len(),

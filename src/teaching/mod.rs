@@ -28,6 +28,7 @@
 //! assert!(trace.to_text().ends_with("20 pixels tested, 9 fragments\n"));
 //! ```
 
+pub(crate) mod antialias_chart;
 pub(crate) mod ascii;
 pub(crate) mod compare;
 pub(crate) mod demo;
@@ -39,6 +40,7 @@ pub(crate) mod sample_trace;
 pub(crate) mod trace;
 pub(crate) mod trace_table;
 
+pub use antialias_chart::{antialias_chart_svg, ChartPoint};
 pub use ascii::{ascii_count, ascii_framed, ascii_mark, ascii_rows};
 pub use compare::{compare, default_compare_size, CompareRequest, CompareSummary};
 pub use demo::{bundled_assets, run_demo, DemoReport, DemoRow};

@@ -1,0 +1,225 @@
+//! The anti-aliasing chart: each method's error against its cost, one
+//! point a method, so the trade-off of the comparison's table can be seen
+//! at a glance.
+//!
+//! The error (up the page) is the root mean square, per triangle, of the
+//! method's coverage against the exact area ([`coverage_error`](crate::measure::coverage_error));
+//! the cost (across, on a log scale: the methods span two orders of
+//! magnitude) is the time per (pixel, triangle) pair of the exact area.
+//! rasterlab's methods are filled dots, the 2D libraries' anti-aliased
+//! fills (where measured) open ones; each point is named beside it.
+//!
+//! ```
+//! use rasterlab::teaching::{antialias_chart_svg, ChartPoint};
+//!
+//! let points = [
+//!     ChartPoint { name: "one sample".into(), ns_per_pair: 70.0, rms: 0.21, peer: false },
+//!     ChartPoint { name: "MSAA 4".into(), ns_per_pair: 220.0, rms: 0.08, peer: false },
+//!     ChartPoint { name: "cairo".into(), ns_per_pair: 44.0, rms: 0.011, peer: true },
+//! ];
+//! let svg = antialias_chart_svg("delaunay, 320 x 240", &points);
+//! assert!(svg.contains("MSAA 4") && svg.contains("class=\"legend\""));
+//! ```
+
+use crate::markup::Markup;
+use crate::teaching::palette::{Legend, Mark, Role};
+
+/// One method on the chart.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChartPoint {
+    /// The method's name, written beside its point.
+    pub name: String,
+    /// Its cost: nanoseconds per (pixel, triangle) pair of the exact area.
+    pub ns_per_pair: f64,
+    /// Its error: RMS per triangle against the exact area.
+    pub rms: f64,
+    /// A 2D library's fill rather than one of rasterlab's methods.
+    pub peer: bool,
+}
+
+const WIDTH: f64 = 760.0;
+const LEFT: f64 = 70.0;
+const RIGHT: f64 = 170.0;
+const TOP: f64 = 50.0;
+const PLOT_H: f64 = 300.0;
+
+/// The chart of `points` as an SVG picture, titled `title`, with its axes
+/// and a legend. Points whose cost is not a positive number are left out.
+pub fn antialias_chart_svg(title: &str, points: &[ChartPoint]) -> String {
+    let shown: Vec<&ChartPoint> = points
+        .iter()
+        .filter(|p| p.ns_per_pair > 0.0 && p.ns_per_pair.is_finite() && p.rms.is_finite())
+        .collect();
+    let plot_w = WIDTH - LEFT - RIGHT;
+    // Whole decades around the costs, the error from 0 to a round top.
+    let (lo, hi) = shown.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+        (lo.min(p.ns_per_pair), hi.max(p.ns_per_pair))
+    });
+    let (d0, d1) = if shown.is_empty() {
+        (1.0, 3.0)
+    } else {
+        (
+            lo.log10().floor(),
+            hi.log10().ceil().max(lo.log10().floor() + 1.0),
+        )
+    };
+    let top_error = shown.iter().map(|p| p.rms).fold(0.0, f64::max);
+    let y_max = (top_error * 10.0).ceil().max(1.0) / 10.0;
+    let x_of = |ns: f64| LEFT + (ns.log10() - d0) / (d1 - d0) * plot_w;
+    let y_of = |e: f64| TOP + PLOT_H - e / y_max * PLOT_H;
+    let one = |v: f64| format!("{v:.1}");
+    let method = Role::Drawn.rgb();
+    let peer = Role::Geometry.rgb();
+    let legend = Legend::default()
+        .with_mark(Role::Drawn, Mark::Fill, "rasterlab's methods")
+        .with_mark(
+            Role::Geometry,
+            Mark::Ring,
+            "2D libraries' anti-aliased fills",
+        );
+    let (legend_svg, legend_h) = legend.to_svg(LEFT, TOP + PLOT_H + 48.0, WIDTH - LEFT - 10.0);
+    let height = TOP + PLOT_H + 52.0 + legend_h;
+    let mut m = Markup::new();
+    m.open(
+        "svg",
+        &[
+            ("xmlns", &"http://www.w3.org/2000/svg"),
+            ("width", &WIDTH),
+            ("height", &height),
+            ("viewBox", &format_args!("0 0 {WIDTH} {height}")),
+            ("font-family", &"DejaVu Sans, sans-serif"),
+            ("font-size", &12),
+        ],
+    )
+    .newline();
+    m.empty(
+        "rect",
+        &[("width", &"100%"), ("height", &"100%"), ("fill", &"white")],
+    );
+    m.element(
+        "text",
+        &[
+            ("x", &10),
+            ("y", &22),
+            ("font-size", &15),
+            ("font-weight", &"bold"),
+        ],
+        &format!("Anti-aliasing: error against cost ({title})"),
+    )
+    .newline();
+    // The grid: decades across, tenths of the error up.
+    let bottom = TOP + PLOT_H;
+    let mut decade = d0;
+    while decade <= d1 {
+        let x = one(x_of(10f64.powf(decade)));
+        m.empty(
+            "line",
+            &[
+                ("x1", &x),
+                ("y1", &TOP),
+                ("x2", &x),
+                ("y2", &one(bottom)),
+                ("stroke", &"#ddd"),
+            ],
+        );
+        m.element(
+            "text",
+            &[
+                ("x", &x),
+                ("y", &one(bottom + 16.0)),
+                ("text-anchor", &"middle"),
+            ],
+            &format!("{}", 10f64.powf(decade)),
+        );
+        decade += 1.0;
+    }
+    let steps = (y_max * 10.0).round() as i32;
+    for k in 0..=steps {
+        let e = f64::from(k) / 10.0;
+        let y = one(y_of(e));
+        m.empty(
+            "line",
+            &[
+                ("x1", &LEFT),
+                ("y1", &y),
+                ("x2", &one(LEFT + plot_w)),
+                ("y2", &y),
+                ("stroke", &"#ddd"),
+            ],
+        );
+        m.element(
+            "text",
+            &[
+                ("x", &(LEFT - 6.0)),
+                ("y", &one(y_of(e) + 4.0)),
+                ("text-anchor", &"end"),
+            ],
+            &format!("{e:.1}"),
+        );
+    }
+    m.element(
+        "text",
+        &[
+            ("x", &one(LEFT + plot_w / 2.0)),
+            ("y", &one(bottom + 36.0)),
+            ("text-anchor", &"middle"),
+        ],
+        "cost: ns per (pixel, triangle) pair, log scale",
+    );
+    m.element(
+        "text",
+        &[
+            ("x", &16),
+            ("y", &one(TOP + PLOT_H / 2.0)),
+            ("text-anchor", &"middle"),
+            (
+                "transform",
+                &format_args!("rotate(-90 16 {})", one(TOP + PLOT_H / 2.0)),
+            ),
+        ],
+        "error: RMS per triangle against the exact area",
+    )
+    .newline();
+    // Labels are placed from the top down, each moved down below any
+    // earlier one it would overwrite.
+    let mut order: Vec<&&ChartPoint> = shown.iter().collect();
+    order.sort_by(|a, b| b.rms.total_cmp(&a.rms));
+    let mut placed: Vec<(f64, f64, f64)> = Vec::new();
+    for p in order {
+        let (x, y) = (x_of(p.ns_per_pair), y_of(p.rms));
+        let width = p.name.chars().count() as f64 * 7.0;
+        let mut label_y = y + 4.0;
+        while let Some(&(_, py, _)) = placed.iter().find(|&&(px, py, pw)| {
+            (label_y - py).abs() < 13.0 && x + 8.0 < px + pw && px < x + 8.0 + width
+        }) {
+            label_y = py + 13.0;
+        }
+        placed.push((x + 8.0, label_y, width));
+        let colour = crate::teaching::palette::colour_hex(if p.peer { peer } else { method });
+        let (fill, stroke) = if p.peer {
+            ("white", colour.as_str())
+        } else {
+            (colour.as_str(), colour.as_str())
+        };
+        m.empty(
+            "circle",
+            &[
+                ("cx", &one(x)),
+                ("cy", &one(y)),
+                ("r", &5),
+                ("fill", &fill),
+                ("stroke", &stroke),
+                ("stroke-width", &2),
+            ],
+        );
+        m.element(
+            "text",
+            &[("x", &one(x + 8.0)), ("y", &one(label_y))],
+            &p.name,
+        )
+        .newline();
+    }
+    m.raw(&legend_svg);
+    m.close("svg");
+    m.finish()
+}
