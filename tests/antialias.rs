@@ -190,3 +190,29 @@ fn compare_says_why_it_leaves_anti_aliasing_out() {
     let why = report.antialias_skipped.unwrap();
     assert!(why.contains("guard band when scaled by 8"), "{why}");
 }
+
+/// compare's anti-aliasing section charts every method of its table, one
+/// point each, with its cost and error, and names it.
+#[test]
+fn compare_charts_each_method_error_against_cost() {
+    use rasterlab::geometry::Scene2D;
+    use rasterlab::teaching::{CompareInput, Report};
+    let report =
+        Report::compare(&CompareInput::Triangles(Scene2D::split_square()), 16, 16, 1).unwrap();
+    let aa = report.antialias.as_ref().expect("compared");
+    assert!(aa.rows.iter().all(|r| r.ns_per_pair > 0.0));
+    let html = report.to_html();
+    let figure = html.find("<figure class=\"chart\">").expect("the chart");
+    let chart = &html[figure..figure + html[figure..].find("</figure>").unwrap()];
+    assert_eq!(
+        chart.matches("<circle class=\"point\"").count(),
+        aa.rows.len()
+    );
+    for r in &aa.rows {
+        assert!(
+            chart.contains(&format!(">{}</text>", r.name)),
+            "{} not named",
+            r.name
+        );
+    }
+}

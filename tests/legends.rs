@@ -470,6 +470,12 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
         for (k, entries) in legends.iter().enumerate() {
             checked(&format!("compare, legend {k}"), entries, &mut closest);
         }
+        // The anti-aliasing chart, a picture with its own legend.
+        let figure = html.find("<figure class=\"chart\">").expect("the chart");
+        let start = figure + html[figure..].find("<svg").unwrap();
+        let end = start + html[start..].find("</svg>").unwrap() + "</svg>".len();
+        let entries = legend_entries(&html[start..end]);
+        checked("compare, the anti-aliasing chart", &entries, &mut closest);
     }
 
     // check's report: the counterexample picture and its page. Two

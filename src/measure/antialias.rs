@@ -214,6 +214,10 @@ pub struct AntialiasRow {
     /// Over every pixel either covers, its triangles' coverage summed
     /// (at most 1).
     pub picture: ErrorSummary,
+    /// Its cost: the time it took, in nanoseconds per (pixel, triangle)
+    /// pair of the exact area (one run; `cargo bench --bench antialias`
+    /// gives medians).
+    pub ns_per_pair: f64,
 }
 
 /// The error of `estimate` against `exact`, per triangle and in the
@@ -277,10 +281,13 @@ pub fn compare_antialiasing(
     let rect = PixelRect::of_target(width, height);
     let backend = default_triangle_backend();
     let exact = coverage_of(Method::Area, backend, triangles, rect, rule)?;
+    let pairs = exact.len().max(1) as f64;
     METHODS
         .iter()
         .map(|&method| {
+            let start = std::time::Instant::now();
             let estimate = coverage_of(method, backend, triangles, rect, rule)?;
+            let ns_per_pair = start.elapsed().as_secs_f64() * 1e9 / pairs;
             let (per_triangle, picture) = coverage_error(&estimate, &exact, None);
             Ok(AntialiasRow {
                 method,
@@ -288,6 +295,7 @@ pub fn compare_antialiasing(
                 samples: method.samples(),
                 per_triangle,
                 picture,
+                ns_per_pair,
             })
         })
         .collect()

@@ -204,6 +204,7 @@ pub fn antialias_chart_svg(title: &str, points: &[ChartPoint]) -> String {
         m.empty(
             "circle",
             &[
+                ("class", &"point"),
                 ("cx", &one(x)),
                 ("cy", &one(y)),
                 ("r", &5),

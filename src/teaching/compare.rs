@@ -137,13 +137,13 @@ impl fmt::Display for CompareSummary {
             )?;
             writeln!(
                 f,
-                "{:<24} {:>7} {:>9} {:>7} {:>9} {:>7}",
-                "method", "samples", "RMS/tri", "worst", "RMS/pic", "worst"
+                "{:<24} {:>7} {:>9} {:>7} {:>9} {:>7} {:>8}",
+                "method", "samples", "RMS/tri", "worst", "RMS/pic", "worst", "ns/pair"
             )?;
             for r in &aa.rows {
                 writeln!(
                     f,
-                    "{:<24} {:>7} {:>9.4} {:>7.3} {:>9.4} {:>7.3}",
+                    "{:<24} {:>7} {:>9.4} {:>7.3} {:>9.4} {:>7.3} {:>8.0}",
                     r.name,
                     if r.samples == 0 {
                         "exact".to_string()
@@ -153,7 +153,8 @@ impl fmt::Display for CompareSummary {
                     r.per_triangle.rms,
                     r.per_triangle.worst,
                     r.picture.rms,
-                    r.picture.worst
+                    r.picture.worst,
+                    r.ns_per_pair
                 )?;
             }
         }

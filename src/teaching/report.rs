@@ -59,6 +59,7 @@ use crate::raster::registry::{
 use crate::raster::shader::Flat;
 use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
+use crate::teaching::antialias_chart::{antialias_chart_svg, ChartPoint};
 use crate::teaching::grid_picture::{GridPicture, GAP, OVERDRAWN, OVERDRAWN_MORE};
 use crate::teaching::palette::{self, Legend, Role};
 use base64::Engine;
@@ -859,6 +860,7 @@ fn antialias_section(m: &mut Markup, aa: &Antialiasing) {
         "worst per triangle",
         "RMS error in the picture",
         "worst in the picture",
+        "ns per pair (one run)",
     ] {
         m.element("th", &[], head);
     }
@@ -875,10 +877,24 @@ fn antialias_section(m: &mut Markup, aa: &Antialiasing) {
             .element("td", &[], &format!("{:.4}", r.per_triangle.rms))
             .element("td", &[], &format!("{:.3}", r.per_triangle.worst))
             .element("td", &[], &format!("{:.4}", r.picture.rms))
-            .element("td", &[], &format!("{:.3}", r.picture.worst));
+            .element("td", &[], &format!("{:.3}", r.picture.worst))
+            .element("td", &[], &format!("{:.0}", r.ns_per_pair));
         m.close("tr").newline();
     }
     m.close("table").newline();
+    let points: Vec<ChartPoint> = aa
+        .rows
+        .iter()
+        .map(|r| ChartPoint {
+            name: r.name.clone(),
+            ns_per_pair: r.ns_per_pair,
+            rms: r.per_triangle.rms,
+            peer: false,
+        })
+        .collect();
+    m.open("figure", &[("class", &"chart")]);
+    m.raw(&antialias_chart_svg("this input, one run", &points));
+    m.close("figure").newline();
     let legend = Legend::default().with_mark(
         Role::Drawn,
         palette::Mark::Fill,
