@@ -53,6 +53,12 @@ backends='["naive","bbox","scanline","incremental","tiled"]'
 "$bin" explain --backend bbox --size 11x9 --picture docs/bbox-grid.png 1 1 9 2 3 7 >/dev/null
 "$bin" explain --backend tiled --size 32x24 --picture docs/tiled-grid.png 1 1 31 2 2 23 >/dev/null
 "$bin" explain --backend wu --size 14x8 --picture docs/wu-grid.png 0 1 13 6 >/dev/null
+# The side-by-side pictures of docs/teaching.md: aliased and anti-aliased.
+"$bin" render --scene fan --scale 10 --out docs/fan-aliased.png >/dev/null
+"$bin" render --scene fan --scale 10 --msaa 4 --out docs/fan-msaa4.png >/dev/null
+"$bin" render --scene fan --scale 10 --msaa 16 --out docs/fan-msaa16.png >/dev/null
+"$bin" render assets/lines.txt --size 32x32 --backend bresenham --scale 10 --out docs/lines-bresenham.png >/dev/null
+"$bin" render assets/lines.txt --size 32x32 --backend wu --scale 10 --out docs/lines-wu.png >/dev/null
 
 # The screenshots, by headless Chromium.
 if command -v chromium >/dev/null 2>&1; then
@@ -197,6 +203,13 @@ if [ -n "$all" ]; then
     "$bin" --threads 1 bench --samples 5 --out "$tmp/bench"
     cp "$tmp/bench/bench.png" docs/bench.png
     echo docs/bench.png
+
+    # The anti-aliasing comparison's chart of docs/benchmarks.md (its
+    # tables are pasted by hand from the same run's output).
+    mkdir -p bench-output
+    cargo bench --bench antialias -- --rounds 5 | tee bench-output/antialias.txt
+    cp bench-output/antialias-delaunay.svg docs/antialias-delaunay.svg
+    echo "docs/antialias-delaunay.svg: update the tables of docs/benchmarks.md from bench-output/antialias.txt"
 
     # The side_by_side ratio table: the pasted block of docs/benchmarks.md
     # that starts with the command is replaced by the run's closing lines.

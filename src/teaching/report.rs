@@ -860,7 +860,7 @@ fn antialias_section(m: &mut Markup, aa: &Antialiasing) {
         "worst per triangle",
         "RMS error in the picture",
         "worst in the picture",
-        "ns per pair (one run)",
+        "ns per pair (median of 3 runs)",
     ] {
         m.element("th", &[], head);
     }
@@ -893,7 +893,7 @@ fn antialias_section(m: &mut Markup, aa: &Antialiasing) {
         })
         .collect();
     m.open("figure", &[("class", &"chart")]);
-    m.raw(&antialias_chart_svg("this input, one run", &points));
+    m.raw(&antialias_chart_svg("this input, median of 3 runs", &points));
     m.close("figure").newline();
     let legend = Legend::default().with_mark(
         Role::Drawn,
