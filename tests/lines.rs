@@ -878,3 +878,89 @@ fn regression_a_line_crossing_a_narrow_target_takes_the_fast_path_exactly() {
     let written = LineWorkload::new("corner", vec![seg(a, b)]).run_fast(&mut target);
     assert_eq!(written, 0);
 }
+
+/// Flat's colour, but not said to be uniform per primitive: the stage
+/// shades every fragment of a line with it.
+struct FlatEveryFragment;
+
+impl rasterlab::raster::FragmentShader for FlatEveryFragment {
+    fn shade(&self, input: &rasterlab::raster::FragmentInput) -> glam::Vec4 {
+        input.flat.color
+    }
+}
+
+/// Lines of random colours drawn over a coloured target, depth test off:
+/// with a shader uniform per line the stage shades each line once; the
+/// colours it writes (blended by Wu's coverage) are those of shading
+/// every fragment, for every line back-end.
+fn shaded_once_as_every_fragment(
+    segments: &[(FixedPoint, FixedPoint, [f32; 3])],
+) -> Result<(), String> {
+    use rasterlab::raster::{
+        line_backends, DepthState, DepthTest, FragmentStage, ShadedLine, ShadedVertex,
+    };
+    let setups: Vec<LineSetup> = segments
+        .iter()
+        .enumerate()
+        .map(|(i, &(from, to, _))| LineSetup {
+            id: i as u32,
+            from,
+            to,
+        })
+        .collect();
+    let shaded: Vec<ShadedLine> = segments
+        .iter()
+        .map(|&(from, to, [r, g, b])| ShadedLine {
+            from,
+            to,
+            vertices: [ShadedVertex::flat(0.5, glam::Vec4::new(r, g, b, 1.0)); 2],
+        })
+        .collect();
+    let off = DepthState {
+        test: DepthTest::Always,
+        write: false,
+    };
+    for b in line_backends() {
+        let draw = |shader: &dyn rasterlab::raster::FragmentShader| {
+            let mut target = RenderTarget::new(24, 24).unwrap();
+            target.color.fill([40, 90, 200, 255]);
+            let mut stage = FragmentStage::new(&mut target, shader)
+                .with_lines(&shaded)
+                .with_depth(off);
+            b.rasterize(
+                &setups,
+                &LineOptions::DEFAULT,
+                PixelRect::of_target(24, 24),
+                &mut stage,
+            );
+            target
+        };
+        let once = draw(&rasterlab::raster::Flat);
+        let every = draw(&FlatEveryFragment);
+        if once != every {
+            return Err(format!(
+                "{}: shading once per line differs from shading each fragment",
+                b.name()
+            ));
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(crate::common::proptest_config(300, "tests/proptest-regressions/lines.txt"))]
+
+    #[test]
+    fn a_line_shaded_once_writes_what_shading_each_fragment_writes(
+        segments in proptest::collection::vec(
+            (
+                common::point(-3.0, 27.0, None),
+                common::point(-3.0, 27.0, None),
+                [0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0],
+            ),
+            1..8,
+        ),
+    ) {
+        shaded_once_as_every_fragment(&segments).map_err(TestCaseError::fail)?;
+    }
+}

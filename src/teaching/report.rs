@@ -893,7 +893,10 @@ fn antialias_section(m: &mut Markup, aa: &Antialiasing) {
         })
         .collect();
     m.open("figure", &[("class", &"chart")]);
-    m.raw(&antialias_chart_svg("this input, median of 3 runs", &points));
+    m.raw(&antialias_chart_svg(
+        "this input, median of 3 runs",
+        &points,
+    ));
     m.close("figure").newline();
     let legend = Legend::default().with_mark(
         Role::Drawn,
