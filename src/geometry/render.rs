@@ -368,6 +368,18 @@ impl MeshRenderer {
         Ok(Frame { target, stats })
     }
 
+    /// Errors unless a target of `size` is the size the renderer draws.
+    fn check_target(&self, (width, height): (u32, u32)) -> Result<()> {
+        let drawn = (self.settings.width, self.settings.height);
+        if (width, height) != drawn {
+            return Err(Error::InvalidArgument(format!(
+                "the target is {width}x{height}, the renderer draws {}x{}",
+                drawn.0, drawn.1
+            )));
+        }
+        Ok(())
+    }
+
     /// Clears `target` and renders one frame into it, as an application
     /// redraws its framebuffer: the buffers are reused, and a target made
     /// [`without_coverage`](RenderTarget::without_coverage) skips the
@@ -377,14 +389,7 @@ impl MeshRenderer {
         backend: &dyn TriangleRasterizer,
         target: &mut RenderTarget,
     ) -> Result<FrameStats> {
-        let (width, height) = (self.settings.width, self.settings.height);
-        if (target.width(), target.height()) != (width, height) {
-            return Err(Error::InvalidArgument(format!(
-                "the target is {}x{}, the renderer draws {width}x{height}",
-                target.width(),
-                target.height()
-            )));
-        }
+        self.check_target((target.width(), target.height()))?;
         let frame_start = Instant::now();
         let start = frame_start;
         // A renderer drawing from several threads at once gives the other
@@ -461,14 +466,7 @@ impl MeshRenderer {
         backend: &dyn TriangleRasterizer,
         target: &mut MultisampleTarget,
     ) -> Result<FrameStats> {
-        let (width, height) = (self.settings.width, self.settings.height);
-        if (target.width(), target.height()) != (width, height) {
-            return Err(Error::InvalidArgument(format!(
-                "the target is {}x{}, the renderer draws {width}x{height}",
-                target.width(),
-                target.height()
-            )));
-        }
+        self.check_target((target.width(), target.height()))?;
         if self.settings.wireframe.is_some() {
             return Err(Error::InvalidArgument(
                 "a wireframe is drawn with lines, which are not multisampled: leave out --wireframe or --msaa".into(),
