@@ -312,7 +312,12 @@ fn multisampled_dragon(rounds: usize) {
     let base = &result.figures[0].rounds_ms;
     let mut table = Table::with_text_columns(
         1,
-        &["frame", "median ms", "x one sample", "pixels with a mask"],
+        &[
+            "frame",
+            "median ms",
+            "x one sample",
+            "(pixel, triangle) masks",
+        ],
     );
     for figure in &result.figures {
         let mut ratios: Vec<f64> = figure

@@ -331,7 +331,7 @@ fn a_mesh_multisampled_through_the_pipeline() {
     let (_, pixels) = first.unwrap();
     assert!(
         pixels > frame.stats.work.fragments,
-        "{pixels} pixels with a mask"
+        "{pixels} (pixel, triangle) masks"
     );
 }
 
@@ -375,7 +375,30 @@ fn compare_msaa_finds_the_backends_agree() {
             "differs from the reference: {row}"
         );
     }
-    let run = rasterlab(&["compare", "assets/lines.txt", "--msaa", "4", "--out", out]);
+    // Refused before anything is written: no report folder is made.
+    let folder = dir.path().join("refused");
+    let folder = folder.to_str().unwrap();
+    let run = rasterlab(&[
+        "compare",
+        "assets/lines.txt",
+        "--msaa",
+        "4",
+        "--out",
+        folder,
+    ]);
     assert_eq!(run.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&run.stderr).contains("not multisampled"));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        err.contains("assets/lines.txt: --msaa") && err.contains("not multisampled"),
+        "{err}"
+    );
+    let huge = ["--size", "4096x4096", "--msaa", "16", "--out", folder];
+    let run = rasterlab(&[&["compare", "assets/polygon.txt"][..], &huge[..]].concat());
+    assert_eq!(
+        run.status.code(),
+        Some(4),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(!std::path::Path::new(folder).exists());
 }

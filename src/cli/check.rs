@@ -56,7 +56,7 @@ pub struct CheckArgs {
     /// on the standard pattern (1, 2, 4, 8 or 16). The program is told N
     /// by {msaa} (and a line `# msaa N` in the case) and prints `x y id
     /// mask`, bit i of the mask for sample i; the masks are judged exactly.
-    #[arg(long, value_name = "N", value_parser = msaa)]
+    #[arg(long, value_name = "N", value_parser = msaa, allow_negative_numbers = true)]
     msaa: Option<SamplePattern>,
     /// How many cases.
     #[arg(long, default_value_t = 150)]

@@ -25,7 +25,7 @@ pub struct CompareArgs {
     /// Multisample triangles on the standard pattern of N samples (1, 2,
     /// 4, 8 or 16): each back-end's resolved image, the grids with their
     /// samples.
-    #[arg(long, value_name = "N", value_parser = msaa)]
+    #[arg(long, value_name = "N", value_parser = msaa, allow_negative_numbers = true)]
     msaa: Option<SamplePattern>,
 }
 

@@ -36,7 +36,7 @@ pub struct ExplainArgs {
     /// A triangle's samples too: N samples a pixel on the standard
     /// pattern (1, 2, 4, 8 or 16), each partly covered pixel traced
     /// sample by sample.
-    #[arg(long, value_name = "N", value_parser = msaa)]
+    #[arg(long, value_name = "N", value_parser = msaa, allow_negative_numbers = true)]
     msaa: Option<SamplePattern>,
     /// The coordinates.
     #[arg(allow_negative_numbers = true)]

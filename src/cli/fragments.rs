@@ -22,7 +22,7 @@ pub struct FragmentsArgs {
     line: LineArgs,
     /// Multisample triangles on the standard pattern of N samples (1, 2,
     /// 4, 8 or 16): print `x y id mask`, bit i of the mask for sample i.
-    #[arg(long, value_name = "N", value_parser = msaa)]
+    #[arg(long, value_name = "N", value_parser = msaa, allow_negative_numbers = true)]
     msaa: Option<SamplePattern>,
     /// Triangle soup (`x0 y0 x1 y1 x2 y2` per line) or line set (`x0 y0 x1 y1` per line).
     file: PathBuf,

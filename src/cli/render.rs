@@ -54,7 +54,7 @@ pub struct RenderArgs {
     /// Multisample triangles on the standard pattern of N samples (1, 2,
     /// 4, 8 or 16): depth per sample, shading once per pixel, the samples
     /// averaged into the image.
-    #[arg(long, value_name = "N", value_parser = msaa)]
+    #[arg(long, value_name = "N", value_parser = msaa, allow_negative_numbers = true)]
     msaa: Option<SamplePattern>,
     #[command(flatten)]
     mesh: MeshArgs,

@@ -250,6 +250,11 @@ impl RenderRequest {
             let pixels = u64::from(width) * u64::from(height);
             within_budget(&backend.descriptor(), triangles, pixels, WorkBudget::Run).map_err(
                 |e| match e {
+                    Error::TooMuchWork(why) if passes > 1 => Error::TooMuchWork(format!(
+                        "{why}, or give --force (the primitives are the {} triangles{}, each walked once per sample, {passes} samples per pixel)",
+                        mesh.triangles.len(),
+                        if self.frames > 1 { format!(" x {} frames", self.frames) } else { String::new() }
+                    )),
                     Error::TooMuchWork(why) => {
                         Error::TooMuchWork(format!("{why}, or give --force"))
                     }
@@ -276,7 +281,11 @@ impl RenderRequest {
                 prepare_time
             }
             Some(pattern) => {
+                // The sample buffers, allocated (and touched) before the
+                // first frame.
+                let start = Instant::now();
                 let mut target = MultisampleTarget::new(width, height, pattern)?;
+                let prepare_time = start.elapsed();
                 for _ in 0..self.frames {
                     let stats = renderer.render_multisampled_into(backend, &mut target)?;
                     times.push(stats.times);
@@ -284,7 +293,7 @@ impl RenderRequest {
                     frame_done();
                 }
                 target.resolve().save_png(&self.out)?;
-                Duration::ZERO
+                prepare_time
             }
         };
         let last = last.expect("at least one frame");
@@ -406,9 +415,13 @@ impl RenderRequest {
                 target.resolve()
             }
             (Some(_), Drawing::Lines(..), _) => {
-                return Err(Error::InvalidArgument(
-                    "--msaa multisamples triangles; a line set is drawn with lines, which are not multisampled".into(),
-                ))
+                let file = match &self.input {
+                    RenderInput::File(path) => format!("{}: ", path.display()),
+                    RenderInput::Scene(_) => String::new(),
+                };
+                return Err(Error::InvalidArgument(format!(
+                    "{file}--msaa multisamples triangles; a line set is drawn with lines, which are not multisampled"
+                )));
             }
             (Some(_), Drawing::Triangles(_), _) => {
                 return Err(Error::InvalidArgument(

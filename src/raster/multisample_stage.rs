@@ -199,7 +199,8 @@ impl MultisampleTarget {
 /// masks on the target's pattern, depth tested per sample with `depth`,
 /// colour from `shader` once per pixel at its centre. The counters give
 /// the back-end's tests and spans over all the passes, the triangles
-/// (`primitives`) and the pixels with a mask (`fragments`).
+/// (`primitives`) and the (pixel, triangle) pairs with a mask
+/// (`fragments`).
 pub fn draw_multisampled<S: FragmentShader + ?Sized>(
     setups: &[TriangleSetup],
     data: &TriangleData,

@@ -70,13 +70,14 @@ pub fn antialias_chart_svg(title: &str, points: &[ChartPoint]) -> String {
     let one = |v: f64| format!("{v:.1}");
     let method = Role::Drawn.rgb();
     let peer = Role::Geometry.rgb();
-    let legend = Legend::default()
-        .with_mark(Role::Drawn, Mark::Fill, "rasterlab's methods")
-        .with_mark(
+    let mut legend = Legend::default().with_mark(Role::Drawn, Mark::Fill, "rasterlab's methods");
+    if shown.iter().any(|p| p.peer) {
+        legend = legend.with_mark(
             Role::Geometry,
             Mark::Ring,
             "2D libraries' anti-aliased fills",
         );
+    }
     let (legend_svg, legend_h) = legend.to_svg(LEFT, TOP + PLOT_H + 48.0, WIDTH - LEFT - 10.0);
     let height = TOP + PLOT_H + 52.0 + legend_h;
     let mut m = Markup::new();

@@ -17,7 +17,7 @@
 //! print!("{summary}");
 //! ```
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::geometry::input::{read_shapes, Shapes};
 use crate::geometry::mesh::Mesh;
 use crate::geometry::scene::Scene2D;
@@ -79,6 +79,12 @@ pub fn compare(request: &CompareRequest<'_>) -> Result<CompareSummary> {
     // The input first: bad input leaves nothing behind, not even the
     // output directory, which is checked (and created) before the work.
     let input = load(request.input, width, height)?;
+    Report::check_multisampled(&input, width, height, request.msaa).map_err(|e| match e {
+        Error::InvalidArgument(why) => {
+            Error::InvalidArgument(format!("{}: {why}", request.input.display()))
+        }
+        e => e,
+    })?;
     crate::output::check_dir(request.out)?;
     let report =
         Report::compare_multisampled(&input, width, height, request.samples, request.msaa)?;

@@ -347,6 +347,27 @@ impl Report {
         Self::compare_multisampled(input, width, height, samples, None)
     }
 
+    /// Errors unless `input` can be compared multisampled on `msaa`'s
+    /// pattern at `width` x `height`: lines are not multisampled, and the
+    /// sample buffers of one back-end at a time must be within
+    /// [`MAX_TARGET_SAMPLES`](crate::raster::MAX_TARGET_SAMPLES).
+    pub fn check_multisampled(
+        input: &CompareInput,
+        width: u32,
+        height: u32,
+        msaa: Option<SamplePattern>,
+    ) -> Result<()> {
+        let Some(pattern) = msaa else {
+            return Ok(());
+        };
+        if let CompareInput::Lines(_) = input {
+            return Err(Error::InvalidArgument(
+                "--msaa multisamples triangles; a line set is drawn with lines, which are not multisampled".into(),
+            ));
+        }
+        MultisampleTarget::new(width, height, pattern).map(drop)
+    }
+
     /// [`compare`](Self::compare), each triangle back-end drawing through
     /// the multisampled stage on `msaa`'s pattern when it is given (the
     /// images are the resolved ones, and the grid pictures show the
@@ -358,15 +379,7 @@ impl Report {
         samples: usize,
         msaa: Option<SamplePattern>,
     ) -> Result<Report> {
-        if let (Some(_), CompareInput::Lines(_)) = (msaa, input) {
-            return Err(Error::InvalidArgument(
-                "--msaa multisamples triangles; a line set is drawn with lines, which are not multisampled".into(),
-            ));
-        }
-        if let Some(pattern) = msaa {
-            // The sample buffers of one back-end at a time.
-            MultisampleTarget::new(width, height, pattern)?;
-        }
+        Self::check_multisampled(input, width, height, msaa)?;
         RenderTarget::check_size(width, height)?;
         Self::check_memory(width, height)?;
         let pixels = u64::from(width) * u64::from(height);
