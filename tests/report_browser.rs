@@ -75,12 +75,12 @@ fn the_report_renders_its_images_and_tables_in_chromium() {
     );
     // Work table, the input's fill rules, the pinwheel's, anti-aliasing.
     assert_eq!(body_data(&dom, "tables"), 4);
-    // One grid picture per back-end.
-    assert_eq!(body_data(&dom, "svgs"), backends);
+    // One grid picture per back-end, and the anti-aliasing chart.
+    assert_eq!(body_data(&dom, "svgs"), backends + 1);
     // Every section with coloured pictures shows the palette's legend:
     // differences, the input's fill rules, the pinwheel's,
-    // anti-aliasing, the grids.
-    assert_eq!(body_data(&dom, "legends"), 5);
+    // anti-aliasing, the grids; and the chart has its own.
+    assert_eq!(body_data(&dom, "legends"), 6);
     for role in [
         Role::Differs,
         Role::Gap,
