@@ -28,8 +28,18 @@ impl Wu {
         let (frame, reversed) = walk_frame(line, options);
         let du = frame.du() as i128;
         let s = SUBPIXEL_SCALE as i128;
-        let mut columns: Vec<Vec<((i64, i64), f32)>> = Vec::new();
-        for i in frame.i0..=frame.i1 {
+        // The columns in the order of travel, the last left out when the
+        // end is open; each gives its one or two pixels, into one array.
+        let columns = (frame.i1 - frame.i0 + 1).max(0);
+        let count = columns - i64::from(options.endpoints == Endpoints::HalfOpen && columns > 0);
+        let (first, step) = if reversed {
+            (frame.i1, -1)
+        } else {
+            (frame.i0, 1)
+        };
+        let mut pixels = Vec::with_capacity(2 * count as usize);
+        for n in 0..count {
+            let i = first + step * n;
             // y = scaled / du fixed units; row below = floor(y / 256).
             let (k, frac) = if du == 0 {
                 (
@@ -42,21 +52,13 @@ impl Wu {
                 let rem = scaled.rem_euclid(s * du);
                 (k as i64, rem as f64 / (s * du) as f64)
             };
-            let mut column = Vec::with_capacity(2);
             for (row, weight) in [(k, 1.0 - frac), (k + 1, frac)] {
                 if weight > 0.0 {
-                    column.push((frame.to_screen(i, row), weight as f32));
+                    pixels.push((frame.to_screen(i, row), weight as f32));
                 }
             }
-            columns.push(column);
         }
-        if reversed {
-            columns.reverse();
-        }
-        if options.endpoints == Endpoints::HalfOpen {
-            columns.pop();
-        }
-        columns.into_iter().flatten().collect()
+        pixels
     }
 }
 
