@@ -19,7 +19,9 @@
 //! The test is exact: in the rotated coordinates `s = x + y`, `d = x - y`
 //! the diamond is an open square, and the part of the segment inside it is
 //! found by clipping the parameter `t` against the square's two slabs with
-//! integer fractions (Liang-Barsky). [`exits_diamond`] is that test for one
+//! integer fractions (Liang-Barsky), in `i64` while the coordinates are
+//! within 2^28 fixed-point units (always, for points inside the guard
+//! band), in `i128` beyond. [`exits_diamond`] is that test for one
 //! pixel; the back-end applies it to the few pixels near the line in each
 //! column (or row), and the tests check it against applying it to every
 //! pixel.
@@ -31,34 +33,72 @@ use crate::raster::edge::PixelRect;
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::fragment::{FragmentSink, WorkCounters};
 use std::cmp::Ordering;
+use std::ops::{Add, Mul, Sub};
 
 /// The diamond-exit rule.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Diamond;
 
+/// The integers the exact test computes in. Its largest values are
+/// products of two coordinate differences: `i64` holds them while every
+/// coordinate is under 2^28 fixed-point units (the guard band keeps
+/// snapped points under 2^23), `i128` whatever the coordinates.
+trait Exact:
+    Copy + Ord + From<i64> + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self>
+{
+    fn abs(self) -> Self;
+    fn signum(self) -> Self;
+}
+
+impl Exact for i64 {
+    fn abs(self) -> i64 {
+        i64::abs(self)
+    }
+    fn signum(self) -> i64 {
+        i64::signum(self)
+    }
+}
+
+impl Exact for i128 {
+    fn abs(self) -> i128 {
+        i128::abs(self)
+    }
+    fn signum(self) -> i128 {
+        i128::signum(self)
+    }
+}
+
 /// A bound on the segment parameter `t`: the fraction `num / den`
 /// (`den > 0`), and whether the bound itself is excluded.
 #[derive(Copy, Clone, Debug)]
-struct Bound {
-    num: i128,
-    den: i128,
+struct Bound<T> {
+    num: T,
+    den: T,
     strict: bool,
 }
 
-impl Bound {
-    fn cmp_value(&self, other: &Bound) -> Ordering {
+impl<T: Exact> Bound<T> {
+    fn cmp_value(&self, other: &Bound<T>) -> Ordering {
         (self.num * other.den).cmp(&(other.num * self.den))
     }
 }
 
 /// Does the segment intersect the open slab `lo < s0 + t ds < hi`
 /// within the current `[lower, upper]` range of `t`? Narrows the range.
-fn clip_slab(s0: i128, ds: i128, lo: i128, hi: i128, lower: &mut Bound, upper: &mut Bound) -> bool {
-    if ds == 0 {
+fn clip_slab<T: Exact>(
+    s0: T,
+    ds: T,
+    lo: T,
+    hi: T,
+    lower: &mut Bound<T>,
+    upper: &mut Bound<T>,
+) -> bool {
+    let zero = T::from(0);
+    if ds == zero {
         return lo < s0 && s0 < hi;
     }
     let (a, b) = (lo - s0, hi - s0);
-    let (enter, leave) = if ds > 0 { (a, b) } else { (b, a) };
+    let (enter, leave) = if ds > zero { (a, b) } else { (b, a) };
     let den = ds.abs();
     let sign = ds.signum();
     let enter = Bound {
@@ -106,14 +146,14 @@ fn in_test_area(p: FixedPoint, px: i64, py: i64, x_major: bool) -> bool {
 }
 
 /// Does the closed segment `a b` pass through the point `c`?
-fn passes_through(a: FixedPoint, b: FixedPoint, c: (i64, i64)) -> bool {
+fn passes_through<T: Exact>(a: FixedPoint, b: FixedPoint, c: (i64, i64)) -> bool {
     let (ax, ay, bx, by) = (
-        a.x.raw() as i128,
-        a.y.raw() as i128,
-        b.x.raw() as i128,
-        b.y.raw() as i128,
+        T::from(a.x.raw()),
+        T::from(a.y.raw()),
+        T::from(b.x.raw()),
+        T::from(b.y.raw()),
     );
-    let (cx, cy) = (c.0 as i128, c.1 as i128);
+    let (cx, cy) = (T::from(c.0), T::from(c.1));
     (bx - ax) * (cy - ay) == (by - ay) * (cx - ax)
         && cx >= ax.min(bx)
         && cx <= ax.max(bx)
@@ -124,26 +164,41 @@ fn passes_through(a: FixedPoint, b: FixedPoint, c: (i64, i64)) -> bool {
 /// The diamond-exit test: does the segment `from -> to` leave the diamond
 /// test area of pixel `(px, py)`?
 pub fn exits_diamond(from: FixedPoint, to: FixedPoint, px: i64, py: i64) -> bool {
+    const SMALL: i64 = 1 << 28;
+    let small = [from.x, from.y, to.x, to.y]
+        .iter()
+        .all(|c| c.raw().abs() < SMALL)
+        && px.abs() < SMALL / SUBPIXEL_SCALE / 2
+        && py.abs() < SMALL / SUBPIXEL_SCALE / 2;
+    if small {
+        exits_in::<i64>(from, to, px, py)
+    } else {
+        exits_in::<i128>(from, to, px, py)
+    }
+}
+
+/// [`exits_diamond`], computed in `T`.
+fn exits_in<T: Exact>(from: FixedPoint, to: FixedPoint, px: i64, py: i64) -> bool {
     let x_major = (to.x.raw() - from.x.raw()).abs() >= (to.y.raw() - from.y.raw()).abs();
     if in_test_area(to, px, py, x_major) {
         return false;
     }
-    if passes_through(from, to, owned_corner(px, py, x_major)) {
+    if passes_through::<T>(from, to, owned_corner(px, py, x_major)) {
         return true;
     }
-    let cx = (px * SUBPIXEL_SCALE + HALF_PIXEL) as i128;
-    let cy = (py * SUBPIXEL_SCALE + HALF_PIXEL) as i128;
-    let h = HALF_PIXEL as i128;
-    let (ax, ay) = (from.x.raw() as i128, from.y.raw() as i128);
-    let (bx, by) = (to.x.raw() as i128, to.y.raw() as i128);
+    let cx = T::from(px * SUBPIXEL_SCALE + HALF_PIXEL);
+    let cy = T::from(py * SUBPIXEL_SCALE + HALF_PIXEL);
+    let h = T::from(HALF_PIXEL);
+    let (ax, ay) = (T::from(from.x.raw()), T::from(from.y.raw()));
+    let (bx, by) = (T::from(to.x.raw()), T::from(to.y.raw()));
     let mut lower = Bound {
-        num: 0,
-        den: 1,
+        num: T::from(0),
+        den: T::from(1),
         strict: false,
     };
     let mut upper = Bound {
-        num: 1,
-        den: 1,
+        num: T::from(1),
+        den: T::from(1),
         strict: false,
     };
     // s = x + y within (cx + cy - h, cx + cy + h); d = x - y likewise.
@@ -272,5 +327,38 @@ impl LineRasterizer for Diamond {
             emit_pixels(line, &pixels, viewport, sink, &mut work);
         }
         work
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(crate::test_support::proptest_config(3000, "tests/proptest-regressions/src-raster-line-diamond.txt"))]
+
+        /// Computed in `i64` (the coordinates within the guard band) or
+        /// in `i128`, the test gives the same answer, near the segment and
+        /// at its ends, on grids fine and coarse.
+        #[test]
+        fn the_i64_test_is_the_i128_test(
+            raw in proptest::array::uniform4(-(1i64 << 23) + 1..(1i64 << 23)),
+            near in proptest::array::uniform4(-600i64..600),
+            shift in 0u32..16,
+            px in -3i64..3,
+            py in -3i64..3,
+        ) {
+            // Coordinates anywhere in the guard band, or a few pixels
+            // apart on a grid of 2^shift units, so that ties happen.
+            let coarse = near.map(|v| v << shift.min(8));
+            let pick = |i: usize| if shift < 8 { coarse[i] } else { raw[i] };
+            let p = |x, y| FixedPoint::from_raw(x, y).unwrap();
+            let (from, to) = (p(pick(0), pick(1)), p(pick(2), pick(3)));
+            let (cx, cy) = (from.x.raw().div_euclid(SUBPIXEL_SCALE), from.y.raw().div_euclid(SUBPIXEL_SCALE));
+            for (x, y) in [(cx + px, cy + py), (to.x.raw().div_euclid(SUBPIXEL_SCALE) + px, to.y.raw().div_euclid(SUBPIXEL_SCALE) + py)] {
+                prop_assert_eq!(exits_in::<i64>(from, to, x, y), exits_in::<i128>(from, to, x, y));
+            }
+        }
     }
 }
