@@ -268,19 +268,31 @@ impl Scene2D {
         background: [u8; 4],
         target: &mut RenderTarget,
     ) -> (WorkCounters, FrameTimes) {
+        self.timed_frame(rule, |geometry| {
+            draw_clearing(
+                geometry,
+                backend,
+                shader,
+                depth,
+                Interpolation::PerspectiveCorrect,
+                Clear::all(background),
+                target,
+            )
+        })
+    }
+
+    /// One frame timed whole: the triangles set up under `rule` (the
+    /// frame's geometry), then `draw` (its raster part).
+    fn timed_frame(
+        &self,
+        rule: FillRule,
+        draw: impl FnOnce(&Geometry) -> WorkCounters,
+    ) -> (WorkCounters, FrameTimes) {
         let start = Instant::now();
         let geometry = Geometry::of_screen_triangles(self.setups(rule), &self.vertices);
         let geometry_time = start.elapsed();
         let raster_start = Instant::now();
-        let work = draw_clearing(
-            &geometry,
-            backend,
-            shader,
-            depth,
-            Interpolation::PerspectiveCorrect,
-            Clear::all(background),
-            target,
-        );
+        let work = draw(&geometry);
         let raster_time = raster_start.elapsed();
         drop(geometry);
         let times = FrameTimes::new(start.elapsed(), None, geometry_time, raster_time);
@@ -300,18 +312,12 @@ impl Scene2D {
         background: [u8; 4],
         target: &mut MultisampleTarget,
     ) -> (WorkCounters, FrameTimes) {
-        let start = Instant::now();
-        let geometry = Geometry::of_screen_triangles(self.setups(rule), &self.vertices);
-        let geometry_time = start.elapsed();
-        let raster_start = Instant::now();
-        target.clear(background);
-        let (setups, data) = (&geometry.setups, &geometry.shaded);
-        let lerp = Interpolation::PerspectiveCorrect;
-        let work = draw_multisampled(setups, data, backend, shader, depth, lerp, target);
-        let raster_time = raster_start.elapsed();
-        drop(geometry);
-        let times = FrameTimes::new(start.elapsed(), None, geometry_time, raster_time);
-        (work, times)
+        self.timed_frame(rule, |geometry| {
+            target.clear(background);
+            let (setups, data) = (&geometry.setups, &geometry.shaded);
+            let lerp = Interpolation::PerspectiveCorrect;
+            draw_multisampled(setups, data, backend, shader, depth, lerp, target)
+        })
     }
 
     /// Renders the scene into a new target of its own size.
