@@ -31,7 +31,10 @@
 //!
 //! Each workload runs its contenders once to warm up, then in `--rounds`
 //! rounds (default 10), each contender once per round, the order turning
-//! each round (`rasterlab::measure::rounds`). Printed per workload: each
+//! each round (`rasterlab::measure::rounds`): cold, each run finding the
+//! caches as another contender left them. The 2D workloads are then also
+//! timed warm: each contender `--rounds` times back to back, as an
+//! application redraws frame after frame. Printed per workload: each
 //! contender's median [min-max] ms, the CPU time per working thread and
 //! the time waited for a core; at the end, the context (commit, machine,
 //! load) and the ratio table: each peer against rasterlab's best on as
@@ -442,6 +445,8 @@ fn triangles(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
                 .collect();
             let window = gls.as_ref().map_or([0.0; 16], |g| g[0].window_transform());
             let mut contest = Workload::new(&name);
+            // Frame after frame too, as an application redraws.
+            contest.also_warm();
             let run = &run;
             for &b in triangle_backends().iter().filter(|b| work.suits(**b)) {
                 contest.add(Contender::new(b.name(), Side::Rasterlab, 1, move || run(b)));
@@ -596,5 +601,6 @@ fn main() {
     }
     println!("peer / best: the peer's time over rasterlab's best on as many threads (on any number when none ran on that many), median of the per-round ratios [min-max]; above 1, rasterlab is faster");
     println!("cpu peer / best: the same with the CPU time of all their threads per run, steadier when the cores were busy");
+    println!("warm peer / best (2D workloads): from runs back to back, as an application redraws (its buffers in the caches): the peer's median over that of rasterlab's fastest (named) on as many threads");
     print!("{ratios}");
 }

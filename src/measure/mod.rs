@@ -66,7 +66,9 @@ pub use render_request::{
     DrawingReport, MeshOverrides, MeshReport, RenderInput, RenderReport, RenderRequest, MAX_SCALE,
     RENDER_CULL,
 };
-pub use rounds::{ratio_header, Contender, Figure, Ratio, Side, Workload, WorkloadResult};
+pub use rounds::{
+    ratio_header, Contender, Figure, Ratio, Side, WarmRatio, Workload, WorkloadResult,
+};
 pub use table::{significant, Table};
 pub use timing::{time_runs, Spread, Timing};
 pub use workload::{

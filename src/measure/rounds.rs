@@ -9,6 +9,13 @@
 //! and a ratio is the median of the per-round ratios (each taken within
 //! one round), with their minimum and maximum beside it.
 //!
+//! Interleaved, each run finds the caches as the other contenders left
+//! them: **cold**. An application redraws its own frame after frame, its
+//! buffers still in the caches: **warm**. A workload asked to
+//! ([`Workload::also_warm`]) times that too, after the rounds: each
+//! contender once unmeasured, then `rounds` runs back to back; the warm
+//! ratio is the peer's warm median over the best's.
+//!
 //! ```
 //! use rasterlab::measure::{Contender, Side, Workload};
 //! let mut work = Workload::new("sum");
@@ -64,6 +71,7 @@ pub struct Workload<'a> {
     name: String,
     contenders: Vec<Contender<'a>>,
     skipped: Vec<(String, Skipped)>,
+    warm: bool,
 }
 
 /// One contender's figure.
@@ -81,6 +89,9 @@ pub struct Figure {
     pub cpu: Option<CpuUse>,
     /// Wall time of each round, in milliseconds, in round order.
     pub rounds_ms: Vec<f64>,
+    /// Wall time run after run, back to back (`None` unless the workload
+    /// was asked to time it, [`Workload::also_warm`]).
+    pub warm: Option<Spread>,
 }
 
 /// A workload's figures, in the order the contenders were added.
@@ -101,7 +112,15 @@ impl<'a> Workload<'a> {
             name: name.to_string(),
             contenders: Vec::new(),
             skipped: Vec::new(),
+            warm: false,
         }
+    }
+
+    /// After the interleaved rounds, also times each contender run after
+    /// run, as an application redraws: one run unmeasured, then as many
+    /// back to back as there are rounds ([`Figure::warm`]).
+    pub fn also_warm(&mut self) {
+        self.warm = true;
     }
 
     /// Adds a contender.
@@ -114,7 +133,8 @@ impl<'a> Workload<'a> {
         self.skipped.push((name.to_string(), why));
     }
 
-    /// One warm-up run of each contender, then `rounds` rounds.
+    /// One warm-up run of each contender, then `rounds` rounds (and the
+    /// warm runs, if asked for).
     pub fn run(mut self, rounds: usize) -> WorkloadResult {
         let rounds = rounds.max(1);
         let n = self.contenders.len();
@@ -139,6 +159,23 @@ impl<'a> Workload<'a> {
                 };
             }
         }
+        let warm: Vec<Option<Spread>> = self
+            .contenders
+            .iter_mut()
+            .map(|c| {
+                self.warm.then(|| {
+                    (c.run)();
+                    let ms: Vec<f64> = (0..rounds)
+                        .map(|_| {
+                            let start = Instant::now();
+                            (c.run)();
+                            start.elapsed().as_secs_f64() * 1e3
+                        })
+                        .collect();
+                    Spread::of_ms(&ms)
+                })
+            })
+            .collect();
         WorkloadResult {
             workload: self.name,
             figures: self
@@ -146,13 +183,15 @@ impl<'a> Workload<'a> {
                 .into_iter()
                 .zip(times)
                 .zip(cpu)
-                .map(|((c, rounds_ms), cpu)| Figure {
+                .zip(warm)
+                .map(|(((c, rounds_ms), cpu), warm)| Figure {
                     name: c.name,
                     side: c.side,
                     threads: c.threads,
                     spread: Spread::of_ms(&rounds_ms),
                     cpu: cpu.map(|sum| ThreadTimes::default().until(&sum, rounds)),
                     rounds_ms,
+                    warm,
                 })
                 .collect(),
             skipped: self
@@ -187,6 +226,18 @@ pub struct Ratio {
     /// steadier than the wall times when the cores were busy (`None`
     /// where the system does not tell).
     pub cpu_ratio: Option<f64>,
+    /// The peer's warm median over that of rasterlab's fastest warm
+    /// contender on as many threads (`None` unless both were timed warm).
+    pub warm_ratio: Option<WarmRatio>,
+}
+
+/// A peer's warm median over rasterlab's fastest warm one.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WarmRatio {
+    /// The ratio; above 1, rasterlab is faster.
+    pub ratio: f64,
+    /// rasterlab's contender with the fastest warm median.
+    pub best: String,
 }
 
 impl WorkloadResult {
@@ -200,6 +251,19 @@ impl WorkloadResult {
                 .iter()
                 .filter(|f| f.side == Side::Rasterlab && threads.is_none_or(|t| f.threads == t))
                 .min_by(|a, b| a.spread.median_ms.total_cmp(&b.spread.median_ms))
+        };
+        let warm = |f: &Figure| f.warm.as_ref().map(|w| w.median_ms);
+        // The fastest of rasterlab's warm figures on `threads` threads
+        // (on any number when none ran on that many).
+        let fastest_warm = |threads: usize| {
+            let on = |t: Option<usize>| {
+                self.figures
+                    .iter()
+                    .filter(|f| f.side == Side::Rasterlab && t.is_none_or(|t| f.threads == t))
+                    .filter_map(|f| Some((warm(f)?, f.name.as_str())))
+                    .min_by(|a, b| a.0.total_cmp(&b.0))
+            };
+            on(Some(threads)).or_else(|| on(None))
         };
         self.figures
             .iter()
@@ -218,29 +282,45 @@ impl WorkloadResult {
                     best: best.name.clone(),
                     ratio: Spread::of_ms(&per_round),
                     cpu_ratio: cpu(peer).zip(cpu(best)).map(|(p, b)| p / b.max(1e-9)),
+                    warm_ratio: warm(peer)
+                        .zip(fastest_warm(peer.threads))
+                        .map(|(p, (b, name))| WarmRatio {
+                            ratio: p / b.max(1e-9),
+                            best: name.to_string(),
+                        }),
                 })
             })
             .collect()
     }
 
     /// Every figure: median [min-max] wall time, CPU per working thread
-    /// and time spent waiting for a core; then the skipped contenders.
+    /// and time spent waiting for a core, and the warm median [min-max]
+    /// where it was timed; then the skipped contenders.
     pub fn figure_table(&self) -> Table {
-        let mut table = Table::new(&[
-            &self.workload,
+        let warm = self.figures.iter().any(|f| f.warm.is_some());
+        let mut header = vec![
+            self.workload.as_str(),
             "threads",
             "ms median [min-max]",
             "cpu ms per thread, waited",
-        ]);
+        ];
+        if warm {
+            header.push("warm ms median [min-max]");
+        }
+        let mut table = Table::new(&header);
         for f in &self.figures {
-            table.row(vec![
+            let mut row = vec![
                 f.name.clone(),
                 f.threads.to_string(),
                 f.spread.summary(),
                 f.cpu
                     .as_ref()
                     .map_or_else(|| "unknown".to_string(), CpuUse::summary),
-            ]);
+            ];
+            if warm {
+                row.push(f.warm.as_ref().map_or_else(String::new, Spread::summary));
+            }
+            table.row(row);
         }
         for (name, why) in &self.skipped {
             table.row(vec![name.clone(), why.clone()]);
@@ -278,6 +358,9 @@ impl WorkloadResult {
                 ),
                 r.cpu_ratio
                     .map_or_else(|| "unknown".to_string(), |c| format!("{}x", significant(c))),
+                r.warm_ratio.as_ref().map_or_else(String::new, |w| {
+                    format!("{}x ({})", significant(w.ratio), w.best)
+                }),
             ]);
         }
         for (name, why) in &self.skipped {
@@ -293,7 +376,8 @@ impl WorkloadResult {
 
 /// The header of a ratio table: workload, peer and its time, rasterlab's
 /// best and its time, the ratio of the two (median of the per-round
-/// ratios, [min-max]) and the ratio of their CPU times.
+/// ratios, [min-max]), the ratio of their CPU times, and the ratio of
+/// their warm medians where they were timed warm.
 pub fn ratio_header() -> Table {
     Table::with_text_columns(
         2,
@@ -305,6 +389,7 @@ pub fn ratio_header() -> Table {
             "best ms",
             "peer / best",
             "cpu peer / best",
+            "warm peer / best",
         ],
     )
 }
@@ -361,5 +446,46 @@ mod tests {
         );
         let figures = result.figure_table().to_string();
         assert_eq!(figures.lines().count(), 6, "{figures}");
+    }
+
+    /// Warm runs come after the rounds, each contender's back to back
+    /// after one unmeasured run, and give a warm ratio; without
+    /// `also_warm` there are none, and no warm column.
+    #[test]
+    fn warm_runs_come_back_to_back_after_the_rounds() {
+        type Order = std::cell::RefCell<Vec<&'static str>>;
+        fn contenders<'a>(work: &mut Workload<'a>, order: &'a Order) {
+            for (name, side, ms) in [("a", Side::Rasterlab, 2), ("peer", Side::Peer, 6)] {
+                work.add(Contender::new(name, side, 1, move || {
+                    order.borrow_mut().push(name);
+                    std::thread::sleep(Duration::from_millis(ms));
+                }));
+            }
+        }
+        let order = Order::default();
+        let mut work = Workload::new("w");
+        contenders(&mut work, &order);
+        work.also_warm();
+        let result = work.run(3);
+        let ran = order.take();
+        // Warm-up, three rounds of two, then 1 + 3 of each back to back.
+        assert_eq!(ran.len(), 2 + 6 + 8);
+        assert_eq!(
+            &ran[8..],
+            ["a", "a", "a", "a", "peer", "peer", "peer", "peer"]
+        );
+        let warm = result.figures[1].warm.as_ref().expect("timed warm");
+        assert!(warm.median_ms >= 6.0, "{warm:?}");
+        let ratio = result.ratios()[0].warm_ratio.clone().expect("a warm ratio");
+        assert!(ratio.ratio > 1.0, "{ratio:?}");
+        assert_eq!(ratio.best, "a");
+        assert!(result.figure_table().to_string().contains("warm ms"));
+
+        let mut cold = Workload::new("w");
+        contenders(&mut cold, &order);
+        let result = cold.run(1);
+        assert!(result.figures.iter().all(|f| f.warm.is_none()));
+        assert_eq!(result.ratios()[0].warm_ratio, None);
+        assert!(!result.figure_table().to_string().contains("warm ms"));
     }
 }
