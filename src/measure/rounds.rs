@@ -30,7 +30,7 @@ use crate::measure::cpu::{CpuUse, ThreadTimes};
 use crate::measure::data::Skipped;
 use crate::measure::table::significant;
 use crate::measure::table::Table;
-use crate::measure::timing::Spread;
+use crate::measure::timing::{time_runs, Spread};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -162,19 +162,7 @@ impl<'a> Workload<'a> {
         let warm: Vec<Option<Spread>> = self
             .contenders
             .iter_mut()
-            .map(|c| {
-                self.warm.then(|| {
-                    (c.run)();
-                    let ms: Vec<f64> = (0..rounds)
-                        .map(|_| {
-                            let start = Instant::now();
-                            (c.run)();
-                            start.elapsed().as_secs_f64() * 1e3
-                        })
-                        .collect();
-                    Spread::of_ms(&ms)
-                })
-            })
+            .map(|c| self.warm.then(|| time_runs(rounds, &mut c.run).0.spread))
             .collect();
         WorkloadResult {
             workload: self.name,
@@ -246,30 +234,25 @@ impl WorkloadResult {
     /// rasterlab's when none is), the ratio taken round by round. Above 1,
     /// rasterlab is faster.
     pub fn ratios(&self) -> Vec<Ratio> {
-        let fastest = |threads: Option<usize>| {
-            self.figures
-                .iter()
-                .filter(|f| f.side == Side::Rasterlab && threads.is_none_or(|t| f.threads == t))
-                .min_by(|a, b| a.spread.median_ms.total_cmp(&b.spread.median_ms))
-        };
-        let warm = |f: &Figure| f.warm.as_ref().map(|w| w.median_ms);
-        // The fastest of rasterlab's warm figures on `threads` threads
-        // (on any number when none ran on that many).
-        let fastest_warm = |threads: usize| {
+        // rasterlab's figure with the smallest `time` on `threads` threads
+        // (on any number when none ran on that many), and that time.
+        let fastest = |threads: usize, time: fn(&Figure) -> Option<f64>| {
             let on = |t: Option<usize>| {
                 self.figures
                     .iter()
                     .filter(|f| f.side == Side::Rasterlab && t.is_none_or(|t| f.threads == t))
-                    .filter_map(|f| Some((warm(f)?, f.name.as_str())))
-                    .min_by(|a, b| a.0.total_cmp(&b.0))
+                    .filter_map(|f| Some((f, time(f)?)))
+                    .min_by(|a, b| a.1.total_cmp(&b.1))
             };
             on(Some(threads)).or_else(|| on(None))
         };
+        let cold: fn(&Figure) -> Option<f64> = |f| Some(f.spread.median_ms);
+        let warm: fn(&Figure) -> Option<f64> = |f| f.warm.as_ref().map(|w| w.median_ms);
         self.figures
             .iter()
             .filter(|f| f.side == Side::Peer)
             .filter_map(|peer| {
-                let best = fastest(Some(peer.threads)).or_else(|| fastest(None))?;
+                let (best, _) = fastest(peer.threads, cold)?;
                 let per_round: Vec<f64> = peer
                     .rounds_ms
                     .iter()
@@ -282,12 +265,12 @@ impl WorkloadResult {
                     best: best.name.clone(),
                     ratio: Spread::of_ms(&per_round),
                     cpu_ratio: cpu(peer).zip(cpu(best)).map(|(p, b)| p / b.max(1e-9)),
-                    warm_ratio: warm(peer)
-                        .zip(fastest_warm(peer.threads))
-                        .map(|(p, (b, name))| WarmRatio {
+                    warm_ratio: warm(peer).zip(fastest(peer.threads, warm)).map(
+                        |(p, (fastest_warm, b))| WarmRatio {
                             ratio: p / b.max(1e-9),
-                            best: name.to_string(),
-                        }),
+                            best: fastest_warm.name.clone(),
+                        },
+                    ),
                 })
             })
             .collect()
