@@ -964,3 +964,95 @@ proptest! {
         shaded_once_as_every_fragment(&segments).map_err(TestCaseError::fail)?;
     }
 }
+
+/// Lines of random colours and depths drawn by every line back-end into
+/// the stage twice: as the back-end hands them over (a segment's pixels
+/// in one call, [`FragmentSink::line_fragments`]) and one fragment per
+/// call, in the same order. With the depth test on, and off with
+/// Gouraud's colours, the buffers are the same.
+///
+/// [`FragmentSink::line_fragments`]: rasterlab::raster::FragmentSink::line_fragments
+fn segments_at_once_as_one_fragment_at_a_time(
+    segments: &[(FixedPoint, FixedPoint, [f32; 3])],
+) -> Result<(), String> {
+    use rasterlab::raster::{
+        line_backends, DepthState, DepthTest, FragmentSink, FragmentStage, Gouraud, ShadedLine,
+        ShadedVertex,
+    };
+    let setups: Vec<LineSetup> = segments
+        .iter()
+        .enumerate()
+        .map(|(i, &(from, to, _))| LineSetup {
+            id: i as u32,
+            from,
+            to,
+        })
+        .collect();
+    let shaded: Vec<ShadedLine> = segments
+        .iter()
+        .map(|&(from, to, [r, g, b])| ShadedLine {
+            from,
+            to,
+            vertices: [
+                ShadedVertex::flat(r, glam::Vec4::new(r, g, b, 1.0)),
+                ShadedVertex::flat(b, glam::Vec4::new(b, r, g, 1.0)),
+            ],
+        })
+        .collect();
+    let states = [
+        DepthState::DEFAULT,
+        DepthState {
+            test: DepthTest::Always,
+            write: false,
+        },
+    ];
+    let rect = PixelRect::of_target(24, 24);
+    for b in line_backends() {
+        let mut fragments = FragmentList::default();
+        b.rasterize(&setups, &LineOptions::DEFAULT, rect, &mut fragments);
+        for depth in states {
+            let target = || {
+                let mut target = RenderTarget::new(24, 24).unwrap();
+                target.color.fill([40, 90, 200, 255]);
+                target
+            };
+            let mut at_once = target();
+            let mut stage = FragmentStage::new(&mut at_once, &Gouraud)
+                .with_lines(&shaded)
+                .with_depth(depth);
+            b.rasterize(&setups, &LineOptions::DEFAULT, rect, &mut stage);
+            let mut each = target();
+            let mut stage = FragmentStage::new(&mut each, &Gouraud)
+                .with_lines(&shaded)
+                .with_depth(depth);
+            for f in &fragments.lines {
+                stage.line_fragment(f);
+            }
+            if at_once != each {
+                return Err(format!(
+                    "{} ({depth:?}): a segment's pixels at once differ from one at a time",
+                    b.name()
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(crate::common::proptest_config(300, "tests/proptest-regressions/lines.txt"))]
+
+    #[test]
+    fn a_segment_s_pixels_at_once_write_what_one_at_a_time_writes(
+        segments in proptest::collection::vec(
+            (
+                common::point(-3.0, 27.0, None),
+                common::point(-3.0, 27.0, None),
+                [0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0],
+            ),
+            1..8,
+        ),
+    ) {
+        segments_at_once_as_one_fragment_at_a_time(&segments).map_err(TestCaseError::fail)?;
+    }
+}

@@ -86,6 +86,16 @@ pub trait FragmentSink {
     }
     /// One pixel of a line.
     fn line_fragment(&mut self, fragment: &LineFragment);
+    /// Pixels of lines, in the order they were drawn: the same as each of
+    /// them to [`line_fragment`](Self::line_fragment) in turn, which is
+    /// what the default does. Line back-ends hand over a segment's pixels
+    /// this way, and the stage writes them in one loop instead of one
+    /// call each.
+    fn line_fragments(&mut self, fragments: &[LineFragment]) {
+        for f in fragments {
+            self.line_fragment(f);
+        }
+    }
     /// The back-end evaluated triangle `triangle`'s inside test at the
     /// samples of pixels `x0..=x1` of row `y`, whatever the outcome. For
     /// pictures of which pixels an algorithm tested; back-ends report each

@@ -20,10 +20,7 @@
 //! `direct` computes (a tie, `d == 0`, keeps `y`: the row nearer the
 //! start). Other octants by symmetry ([`super::OctantFrame`]).
 
-use super::{
-    finish_pixels, walk_frame, AliasedLine, LineDescriptor, LineOptions, LineSetup, LineWalk,
-    OctantFrame,
-};
+use super::{AliasedLine, LineDescriptor, LineWalk, OctantFrame};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
 
@@ -48,6 +45,14 @@ pub struct BresenhamStep {
 impl Bresenham {
     /// Runs the midpoint loop in a frame, returning each column's step.
     pub fn steps(frame: &OctantFrame) -> Vec<BresenhamStep> {
+        let mut steps = Vec::with_capacity((frame.i1 - frame.i0 + 1).max(0) as usize);
+        Bresenham::each_step(frame, |step| steps.push(step));
+        steps
+    }
+
+    /// The loop itself: gives each column's step to `visit`.
+    #[inline(always)]
+    fn each_step(frame: &OctantFrame, mut visit: impl FnMut(BresenhamStep)) {
         let du = frame.du() as i128;
         let dv = frame.dv() as i128;
         let s = SUBPIXEL_SCALE as i128;
@@ -55,10 +60,9 @@ impl Bresenham {
         // d = f(i0 + 1, k + 0.5) = du * (midpoint row) - du * v(i0 + 1)
         let mut d =
             du * (s * k as i128 + HALF_PIXEL as i128) - i128::from(frame.scaled_v_at(frame.i0 + 1));
-        let mut steps = Vec::with_capacity((frame.i1 - frame.i0 + 1) as usize);
         for i in frame.i0..=frame.i1 {
             let step_up = d < 0;
-            steps.push(BresenhamStep { i, k, d, step_up });
+            visit(BresenhamStep { i, k, d, step_up });
             if step_up {
                 k += 1;
                 d += s * (du - dv);
@@ -66,7 +70,6 @@ impl Bresenham {
                 d -= s * dv;
             }
         }
-        steps
     }
 }
 
@@ -80,12 +83,7 @@ impl AliasedLine for Bresenham {
         cost: CostClass::FollowsSize,
     };
 
-    fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
-        let (frame, reversed) = walk_frame(line, options);
-        let rows: Vec<(i64, i64)> = Bresenham::steps(&frame)
-            .iter()
-            .map(|s| (s.i, s.k))
-            .collect();
-        finish_pixels(&frame, &rows, reversed, options)
+    fn walk(frame: &OctantFrame, rows: &mut Vec<(i64, i64)>) {
+        Bresenham::each_step(frame, |step| rows.push((step.i, step.k)));
     }
 }

@@ -15,10 +15,7 @@
 //! `direct`. Every pixel is still within half a pixel (plus that error) of
 //! the ideal line, which the property tests check.
 
-use super::{
-    finish_pixels, walk_frame, AliasedLine, LineDescriptor, LineOptions, LineSetup, LineWalk,
-    OctantFrame,
-};
+use super::{AliasedLine, LineDescriptor, LineWalk, OctantFrame};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::fixed::SUBPIXEL_SCALE;
 
@@ -30,18 +27,24 @@ impl Dda {
     /// Each column of a frame as `(i, y, k)`: the accumulated `y` (in
     /// pixels, `y += m` per column) and the row it rounds to.
     pub fn columns(frame: &OctantFrame) -> Vec<(i64, f64, i64)> {
+        let mut columns = Vec::with_capacity((frame.i1 - frame.i0 + 1).max(0) as usize);
+        Dda::each_column(frame, |column| columns.push(column));
+        columns
+    }
+
+    /// The loop itself: gives each column's `(i, y, k)` to `visit`.
+    #[inline(always)]
+    fn each_column(frame: &OctantFrame, mut visit: impl FnMut((i64, f64, i64))) {
         let scale = SUBPIXEL_SCALE as f64;
         let (du, dv) = (frame.du() as f64, frame.dv() as f64);
         let m = if du > 0.0 { dv / du } else { 0.0 };
         // y at the first column's centre, in pixels.
         let mut y = (frame.v0 as f64 + m * (frame.i0 as f64 * scale - frame.u0 as f64)) / scale;
-        let mut columns = Vec::with_capacity((frame.i1 - frame.i0 + 1) as usize);
         for i in frame.i0..=frame.i1 {
             // Nearest row, ties to the lower row (the start's side).
-            columns.push((i, y, (y - 0.5).ceil() as i64));
+            visit((i, y, (y - 0.5).ceil() as i64));
             y += m;
         }
-        columns
     }
 }
 
@@ -55,12 +58,7 @@ impl AliasedLine for Dda {
         cost: CostClass::FollowsSize,
     };
 
-    fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
-        let (frame, reversed) = walk_frame(line, options);
-        let rows: Vec<(i64, i64)> = Dda::columns(&frame)
-            .into_iter()
-            .map(|(i, _, k)| (i, k))
-            .collect();
-        finish_pixels(&frame, &rows, reversed, options)
+    fn walk(frame: &OctantFrame, rows: &mut Vec<(i64, i64)>) {
+        Dda::each_column(frame, |(i, _, k)| rows.push((i, k)));
     }
 }

@@ -26,7 +26,7 @@
 //! column (or row), and the tests check it against applying it to every
 //! pixel.
 
-use super::{emit_pixels, LineDescriptor, LineOptions, LineRasterizer, LineSetup, LineWalk};
+use super::{LineDescriptor, LineOptions, LineRasterizer, LineSetup, LineWalk, PixelEmitter};
 use crate::error::{Error, Result};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::PixelRect;
@@ -239,7 +239,20 @@ impl Diamond {
     /// the segment leaves its diamond, the pixel is drawn); returns the
     /// pixels drawn. The trace records this walk; drawing passes a closure
     /// that only counts.
-    pub fn walk(line: &LineSetup, mut observe: impl FnMut(i64, i64, bool)) -> Vec<(i64, i64)> {
+    pub fn walk(line: &LineSetup, observe: impl FnMut(i64, i64, bool)) -> Vec<(i64, i64)> {
+        let mut pixels = Vec::new();
+        Self::walk_into(line, observe, &mut pixels);
+        pixels
+    }
+
+    /// [`walk`](Self::walk) into `pixels` (emptied first), so that a draw
+    /// reuses its memory from one segment to the next.
+    pub fn walk_into(
+        line: &LineSetup,
+        mut observe: impl FnMut(i64, i64, bool),
+        pixels: &mut Vec<(i64, i64)>,
+    ) {
+        pixels.clear();
         let (a, b) = (line.from, line.to);
         let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
         let x_major = dx.abs() >= dy.abs();
@@ -255,13 +268,9 @@ impl Diamond {
         };
         let first = (a_major.min(b_major) - HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) - 1;
         let last = (a_major.max(b_major) + HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) + 1;
-        let columns: Vec<i64> = if b_major >= a_major {
-            (first..=last).collect()
-        } else {
-            (first..=last).rev().collect()
-        };
-        let mut pixels = Vec::new();
-        for i in columns {
+        let forward = b_major >= a_major;
+        for n in 0..=last - first {
+            let i = if forward { first + n } else { last - n };
             // The line's minor coordinate at this column's centre: with
             // |slope| <= 1, any diamond of this column the segment passes
             // through has its centre within half a pixel of it.
@@ -287,7 +296,6 @@ impl Diamond {
                 }
             }
         }
-        pixels
     }
 }
 
@@ -320,11 +328,12 @@ impl LineRasterizer for Diamond {
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
         let mut work = WorkCounters::default();
+        let mut emitter = PixelEmitter::default();
+        let mut pixels = Vec::new();
         for line in lines {
             work.primitives += 1;
-            let (pixels, tested) = Self::pixels(line);
-            work.samples_tested += tested;
-            emit_pixels(line, &pixels, viewport, sink, &mut work);
+            Self::walk_into(line, |_, _, _| work.samples_tested += 1, &mut pixels);
+            emitter.emit(line, &pixels, viewport, sink, &mut work);
         }
         work
     }

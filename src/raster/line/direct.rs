@@ -15,10 +15,7 @@
 //! pixel for pixel the same as `bresenham`'s. Other octants by symmetry
 //! ([`super::OctantFrame`]).
 
-use super::{
-    finish_pixels, walk_frame, AliasedLine, LineDescriptor, LineOptions, LineSetup, LineWalk,
-    OctantFrame,
-};
+use super::{AliasedLine, LineDescriptor, LineWalk, OctantFrame};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::fixed::SUBPIXEL_SCALE;
 
@@ -56,9 +53,7 @@ impl AliasedLine for Direct {
         cost: CostClass::FollowsSize,
     };
 
-    fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
-        let (frame, reversed) = walk_frame(line, options);
-        let rows: Vec<(i64, i64)> = Direct::rows(&frame).collect();
-        finish_pixels(&frame, &rows, reversed, options)
+    fn walk(frame: &OctantFrame, rows: &mut Vec<(i64, i64)>) {
+        rows.extend(Direct::rows(frame));
     }
 }

@@ -164,15 +164,42 @@ pub trait LineRasterizer: Send + Sync {
     ) -> WorkCounters;
 }
 
-/// An aliased line algorithm, as its file writes it: its facts and the
-/// pixels of one segment. Drawing (each segment's pixels clipped to the
+/// An aliased line algorithm, as its file writes it: its facts and its
+/// walk, the row it picks in each column of a segment's
+/// [`OctantFrame`]. Turning the rows into pixels (connectivity, symmetry,
+/// end points) and drawing them (each segment's pixels clipped to the
 /// viewport, coverage 1, counted) is provided once, by the
 /// [`LineRasterizer`] every such algorithm is.
 pub trait AliasedLine: Send + Sync {
     /// The back-end's name, description, walk, role and cost class.
     const DESCRIPTOR: LineDescriptor;
+
+    /// The walk: for each column `i` of `frame`, from `frame.i0` to
+    /// `frame.i1`, the row `k` the algorithm picks, pushed onto `rows` as
+    /// `(i, k)` (which holds nothing yet).
+    fn walk(frame: &OctantFrame, rows: &mut Vec<(i64, i64)>);
+
     /// The pixels of one segment, in the order of travel.
-    fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)>;
+    fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
+        let mut pixels = Vec::new();
+        Self::pixels_into(line, options, &mut Vec::new(), &mut pixels);
+        pixels
+    }
+
+    /// [`pixels`](Self::pixels) into `pixels`, with `rows` for the walk:
+    /// both emptied first, so that a draw reuses their memory from one
+    /// segment to the next.
+    fn pixels_into(
+        line: &LineSetup,
+        options: &LineOptions,
+        rows: &mut Vec<(i64, i64)>,
+        pixels: &mut Vec<(i64, i64)>,
+    ) {
+        let (frame, reversed) = walk_frame(line, options);
+        rows.clear();
+        Self::walk(&frame, rows);
+        finish_pixels(&frame, rows, reversed, options, pixels);
+    }
 }
 
 impl<A: AliasedLine> LineRasterizer for A {
@@ -188,11 +215,13 @@ impl<A: AliasedLine> LineRasterizer for A {
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
         let mut work = WorkCounters::default();
+        let mut emitter = PixelEmitter::default();
+        let (mut rows, mut pixels) = (Vec::new(), Vec::new());
         for line in lines {
             work.primitives += 1;
-            let pixels = A::pixels(line, options);
+            A::pixels_into(line, options, &mut rows, &mut pixels);
             work.samples_tested += pixels.len() as u64;
-            emit_pixels(line, &pixels, viewport, sink, &mut work);
+            emitter.emit(line, &pixels, viewport, sink, &mut work);
         }
         work
     }
@@ -359,15 +388,18 @@ pub(crate) fn walk_frame(line: &LineSetup, options: &LineOptions) -> (OctantFram
 }
 
 /// Turns a frame's column-by-column rows into screen pixels in the order of
-/// travel: adds 4-connected corners, reverses walks made backwards by the
-/// symmetric variant, drops the end pixel when half-open.
+/// travel, into `pixels` (emptied first): adds 4-connected corners,
+/// reverses walks made backwards by the symmetric variant, drops the end
+/// pixel when half-open.
 pub(crate) fn finish_pixels(
     frame: &OctantFrame,
     rows: &[(i64, i64)],
     reversed: bool,
     options: &LineOptions,
-) -> Vec<(i64, i64)> {
-    let mut pixels: Vec<(i64, i64)> = Vec::with_capacity(rows.len() * 2);
+    pixels: &mut Vec<(i64, i64)>,
+) {
+    pixels.clear();
+    pixels.reserve(rows.len() * 2);
     for (n, &(i, k)) in rows.iter().enumerate() {
         if options.connectivity == Connectivity::Four && n > 0 {
             let (pi, pk) = rows[n - 1];
@@ -395,26 +427,55 @@ pub(crate) fn finish_pixels(
     if options.endpoints == Endpoints::HalfOpen {
         pixels.pop();
     }
-    pixels
 }
 
-/// Emits aliased pixels (coverage 1) that lie in the viewport.
-pub(crate) fn emit_pixels(
-    line: &LineSetup,
-    pixels: &[(i64, i64)],
-    viewport: PixelRect,
-    sink: &mut dyn FragmentSink,
-    work: &mut WorkCounters,
-) {
-    for &(x, y) in pixels {
-        if viewport.contains(x, y) {
-            work.fragments += 1;
-            sink.line_fragment(&LineFragment {
-                x: x as u32,
-                y: y as u32,
-                line: line.id,
-                coverage: 1.0,
-            });
+/// Hands a segment's pixels that lie in the viewport to a sink in one
+/// call ([`FragmentSink::line_fragments`]), through a buffer kept from
+/// one segment to the next.
+#[derive(Debug, Default)]
+pub(crate) struct PixelEmitter {
+    fragments: Vec<LineFragment>,
+}
+
+impl PixelEmitter {
+    /// Emits aliased pixels (coverage 1) of `line` that lie in the
+    /// viewport, counting them.
+    pub(crate) fn emit(
+        &mut self,
+        line: &LineSetup,
+        pixels: &[(i64, i64)],
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+        work: &mut WorkCounters,
+    ) {
+        self.emit_weighted(line, pixels.iter().map(|&p| (p, 1.0)), viewport, sink, work);
+    }
+
+    /// Emits pixels of `line` with their coverage that lie in the
+    /// viewport, counting them.
+    pub(crate) fn emit_weighted(
+        &mut self,
+        line: &LineSetup,
+        pixels: impl IntoIterator<Item = ((i64, i64), f32)>,
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+        work: &mut WorkCounters,
+    ) {
+        self.fragments.clear();
+        self.fragments.extend(
+            pixels
+                .into_iter()
+                .filter(|&((x, y), _)| viewport.contains(x, y))
+                .map(|((x, y), coverage)| LineFragment {
+                    x: x as u32,
+                    y: y as u32,
+                    line: line.id,
+                    coverage,
+                }),
+        );
+        work.fragments += self.fragments.len() as u64;
+        if !self.fragments.is_empty() {
+            sink.line_fragments(&self.fragments);
         }
     }
 }

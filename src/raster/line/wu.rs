@@ -11,12 +11,13 @@
 
 use super::{
     walk_frame, Endpoints, LineDescriptor, LineOptions, LineRasterizer, LineSetup, LineWalk,
+    PixelEmitter,
 };
 use crate::error::{Error, Result};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::SUBPIXEL_SCALE;
-use crate::raster::fragment::{FragmentSink, LineFragment, WorkCounters};
+use crate::raster::fragment::{FragmentSink, WorkCounters};
 
 /// Xiaolin Wu's anti-aliased line algorithm.
 #[derive(Copy, Clone, Debug, Default)]
@@ -25,6 +26,19 @@ pub struct Wu;
 impl Wu {
     /// The pixels of one segment with their coverage, in the order of travel.
     pub fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<((i64, i64), f32)> {
+        let mut pixels = Vec::new();
+        Self::pixels_into(line, options, &mut pixels);
+        pixels
+    }
+
+    /// [`pixels`](Self::pixels) into `pixels` (emptied first), so that a
+    /// draw reuses its memory from one segment to the next.
+    pub fn pixels_into(
+        line: &LineSetup,
+        options: &LineOptions,
+        pixels: &mut Vec<((i64, i64), f32)>,
+    ) {
+        pixels.clear();
         let (frame, reversed) = walk_frame(line, options);
         let du = frame.du() as i128;
         let s = SUBPIXEL_SCALE as i128;
@@ -37,7 +51,7 @@ impl Wu {
         } else {
             (frame.i0, 1)
         };
-        let mut pixels = Vec::with_capacity(2 * count as usize);
+        pixels.reserve(2 * count as usize);
         for n in 0..count {
             let i = first + step * n;
             // y = scaled / du fixed units; row below = floor(y / 256).
@@ -58,7 +72,6 @@ impl Wu {
                 }
             }
         }
-        pixels
     }
 }
 
@@ -91,20 +104,13 @@ impl LineRasterizer for Wu {
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
         let mut work = WorkCounters::default();
+        let mut emitter = PixelEmitter::default();
+        let mut pixels = Vec::new();
         for line in lines {
             work.primitives += 1;
-            for ((x, y), coverage) in Self::pixels(line, options) {
-                work.samples_tested += 1;
-                if viewport.contains(x, y) {
-                    work.fragments += 1;
-                    sink.line_fragment(&LineFragment {
-                        x: x as u32,
-                        y: y as u32,
-                        line: line.id,
-                        coverage,
-                    });
-                }
-            }
+            Self::pixels_into(line, options, &mut pixels);
+            work.samples_tested += pixels.len() as u64;
+            emitter.emit_weighted(line, pixels.iter().copied(), viewport, sink, &mut work);
         }
         work
     }
