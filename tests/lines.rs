@@ -112,6 +112,11 @@ proptest! {
         options_are_kept(a, b, opt)?;
     }
 
+    #[test]
+    fn an_aliased_line_draws_the_pixels_it_lists(a in endpoint(), b in endpoint(), opt in options()) {
+        drawn_as_listed(a, b, opt)?;
+    }
+
     /// Octant symmetry of the textbook (direction-dependent) algorithms. The
     /// symmetric variant starts from the smaller major coordinate, which a
     /// mirror changes, so at ties it is direction-free but not mirror-free.
@@ -520,8 +525,48 @@ fn bresenham_is_direct(
     Ok(())
 }
 
+/// Drawing a segment hands the sink its pixels, in order, those outside
+/// the viewport left out, and counts them: for an 8-connected line the
+/// draw goes from the walk to the sink without the pixel list, so this
+/// compares the two ways.
+fn drawn_as_listed(a: FixedPoint, b: FixedPoint, opt: LineOptions) -> Result<(), TestCaseError> {
+    // A viewport that cuts most segments of the strategies.
+    let viewport = PixelRect {
+        x0: 2,
+        y0: 3,
+        x1: 30,
+        y1: 25,
+    };
+    let line = LineSetup { id: 7, ..seg(a, b) };
+    let backends: [(&dyn LineRasterizer, PixelsOf); 3] = [
+        (&Direct, Direct::pixels),
+        (&Dda, Dda::pixels),
+        (&Bresenham, Bresenham::pixels),
+    ];
+    for (backend, pixels_of) in backends {
+        let listed = pixels_of(&line, &opt);
+        let mut drawn = FragmentList::default();
+        let work = backend.rasterize(&[line], &opt, viewport, &mut drawn);
+        let expected: Vec<_> = listed
+            .iter()
+            .copied()
+            .filter(|&(x, y)| viewport.contains(x, y))
+            .collect();
+        let got: Vec<_> = drawn
+            .lines
+            .iter()
+            .map(|f| (i64::from(f.x), i64::from(f.y)))
+            .collect();
+        prop_assert_eq!(&got, &expected, "{} draws other pixels", backend.name());
+        prop_assert!(drawn.lines.iter().all(|f| f.line == 7 && f.coverage == 1.0));
+        prop_assert_eq!(work.samples_tested, listed.len() as u64);
+        prop_assert_eq!(work.fragments, expected.len() as u64);
+    }
+    Ok(())
+}
+
 /// Every property of one segment drawn with `opt`: options kept,
-/// reflections, and Bresenham equal to direct.
+/// reflections, Bresenham equal to direct, and each drawn as listed.
 fn segment_properties_hold(
     a: FixedPoint,
     b: FixedPoint,
@@ -529,7 +574,8 @@ fn segment_properties_hold(
 ) -> Result<(), TestCaseError> {
     options_are_kept(a, b, opt)?;
     reflections_are_kept(a, b, opt)?;
-    bresenham_is_direct(a, b, opt)
+    bresenham_is_direct(a, b, opt)?;
+    drawn_as_listed(a, b, opt)
 }
 
 /// `opt` promises, for the three aliased algorithms.

@@ -51,23 +51,30 @@ impl Bresenham {
     }
 
     /// The loop itself: gives each column's step to `visit`.
+    ///
+    /// `d` fits an `i64`: in the guard band `|du|, |v| < 2^25` frame units,
+    /// so its start is below `2^59` ([`OctantFrame::scaled_v_at`]) and each
+    /// step keeps it within `256 du` of zero.
     #[inline(always)]
     fn each_step(frame: &OctantFrame, mut visit: impl FnMut(BresenhamStep)) {
-        let du = frame.du() as i128;
-        let dv = frame.dv() as i128;
-        let s = SUBPIXEL_SCALE as i128;
+        let (du, dv) = (frame.du(), frame.dv());
         let mut k = frame.nearest_row(frame.i0);
         // d = f(i0 + 1, k + 0.5) = du * (midpoint row) - du * v(i0 + 1)
-        let mut d =
-            du * (s * k as i128 + HALF_PIXEL as i128) - i128::from(frame.scaled_v_at(frame.i0 + 1));
+        let mut d = du * (SUBPIXEL_SCALE * k + HALF_PIXEL) - frame.scaled_v_at(frame.i0 + 1);
+        let (up, across) = (SUBPIXEL_SCALE * (du - dv), SUBPIXEL_SCALE * dv);
         for i in frame.i0..=frame.i1 {
             let step_up = d < 0;
-            visit(BresenhamStep { i, k, d, step_up });
+            visit(BresenhamStep {
+                i,
+                k,
+                d: i128::from(d),
+                step_up,
+            });
             if step_up {
                 k += 1;
-                d += s * (du - dv);
+                d += up;
             } else {
-                d -= s * dv;
+                d -= across;
             }
         }
     }
@@ -83,7 +90,7 @@ impl AliasedLine for Bresenham {
         cost: CostClass::FollowsSize,
     };
 
-    fn walk(frame: &OctantFrame, rows: &mut Vec<(i64, i64)>) {
-        Bresenham::each_step(frame, |step| rows.push((step.i, step.k)));
+    fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
+        Bresenham::each_step(frame, |step| visit(step.i, step.k));
     }
 }

@@ -42,10 +42,20 @@ impl Dda {
         let mut y = (frame.v0 as f64 + m * (frame.i0 as f64 * scale - frame.u0 as f64)) / scale;
         for i in frame.i0..=frame.i1 {
             // Nearest row, ties to the lower row (the start's side).
-            visit((i, y, (y - 0.5).ceil() as i64));
+            visit((i, y, ceil(y - 0.5)));
             y += m;
         }
     }
+}
+
+/// `t.ceil() as i64` for the `|t| < 2^52` of a segment in the guard band,
+/// without the library call `ceil` is on a baseline x86-64 CPU: the
+/// conversion truncates towards zero, which is the ceiling for negative
+/// `t` and for whole `t`, and one below it otherwise.
+#[inline(always)]
+fn ceil(t: f64) -> i64 {
+    let truncated = t as i64;
+    truncated + i64::from((truncated as f64) < t)
 }
 
 impl AliasedLine for Dda {
@@ -58,7 +68,31 @@ impl AliasedLine for Dda {
         cost: CostClass::FollowsSize,
     };
 
-    fn walk(frame: &OctantFrame, rows: &mut Vec<(i64, i64)>) {
-        Dda::each_column(frame, |(i, _, k)| rows.push((i, k)));
+    fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
+        Dda::each_column(frame, |(i, _, k)| visit(i, k));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ceil;
+
+    /// The conversion-based ceiling is the library's at whole numbers,
+    /// halves, either side of zero and at the ends of the range.
+    #[test]
+    fn ceil_is_the_library_ceiling() {
+        let mut rng = fastrand::Rng::with_seed(3);
+        let edges = [
+            0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 1e-300, -1e-300, 4.0e15, -4.0e15,
+        ];
+        let cases = edges
+            .into_iter()
+            .chain((-400..400).map(|n| f64::from(n) / 4.0))
+            .chain((0..10_000).map(|_| (rng.f64() - 0.5) * 2e6));
+        for t in cases {
+            assert_eq!(ceil(t), t.ceil() as i64, "ceil({t})");
+            let next = f64::from_bits(t.to_bits() + 1);
+            assert_eq!(ceil(next), next.ceil() as i64, "ceil({next})");
+        }
     }
 }

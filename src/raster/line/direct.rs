@@ -53,7 +53,7 @@ impl AliasedLine for Direct {
         cost: CostClass::FollowsSize,
     };
 
-    fn walk(frame: &OctantFrame, rows: &mut Vec<(i64, i64)>) {
-        rows.extend(Direct::rows(frame));
+    fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
+        Direct::rows(frame).for_each(|(i, k)| visit(i, k));
     }
 }

@@ -175,9 +175,9 @@ pub trait AliasedLine: Send + Sync {
     const DESCRIPTOR: LineDescriptor;
 
     /// The walk: for each column `i` of `frame`, from `frame.i0` to
-    /// `frame.i1`, the row `k` the algorithm picks, pushed onto `rows` as
-    /// `(i, k)` (which holds nothing yet).
-    fn walk(frame: &OctantFrame, rows: &mut Vec<(i64, i64)>);
+    /// `frame.i1`, the row `k` the algorithm picks, given to `visit` as
+    /// `(i, k)`.
+    fn walk(frame: &OctantFrame, visit: impl FnMut(i64, i64));
 
     /// The pixels of one segment, in the order of travel.
     fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
@@ -197,7 +197,7 @@ pub trait AliasedLine: Send + Sync {
     ) {
         let (frame, reversed) = walk_frame(line, options);
         rows.clear();
-        Self::walk(&frame, rows);
+        Self::walk(&frame, |i, k| rows.push((i, k)));
         finish_pixels(&frame, rows, reversed, options, pixels);
     }
 }
@@ -219,9 +219,15 @@ impl<A: AliasedLine> LineRasterizer for A {
         let (mut rows, mut pixels) = (Vec::new(), Vec::new());
         for line in lines {
             work.primitives += 1;
-            A::pixels_into(line, options, &mut rows, &mut pixels);
-            work.samples_tested += pixels.len() as u64;
-            emitter.emit(line, &pixels, viewport, sink, &mut work);
+            if options.connectivity == Connectivity::Eight {
+                // One pixel per column: the walk's rows go to the sink
+                // without a pixel list in between.
+                emitter.emit_columns::<A>(line, options, viewport, sink, &mut work);
+            } else {
+                A::pixels_into(line, options, &mut rows, &mut pixels);
+                work.samples_tested += pixels.len() as u64;
+                emitter.emit(line, &pixels, viewport, sink, &mut work);
+            }
         }
         work
     }
@@ -449,6 +455,54 @@ impl PixelEmitter {
         work: &mut WorkCounters,
     ) {
         self.emit_weighted(line, pixels.iter().map(|&p| (p, 1.0)), viewport, sink, work);
+    }
+
+    /// Emits the pixels of an 8-connected `line` that lie in the
+    /// viewport, straight from `A`'s walk, counting them: the pixels
+    /// [`AliasedLine::pixels`] gives, one per column, in the same order.
+    fn emit_columns<A: AliasedLine>(
+        &mut self,
+        line: &LineSetup,
+        options: &LineOptions,
+        viewport: PixelRect,
+        sink: &mut dyn FragmentSink,
+        work: &mut WorkCounters,
+    ) {
+        debug_assert_eq!(options.connectivity, Connectivity::Eight);
+        let (frame, reversed) = walk_frame(line, options);
+        // The end pixel of travel is the last column walked, or the first
+        // when the walk ran backwards.
+        let left_out = match options.endpoints {
+            Endpoints::Inclusive => None,
+            Endpoints::HalfOpen if reversed => Some(frame.i0),
+            Endpoints::HalfOpen => Some(frame.i1),
+        };
+        let fragments = &mut self.fragments;
+        fragments.clear();
+        let mut tested = 0;
+        A::walk(&frame, |i, k| {
+            if Some(i) == left_out {
+                return;
+            }
+            tested += 1;
+            let (x, y) = frame.to_screen(i, k);
+            if viewport.contains(x, y) {
+                fragments.push(LineFragment {
+                    x: x as u32,
+                    y: y as u32,
+                    line: line.id,
+                    coverage: 1.0,
+                });
+            }
+        });
+        if reversed {
+            fragments.reverse();
+        }
+        work.samples_tested += tested;
+        work.fragments += fragments.len() as u64;
+        if !fragments.is_empty() {
+            sink.line_fragments(fragments);
+        }
     }
 
     /// Emits pixels of `line` with their coverage that lie in the
