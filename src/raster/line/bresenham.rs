@@ -90,6 +90,7 @@ impl AliasedLine for Bresenham {
         cost: CostClass::FollowsSize,
     };
 
+    #[inline]
     fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
         Bresenham::each_step(frame, |step| visit(step.i, step.k));
     }

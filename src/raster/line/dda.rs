@@ -68,6 +68,7 @@ impl AliasedLine for Dda {
         cost: CostClass::FollowsSize,
     };
 
+    #[inline]
     fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
         Dda::each_column(frame, |(i, _, k)| visit(i, k));
     }

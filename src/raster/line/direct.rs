@@ -53,6 +53,7 @@ impl AliasedLine for Direct {
         cost: CostClass::FollowsSize,
     };
 
+    #[inline]
     fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
         Direct::rows(frame).for_each(|(i, k)| visit(i, k));
     }

@@ -477,28 +477,55 @@ impl PixelEmitter {
             Endpoints::HalfOpen if reversed => Some(frame.i0),
             Endpoints::HalfOpen => Some(frame.i1),
         };
-        let fragments = &mut self.fragments;
-        fragments.clear();
-        let mut tested = 0;
+        // The buffer is kept at least as long as the longest segment so
+        // far and written by index: no capacity test or growth (a call the
+        // loop's registers would be saved around) per pixel.
+        let columns = (frame.i1 - frame.i0 + 1) as usize;
+        if self.fragments.len() < columns {
+            let unused = LineFragment {
+                x: 0,
+                y: 0,
+                line: 0,
+                coverage: 0.0,
+            };
+            self.fragments.resize(columns, unused);
+        }
+        let slots = &mut self.fragments[..columns];
+        let mut drawn = 0;
+        let id = line.id;
         A::walk(&frame, |i, k| {
-            if Some(i) == left_out {
-                return;
-            }
-            tested += 1;
             let (x, y) = frame.to_screen(i, k);
             if viewport.contains(x, y) {
-                fragments.push(LineFragment {
+                slots[drawn] = LineFragment {
                     x: x as u32,
                     y: y as u32,
-                    line: line.id,
+                    line: id,
                     coverage: 1.0,
-                });
+                };
+                drawn += 1;
             }
         });
+        // The left-out column's pixel, if it was drawn, is the last one
+        // walked (or the first, walking backwards): one pixel per column,
+        // so its major coordinate tells.
+        let mut walked = 0..drawn;
+        if let (Some(column), true) = (left_out, drawn > 0) {
+            let major_of = |f: &LineFragment| i64::from(if frame.swap { f.y } else { f.x });
+            let major = if frame.flip_major { -column } else { column };
+            let end = if reversed { 0 } else { drawn - 1 };
+            if major_of(&slots[end]) == major {
+                if reversed {
+                    walked.start += 1;
+                } else {
+                    walked.end -= 1;
+                }
+            }
+        }
+        let fragments = &mut slots[walked];
         if reversed {
             fragments.reverse();
         }
-        work.samples_tested += tested;
+        work.samples_tested += columns as u64 - u64::from(left_out.is_some());
         work.fragments += fragments.len() as u64;
         if !fragments.is_empty() {
             sink.line_fragments(fragments);
