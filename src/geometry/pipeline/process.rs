@@ -327,10 +327,8 @@ fn assemble<V: Sync, S: VertexShader<V>>(
     // place, chunk by chunk.
     let n = vertices.len();
     let placeholder = ShadedVertex::flat(0.0, glam::Vec4::ZERO);
-    scratch.screen.truncate(n);
-    scratch.screen.resize(n, ScreenPoint::default());
-    shaded.truncate(n);
-    shaded.resize(n, placeholder);
+    resize_in_parallel(&mut scratch.screen, n, ScreenPoint::default());
+    resize_in_parallel(shaded, n, placeholder);
     let refused = scratch
         .screen
         .par_chunks_mut(VERTEX_CHUNK)
@@ -394,6 +392,16 @@ fn assemble<V: Sync, S: VertexShader<V>>(
         stats.add(&p.stats);
     }
     Ok((stats, bands))
+}
+
+/// `buffer.resize(n, value)`, the new elements written by rayon's
+/// threads: a first frame's buffers are fresh memory, which the kernel
+/// zeroes page by page as it is first written, and that then happens on
+/// every core, not on one.
+fn resize_in_parallel<T: Copy + Send + Sync>(buffer: &mut Vec<T>, n: usize, value: T) {
+    buffer.truncate(n);
+    let more = n - buffer.len();
+    buffer.par_extend(rayon::iter::repeat_n(value, more));
 }
 
 /// Runs the vertex shader on the end points of `segments` (index pairs
