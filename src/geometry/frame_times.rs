@@ -97,6 +97,17 @@ pub(crate) fn milliseconds<S: serde::Serializer>(d: &Duration, s: S) -> Result<S
     s.serialize_f64(d.as_secs_f64() * 1e3)
 }
 
+/// A duration as milliseconds, or `null`, in the JSON of a report.
+pub(crate) fn optional_milliseconds<S: serde::Serializer>(
+    d: &Option<Duration>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    match d {
+        Some(d) => milliseconds(d, s),
+        None => s.serialize_none(),
+    }
+}
+
 impl fmt::Display for FrameTimes {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let ms = |d: Duration| d.as_secs_f64() * 1e3;

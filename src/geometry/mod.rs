@@ -43,8 +43,8 @@ pub(crate) mod polygon;
 pub(crate) mod render;
 pub(crate) mod scene;
 
-pub(crate) use frame_times::milliseconds;
 pub use frame_times::FrameTimes;
+pub(crate) use frame_times::{milliseconds, optional_milliseconds};
 pub use input::{parse_shapes, read_shapes, Shapes};
 pub use listing::{list_fragments, list_fragments_in_file, FragmentListing, FragmentsRequest};
 pub use mesh::{load_obj, load_ply, parse_obj, read_ply, triangulate_face, Mesh, MAX_COORDINATE};
