@@ -42,7 +42,7 @@ pub const HALF_PIXEL: i64 = SUBPIXEL_SCALE / 2;
 pub const GUARD_BAND: i64 = 1 << 15;
 
 /// A screen coordinate snapped to 1/256 pixel.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash, bytemuck::Zeroable)]
 pub struct Fixed(i32);
 
 /// `x` rounded to the nearest integer, ties to even: `f64::round_ties_even`,
@@ -124,7 +124,7 @@ impl Fixed {
 }
 
 /// A snapped screen-space point.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash, bytemuck::Zeroable)]
 pub struct FixedPoint {
     /// Column coordinate (grows right).
     pub x: Fixed,

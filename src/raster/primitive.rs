@@ -8,7 +8,7 @@ use crate::raster::fixed::{FixedPoint, SUBPIXEL_SCALE};
 use glam::{Vec2, Vec3, Vec4};
 
 /// Per-vertex values interpolated across a primitive.
-#[derive(Copy, Clone, Debug, Default, PartialEq)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, bytemuck::Zeroable)]
 pub struct Varyings {
     /// Linear RGBA colour in `[0, 1]`.
     pub color: Vec4,
@@ -44,7 +44,7 @@ impl Varyings {
 }
 
 /// A vertex as the fragment stage needs it: screen depth, `1 / w` and varyings.
-#[derive(Copy, Clone, Debug, PartialEq)]
+#[derive(Copy, Clone, Debug, PartialEq, bytemuck::Zeroable)]
 pub struct ShadedVertex {
     /// Depth in `[0, 1]` after the viewport transform (0 near, 1 far).
     pub depth: f32,

@@ -326,9 +326,8 @@ fn assemble<V: Sync, S: VertexShader<V>>(
     // buffers are sized first (reused from the last draw) and filled in
     // place, chunk by chunk.
     let n = vertices.len();
-    let placeholder = ShadedVertex::flat(0.0, glam::Vec4::ZERO);
-    resize_in_parallel(&mut scratch.screen, n, ScreenPoint::default());
-    resize_in_parallel(shaded, n, placeholder);
+    size_for_overwrite(&mut scratch.screen, n);
+    size_for_overwrite(shaded, n);
     let refused = scratch
         .screen
         .par_chunks_mut(VERTEX_CHUNK)
@@ -394,14 +393,23 @@ fn assemble<V: Sync, S: VertexShader<V>>(
     Ok((stats, bands))
 }
 
-/// `buffer.resize(n, value)`, the new elements written by rayon's
-/// threads: a first frame's buffers are fresh memory, which the kernel
-/// zeroes page by page as it is first written, and that then happens on
-/// every core, not on one.
-fn resize_in_parallel<T: Copy + Send + Sync>(buffer: &mut Vec<T>, n: usize, value: T) {
-    buffer.truncate(n);
-    let more = n - buffer.len();
-    buffer.par_extend(rayon::iter::repeat_n(value, more));
+/// Gives `buffer` `n` elements, which the caller then overwrites.
+///
+/// A first frame's buffers are fresh memory, which the kernel zeroes page
+/// by page as it is first written. Grown with placeholder values, they
+/// were written twice, once by one thread; a buffer too small for `n` is
+/// replaced by a zeroed allocation instead, which the allocator hands out
+/// from fresh pages without writing them, so that the vertex stage's own
+/// writes, on every thread, are the first. Full dragon, one frame, one
+/// thread: sizing the two buffers (35 MB) took 5.8 to 6.2 ms before the
+/// stage's 5.1 to 5.3.
+fn size_for_overwrite<T: bytemuck::Zeroable + Copy>(buffer: &mut Vec<T>, n: usize) {
+    if buffer.capacity() < n {
+        *buffer = bytemuck::zeroed_vec(n);
+    } else {
+        buffer.truncate(n);
+        buffer.resize(n, T::zeroed());
+    }
 }
 
 /// Runs the vertex shader on the end points of `segments` (index pairs

@@ -64,7 +64,7 @@ impl GeometryStats {
 /// A vertex's place after the vertex shader: out-code, and when that is 0
 /// (inside every clip plane) its snapped screen position and depth (kept
 /// here too, so that assembly reads only these 16 bytes per vertex).
-#[derive(Copy, Clone, Debug, Default)]
+#[derive(Copy, Clone, Debug, Default, bytemuck::Zeroable)]
 pub(super) struct ScreenPoint {
     pub(super) point: FixedPoint,
     pub(super) depth: f32,
