@@ -46,23 +46,26 @@ impl Bresenham {
     /// Runs the midpoint loop in a frame, returning each column's step.
     pub fn steps(frame: &OctantFrame) -> Vec<BresenhamStep> {
         let mut steps = Vec::with_capacity((frame.i1 - frame.i0 + 1).max(0) as usize);
-        Bresenham::each_step(frame, |step| steps.push(step));
+        Bresenham::each_step(frame, frame.i0, frame.i1, |step| steps.push(step));
         steps
     }
 
-    /// The loop itself: gives each column's step to `visit`.
+    /// The loop itself, over columns `first..=last` (inside `frame.i0..=
+    /// frame.i1`): gives each column's step to `visit`. Started past `i0`,
+    /// it starts with the row and the decision variable it would have had
+    /// there (the row is the one nearest the line, as `direct` finds it).
     ///
     /// `d` fits an `i64`: in the guard band `|du|, |v| < 2^25` frame units,
     /// so its start is below `2^59` ([`OctantFrame::scaled_v_at`]) and each
     /// step keeps it within `256 du` of zero.
     #[inline(always)]
-    fn each_step(frame: &OctantFrame, mut visit: impl FnMut(BresenhamStep)) {
+    fn each_step(frame: &OctantFrame, first: i64, last: i64, mut visit: impl FnMut(BresenhamStep)) {
         let (du, dv) = (frame.du(), frame.dv());
-        let mut k = frame.nearest_row(frame.i0);
-        // d = f(i0 + 1, k + 0.5) = du * (midpoint row) - du * v(i0 + 1)
-        let mut d = du * (SUBPIXEL_SCALE * k + HALF_PIXEL) - frame.scaled_v_at(frame.i0 + 1);
+        let mut k = frame.nearest_row(first);
+        // d = f(first + 1, k + 0.5) = du * (midpoint row) - du * v(first + 1)
+        let mut d = du * (SUBPIXEL_SCALE * k + HALF_PIXEL) - frame.scaled_v_at(first + 1);
         let (up, across) = (SUBPIXEL_SCALE * (du - dv), SUBPIXEL_SCALE * dv);
-        for i in frame.i0..=frame.i1 {
+        for i in first..=last {
             let step_up = d < 0;
             visit(BresenhamStep {
                 i,
@@ -92,6 +95,11 @@ impl AliasedLine for Bresenham {
 
     #[inline]
     fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
-        Bresenham::each_step(frame, |step| visit(step.i, step.k));
+        Bresenham::each_step(frame, frame.i0, frame.i1, |step| visit(step.i, step.k));
+    }
+
+    #[inline]
+    fn walk_columns(frame: &OctantFrame, first: i64, last: i64, mut visit: impl FnMut(i64, i64)) {
+        Bresenham::each_step(frame, first, last, |step| visit(step.i, step.k));
     }
 }

@@ -28,19 +28,30 @@ impl Dda {
     /// pixels, `y += m` per column) and the row it rounds to.
     pub fn columns(frame: &OctantFrame) -> Vec<(i64, f64, i64)> {
         let mut columns = Vec::with_capacity((frame.i1 - frame.i0 + 1).max(0) as usize);
-        Dda::each_column(frame, |column| columns.push(column));
+        Dda::each_column(frame, frame.i0, frame.i1, |column| columns.push(column));
         columns
     }
 
-    /// The loop itself: gives each column's `(i, y, k)` to `visit`.
+    /// The loop itself, over columns `first..=last` (inside `frame.i0..=
+    /// frame.i1`): gives each column's `(i, y, k)` to `visit`. `y` grows
+    /// from the first column whatever `first` is, so that each column has
+    /// the very `y` (rounding errors included) of the whole walk.
     #[inline(always)]
-    fn each_column(frame: &OctantFrame, mut visit: impl FnMut((i64, f64, i64))) {
+    fn each_column(
+        frame: &OctantFrame,
+        first: i64,
+        last: i64,
+        mut visit: impl FnMut((i64, f64, i64)),
+    ) {
         let scale = SUBPIXEL_SCALE as f64;
         let (du, dv) = (frame.du() as f64, frame.dv() as f64);
         let m = if du > 0.0 { dv / du } else { 0.0 };
         // y at the first column's centre, in pixels.
         let mut y = (frame.v0 as f64 + m * (frame.i0 as f64 * scale - frame.u0 as f64)) / scale;
-        for i in frame.i0..=frame.i1 {
+        for _ in frame.i0..first {
+            y += m;
+        }
+        for i in first..=last {
             // Nearest row, ties to the lower row (the start's side).
             visit((i, y, ceil(y - 0.5)));
             y += m;
@@ -70,7 +81,12 @@ impl AliasedLine for Dda {
 
     #[inline]
     fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
-        Dda::each_column(frame, |(i, _, k)| visit(i, k));
+        Dda::each_column(frame, frame.i0, frame.i1, |(i, _, k)| visit(i, k));
+    }
+
+    #[inline]
+    fn walk_columns(frame: &OctantFrame, first: i64, last: i64, mut visit: impl FnMut(i64, i64)) {
+        Dda::each_column(frame, first, last, |(i, _, k)| visit(i, k));
     }
 }
 

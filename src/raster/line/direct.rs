@@ -57,4 +57,10 @@ impl AliasedLine for Direct {
     fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
         Direct::rows(frame).for_each(|(i, k)| visit(i, k));
     }
+
+    /// Every column is evaluated on its own, so the walk starts anywhere.
+    #[inline]
+    fn walk_columns(frame: &OctantFrame, first: i64, last: i64, mut visit: impl FnMut(i64, i64)) {
+        (first..=last).for_each(|i| visit(i, frame.nearest_row(i)));
+    }
 }

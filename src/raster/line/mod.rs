@@ -179,6 +179,19 @@ pub trait AliasedLine: Send + Sync {
     /// `(i, k)`.
     fn walk(frame: &OctantFrame, visit: impl FnMut(i64, i64));
 
+    /// The walk over columns `first..=last` only (a range inside
+    /// `frame.i0..=frame.i1`, the columns a draw can see): the rows
+    /// [`walk`](Self::walk) gives there. By default the whole walk, its
+    /// other columns dropped; an algorithm that can start at any column
+    /// starts at `first` and stops after `last`.
+    fn walk_columns(frame: &OctantFrame, first: i64, last: i64, mut visit: impl FnMut(i64, i64)) {
+        Self::walk(frame, |i, k| {
+            if (first..=last).contains(&i) {
+                visit(i, k);
+            }
+        });
+    }
+
     /// The pixels of one segment, in the order of travel.
     fn pixels(line: &LineSetup, options: &LineOptions) -> Vec<(i64, i64)> {
         let mut pixels = Vec::new();
@@ -477,10 +490,23 @@ impl PixelEmitter {
             Endpoints::HalfOpen if reversed => Some(frame.i0),
             Endpoints::HalfOpen => Some(frame.i1),
         };
+        // Only the columns whose pixels can lie in the viewport are
+        // walked: the major axis gives them directly.
+        let (lo, hi) = if frame.swap {
+            (viewport.y0, viewport.y1)
+        } else {
+            (viewport.x0, viewport.x1)
+        };
+        let (lo, hi) = if frame.flip_major {
+            (-hi, -lo)
+        } else {
+            (lo, hi)
+        };
+        let (first, last) = (frame.i0.max(lo), frame.i1.min(hi));
         // The buffer is kept at least as long as the longest segment so
         // far and written by index: no capacity test or growth (a call the
         // loop's registers would be saved around) per pixel.
-        let columns = (frame.i1 - frame.i0 + 1) as usize;
+        let columns = (last - first + 1).max(0) as usize;
         if self.fragments.len() < columns {
             let unused = LineFragment {
                 x: 0,
@@ -493,18 +519,20 @@ impl PixelEmitter {
         let slots = &mut self.fragments[..columns];
         let mut drawn = 0;
         let id = line.id;
-        A::walk(&frame, |i, k| {
-            let (x, y) = frame.to_screen(i, k);
-            if viewport.contains(x, y) {
-                slots[drawn] = LineFragment {
-                    x: x as u32,
-                    y: y as u32,
-                    line: id,
-                    coverage: 1.0,
-                };
-                drawn += 1;
-            }
-        });
+        if first <= last {
+            A::walk_columns(&frame, first, last, |i, k| {
+                let (x, y) = frame.to_screen(i, k);
+                if viewport.contains(x, y) {
+                    slots[drawn] = LineFragment {
+                        x: x as u32,
+                        y: y as u32,
+                        line: id,
+                        coverage: 1.0,
+                    };
+                    drawn += 1;
+                }
+            });
+        }
         // The left-out column's pixel, if it was drawn, is the last one
         // walked (or the first, walking backwards): one pixel per column,
         // so its major coordinate tells.
@@ -525,7 +553,8 @@ impl PixelEmitter {
         if reversed {
             fragments.reverse();
         }
-        work.samples_tested += columns as u64 - u64::from(left_out.is_some());
+        // The segment's pixels, seen or not, as for a 4-connected line.
+        work.samples_tested += (frame.i1 - frame.i0 + 1) as u64 - u64::from(left_out.is_some());
         work.fragments += fragments.len() as u64;
         if !fragments.is_empty() {
             sink.line_fragments(fragments);
