@@ -507,6 +507,45 @@ fn fast_path_clips_lines_crossing_the_guard_band() {
     assert!(fast == expected);
 }
 
+/// Segments from corner to corner of the guard band: every line back-end
+/// draws them without overflowing (the test build checks overflow), and
+/// `diamond` draws in the target exactly the pixels whose diamond the
+/// segment leaves, tested one by one.
+#[test]
+fn segments_across_the_whole_guard_band_are_drawn_exactly() {
+    let edge = 32767.996;
+    let segments = [
+        (snap(-edge, -edge), snap(edge, edge)),
+        (snap(edge, -edge), snap(-edge, edge)),
+        (snap(-edge, 10.3), snap(edge, 20.6)),
+        (snap(30.2, edge), snap(10.7, -edge)),
+    ];
+    let viewport = PixelRect::of_target(64, 48);
+    let mut total = 0;
+    for (a, b) in segments {
+        for &backend in rasterlab::raster::line_backends() {
+            let mut list = FragmentList::default();
+            backend.rasterize(&[seg(a, b)], &LineOptions::DEFAULT, viewport, &mut list);
+            assert!(list.lines.iter().all(|f| f.x < 64 && f.y < 48));
+        }
+        let mut list = FragmentList::default();
+        Diamond.rasterize(&[seg(a, b)], &LineOptions::DEFAULT, viewport, &mut list);
+        let drawn: BTreeSet<_> = list
+            .lines
+            .iter()
+            .map(|f| (i64::from(f.x), i64::from(f.y)))
+            .collect();
+        let brute: BTreeSet<_> = (0..64)
+            .flat_map(|x| (0..48).map(move |y| (x, y)))
+            .filter(|&(x, y)| exits_diamond(a, b, x, y))
+            .collect();
+        assert_eq!(drawn, brute, "{a:?} -> {b:?}");
+        total += brute.len();
+    }
+    // Three of the four cross the target from side to side.
+    assert!(total >= 3 * 48, "{total} pixels");
+}
+
 // The properties as functions of their input: the property tests above
 // call them on generated input, the named regression tests below on the
 // cases they once shrank to.

@@ -276,11 +276,13 @@ impl Diamond {
             // through has its centre within half a pixel of it.
             let centre = i * SUBPIXEL_SCALE + HALF_PIXEL;
             let d_major = b_major - a_major;
+            // In the guard band both factors are below 2^25 (the
+            // columns reach 1.5 pixels past the ends), so the product
+            // fits an i64 and the division needs no 128-bit call.
             let minor = if d_major == 0 {
                 a_minor
             } else {
-                let t_num = (centre - a_major) as i128 * (b_minor - a_minor) as i128;
-                a_minor + (t_num / d_major as i128) as i64
+                a_minor + (centre - a_major) * (b_minor - a_minor) / d_major
             };
             let k = minor.div_euclid(SUBPIXEL_SCALE);
             let mut rows = [k - 1, k, k + 1];
