@@ -94,11 +94,6 @@ impl AliasedLine for Bresenham {
     };
 
     #[inline]
-    fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
-        Bresenham::each_step(frame, frame.i0, frame.i1, |step| visit(step.i, step.k));
-    }
-
-    #[inline]
     fn walk_columns(frame: &OctantFrame, first: i64, last: i64, mut visit: impl FnMut(i64, i64)) {
         Bresenham::each_step(frame, first, last, |step| visit(step.i, step.k));
     }

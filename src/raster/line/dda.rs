@@ -80,11 +80,6 @@ impl AliasedLine for Dda {
     };
 
     #[inline]
-    fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
-        Dda::each_column(frame, frame.i0, frame.i1, |(i, _, k)| visit(i, k));
-    }
-
-    #[inline]
     fn walk_columns(frame: &OctantFrame, first: i64, last: i64, mut visit: impl FnMut(i64, i64)) {
         Dda::each_column(frame, first, last, |(i, _, k)| visit(i, k));
     }

@@ -24,13 +24,6 @@ use crate::raster::fixed::SUBPIXEL_SCALE;
 pub struct Direct;
 
 impl Direct {
-    /// The walk: each column `i` of a frame with the row `k` the slide's
-    /// `y = m (x - x0) + y0` rounds to there, decided on the exact
-    /// fraction.
-    fn rows(frame: &OctantFrame) -> impl Iterator<Item = (i64, i64)> + '_ {
-        (frame.i0..=frame.i1).map(|i| (i, frame.nearest_row(i)))
-    }
-
     /// The walk as a trace shows it, `(i, y, k)`: each column the
     /// back-end walks and its row, with `y` at the column's centre, in
     /// pixels (an `f64`, for display only). A segment of zero length has
@@ -40,7 +33,9 @@ impl Direct {
             0 => frame.v0 as f64 / SUBPIXEL_SCALE as f64,
             du => frame.scaled_v_at(i) as f64 / (du * SUBPIXEL_SCALE) as f64,
         };
-        Direct::rows(frame).map(|(i, k)| (i, y(i), k)).collect()
+        let mut columns = Vec::with_capacity((frame.i1 - frame.i0 + 1).max(0) as usize);
+        Direct::walk(frame, |i, k| columns.push((i, y(i), k)));
+        columns
     }
 }
 
@@ -53,12 +48,9 @@ impl AliasedLine for Direct {
         cost: CostClass::FollowsSize,
     };
 
-    #[inline]
-    fn walk(frame: &OctantFrame, mut visit: impl FnMut(i64, i64)) {
-        Direct::rows(frame).for_each(|(i, k)| visit(i, k));
-    }
-
-    /// Every column is evaluated on its own, so the walk starts anywhere.
+    /// Each column `i` with the row `k` the slide's `y = m (x - x0) + y0`
+    /// rounds to there, decided on the exact fraction. Every column is
+    /// evaluated on its own, so the walk starts anywhere.
     #[inline]
     fn walk_columns(frame: &OctantFrame, first: i64, last: i64, mut visit: impl FnMut(i64, i64)) {
         (first..=last).for_each(|i| visit(i, frame.nearest_row(i)));

@@ -174,22 +174,18 @@ pub trait AliasedLine: Send + Sync {
     /// The back-end's name, description, walk, role and cost class.
     const DESCRIPTOR: LineDescriptor;
 
-    /// The walk: for each column `i` of `frame`, from `frame.i0` to
-    /// `frame.i1`, the row `k` the algorithm picks, given to `visit` as
-    /// `(i, k)`.
-    fn walk(frame: &OctantFrame, visit: impl FnMut(i64, i64));
+    /// The walk over columns `first..=last` (a range inside
+    /// `frame.i0..=frame.i1`, the columns a draw can see): for each
+    /// column `i`, the row `k` the algorithm picks, given to `visit` as
+    /// `(i, k)`, the same row whatever the range: an algorithm that grows
+    /// its state from the start column grows it over the columns before
+    /// `first` too.
+    fn walk_columns(frame: &OctantFrame, first: i64, last: i64, visit: impl FnMut(i64, i64));
 
-    /// The walk over columns `first..=last` only (a range inside
-    /// `frame.i0..=frame.i1`, the columns a draw can see): the rows
-    /// [`walk`](Self::walk) gives there. By default the whole walk, its
-    /// other columns dropped; an algorithm that can start at any column
-    /// starts at `first` and stops after `last`.
-    fn walk_columns(frame: &OctantFrame, first: i64, last: i64, mut visit: impl FnMut(i64, i64)) {
-        Self::walk(frame, |i, k| {
-            if (first..=last).contains(&i) {
-                visit(i, k);
-            }
-        });
+    /// The whole walk, from `frame.i0` to `frame.i1`.
+    #[inline]
+    fn walk(frame: &OctantFrame, visit: impl FnMut(i64, i64)) {
+        Self::walk_columns(frame, frame.i0, frame.i1, visit);
     }
 
     /// The pixels of one segment, in the order of travel.
