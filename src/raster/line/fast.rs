@@ -26,6 +26,7 @@
 //! for pixel.
 
 use super::{LineSetup, OctantFrame};
+use crate::raster::edge::PixelRect;
 use crate::raster::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
 use crate::raster::target::RenderTarget;
 
@@ -43,16 +44,11 @@ use crate::raster::target::RenderTarget;
 /// assert_eq!(draw_lines(&mut target, &[line], [255, 0, 0, 255]), 8);
 /// ```
 pub fn draw_lines(target: &mut RenderTarget, lines: &[LineSetup], color: [u8; 4]) -> u64 {
-    let (width, height) = (i64::from(target.width()), i64::from(target.height()));
+    let rect = PixelRect::of_target(target.width(), target.height());
     let mut written = 0;
     for line in lines {
         let frame = OctantFrame::new(line.from, line.to);
-        let (major_len, minor_len) = if frame.swap {
-            (height, width)
-        } else {
-            (width, height)
-        };
-        let Some((first, last)) = visible_columns(&frame, major_len, minor_len) else {
+        let Some((first, last)) = visible_columns(&frame, rect) else {
             continue;
         };
         written += (last - first + 1) as u64;
@@ -61,25 +57,15 @@ pub fn draw_lines(target: &mut RenderTarget, lines: &[LineSetup], color: [u8; 4]
     written
 }
 
-/// The frame columns `[first, last]` whose pixels lie on a target
-/// `major_len` pixels long on the major axis and `minor_len` on the minor.
-fn visible_columns(frame: &OctantFrame, major_len: i64, minor_len: i64) -> Option<(i64, i64)> {
-    // Screen major coordinate is i, or -i when the major axis is flipped.
-    let (lo, hi) = if frame.flip_major {
-        (-(major_len - 1), 0)
-    } else {
-        (0, major_len - 1)
-    };
+/// The frame columns `[first, last]` whose pixels lie in `rect`, the
+/// target's pixels.
+fn visible_columns(frame: &OctantFrame, rect: PixelRect) -> Option<(i64, i64)> {
+    let ((lo, hi), (k_lo, k_hi)) = frame.ranges_within(rect);
     let (mut first, mut last) = (frame.i0.max(lo), frame.i1.min(hi));
     if first > last {
         return None;
     }
-    // Screen minor coordinate is k, or -k; k grows with i.
-    let (k_lo, k_hi) = if frame.flip_minor {
-        (-(minor_len - 1), 0)
-    } else {
-        (0, minor_len - 1)
-    };
+    // k grows with i.
     // The common case, found without a division: every column's row lies
     // on the target. Column centres are within half a pixel of the segment's
     // ends and the slope is at most 1, so the ideal line's v over the

@@ -370,6 +370,22 @@ impl OctantFrame {
         -((-num).div_euclid(den))
     }
 
+    /// The frame's columns `i` and rows `k` whose screen pixels lie in
+    /// `rect`, as two ranges `(lo, hi)` (the inverse of
+    /// [`to_screen`](Self::to_screen) on its sides; empty when `lo > hi`).
+    pub fn ranges_within(&self, rect: PixelRect) -> ((i64, i64), (i64, i64)) {
+        let (major, minor) = if self.swap {
+            ((rect.y0, rect.y1), (rect.x0, rect.x1))
+        } else {
+            ((rect.x0, rect.x1), (rect.y0, rect.y1))
+        };
+        let mirror = |(lo, hi): (i64, i64), flip: bool| if flip { (-hi, -lo) } else { (lo, hi) };
+        (
+            mirror(major, self.flip_major),
+            mirror(minor, self.flip_minor),
+        )
+    }
+
     /// Maps a frame pixel `(i, k)` back to a screen pixel.
     pub fn to_screen(&self, i: i64, k: i64) -> (i64, i64) {
         let major = if self.flip_major { -i } else { i };
@@ -488,16 +504,7 @@ impl PixelEmitter {
         };
         // Only the columns whose pixels can lie in the viewport are
         // walked: the major axis gives them directly.
-        let (lo, hi) = if frame.swap {
-            (viewport.y0, viewport.y1)
-        } else {
-            (viewport.x0, viewport.x1)
-        };
-        let (lo, hi) = if frame.flip_major {
-            (-hi, -lo)
-        } else {
-            (lo, hi)
-        };
+        let ((lo, hi), _) = frame.ranges_within(viewport);
         let (first, last) = (frame.i0.max(lo), frame.i1.min(hi));
         // The buffer is kept at least as long as the longest segment so
         // far and written by index: no capacity test or growth (a call the
