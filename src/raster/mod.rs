@@ -61,6 +61,7 @@ pub(crate) mod multisample;
 pub(crate) mod multisample_stage;
 pub(crate) mod primitive;
 pub(crate) mod registry;
+pub(crate) mod shaded_span;
 pub(crate) mod shader;
 pub(crate) mod stage;
 pub(crate) mod supersample;
@@ -92,8 +93,8 @@ pub use registry::{
     BackendKind,
 };
 pub use shader::{
-    from_rgba8, to_rgba8, Constant, Diffuse, DirectionalLight, Filter, Flat, FragmentInput,
-    FragmentShader, Gouraud, NormalColors, Texture, Textured,
+    from_rgba8, to_rgba8, ColorLanes, Constant, Diffuse, DirectionalLight, Filter, Flat,
+    FragmentInput, FragmentLanes, FragmentShader, Gouraud, NormalColors, Texture, Textured, LANES,
 };
 pub use stage::{FragmentStage, Interpolation};
 pub use supersample::{supersample, SampleCount, MAX_SUPERSAMPLING};

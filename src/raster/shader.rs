@@ -41,6 +41,86 @@ pub trait FragmentShader: Sync {
     fn uniform_per_primitive(&self) -> bool {
         false
     }
+
+    /// The colours of eight fragments of one span at once, lane `k` being
+    /// [`input`](FragmentLanes::input)`(k)`; lanes that are not
+    /// [`active`](FragmentLanes::active) may hold anything.
+    ///
+    /// The stage calls it for spans long enough to fill the lanes, in code
+    /// compiled for the CPU's widest vectors. Each lane must be the very
+    /// bits [`shade`](Self::shade) gives its input: the default calls
+    /// `shade` on each active lane; a shader overrides it with the same
+    /// equations written over the lanes (see [`Gouraud`] and [`Diffuse`]),
+    /// which the compiler then runs eight at a time.
+    #[inline(always)]
+    fn shade_lanes(&self, lanes: &FragmentLanes) -> ColorLanes {
+        let mut out = [[0.0; LANES]; 4];
+        for k in 0..LANES {
+            if lanes.active[k] {
+                let c = self.shade(&lanes.input(k)).to_array();
+                for (channel, value) in out.iter_mut().zip(c) {
+                    channel[k] = value;
+                }
+            }
+        }
+        out
+    }
+}
+
+/// How many fragments [`FragmentShader::shade_lanes`] shades at a time:
+/// one AVX2 vector of `f32`.
+pub const LANES: usize = 8;
+
+/// Red, green, blue and alpha of [`LANES`] fragments, one array per channel.
+pub type ColorLanes = [[f32; LANES]; 4];
+
+/// What a fragment shader is given for [`LANES`] fragments of one span,
+/// pixels `x0 + k` of row `y`: one array per component, lane `k` in
+/// element `k` (the layout that vector code reads whole).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct FragmentLanes {
+    /// Column of lane 0.
+    pub x0: u32,
+    /// Pixel row.
+    pub y: u32,
+    /// Interpolated depths (already tested).
+    pub depth: [f32; LANES],
+    /// Interpolated colour, one array per channel.
+    pub color: [[f32; LANES]; 4],
+    /// Interpolated texture coordinates.
+    pub uv: [[f32; LANES]; 2],
+    /// Interpolated normal, one array per axis.
+    pub normal: [[f32; LANES]; 3],
+    /// The provoking (first) vertex's varyings, for flat shading.
+    pub flat: Varyings,
+    /// Index of the primitive in its draw.
+    pub primitive: u32,
+    /// Which lanes are fragments that passed the depth test.
+    pub active: [bool; LANES],
+}
+
+impl FragmentLanes {
+    /// Lane `k` as the input [`FragmentShader::shade`] takes.
+    #[inline(always)]
+    pub fn input(&self, k: usize) -> FragmentInput {
+        FragmentInput {
+            x: self.x0 + k as u32,
+            y: self.y,
+            depth: self.depth[k],
+            varyings: Varyings {
+                color: Vec4::new(
+                    self.color[0][k],
+                    self.color[1][k],
+                    self.color[2][k],
+                    self.color[3][k],
+                ),
+                uv: Vec2::new(self.uv[0][k], self.uv[1][k]),
+                normal: Vec3::new(self.normal[0][k], self.normal[1][k], self.normal[2][k]),
+            },
+            flat: self.flat,
+            primitive: self.primitive,
+        }
+    }
 }
 
 /// Converts a colour in `[0, 1]` to RGBA8 (clamped, rounded; NaN gives 0).
@@ -98,6 +178,24 @@ impl DirectionalLight {
     pub fn intensity(&self, n: Vec3) -> f32 {
         self.ambient + self.diffuse * n.normalize_or_zero().dot(self.direction).max(0.0)
     }
+
+    /// [`intensity`](Self::intensity) of the normal `[x, y, z]`, written
+    /// out as plain arithmetic on `f32` (glam's `normalize_or_zero` and
+    /// `dot`, step by step) so that a loop over lanes runs on vectors; the
+    /// same bits.
+    #[inline(always)]
+    pub(crate) fn intensity_of(&self, [x, y, z]: [f32; 3]) -> f32 {
+        let length = (x * x + y * y + z * z).sqrt();
+        let rcp = 1.0 / length;
+        let [x, y, z] = if rcp.is_finite() && rcp > 0.0 {
+            [x * rcp, y * rcp, z * rcp]
+        } else {
+            [0.0; 3]
+        };
+        let d = self.direction;
+        let dot = x * d.x + y * d.y + z * d.z;
+        self.ambient + self.diffuse * dot.max(0.0)
+    }
 }
 
 impl Default for DirectionalLight {
@@ -129,6 +227,11 @@ impl FragmentShader for Gouraud {
     fn shade(&self, input: &FragmentInput) -> Vec4 {
         input.varyings.color
     }
+
+    #[inline(always)]
+    fn shade_lanes(&self, lanes: &FragmentLanes) -> ColorLanes {
+        lanes.color
+    }
 }
 
 /// A fixed colour for everything (the course chapter's blue triangle, wireframes).
@@ -155,6 +258,20 @@ impl FragmentShader for Diffuse {
     fn shade(&self, input: &FragmentInput) -> Vec4 {
         let c = input.varyings.color;
         (c.truncate() * self.0.intensity(input.varyings.normal)).extend(c.w)
+    }
+
+    /// [`shade`](Self::shade) lane by lane, each step in `shade`'s order.
+    #[inline(always)]
+    fn shade_lanes(&self, lanes: &FragmentLanes) -> ColorLanes {
+        let mut out = lanes.color;
+        for k in 0..LANES {
+            let n = [0, 1, 2].map(|axis| lanes.normal[axis][k]);
+            let intensity = self.0.intensity_of(n);
+            for channel in &mut out[..3] {
+                channel[k] *= intensity;
+            }
+        }
+        out
     }
 }
 
@@ -291,6 +408,36 @@ impl FragmentShader for Textured {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The intensity written out for lanes is glam's, bit for bit: on
+    /// random normals, zero, tiny and huge ones, and non-finite ones.
+    #[test]
+    fn intensity_of_lanes_is_the_intensity_bit_for_bit() {
+        let light = DirectionalLight::default();
+        let mut rng = fastrand::Rng::with_seed(7);
+        let special = [
+            0.0,
+            -0.0,
+            1e-30,
+            -1e-30,
+            1e30,
+            f32::INFINITY,
+            f32::NAN,
+            1e-20,
+        ];
+        for n in 0..100_000 {
+            let mut f = || match n % 4 {
+                0 => special[rng.usize(0..special.len())],
+                _ => (rng.f32() - 0.5) * [1.0, 1e-10, 1e10][n % 3],
+            };
+            let normal = [f(), f(), f()];
+            assert_eq!(
+                light.intensity_of(normal).to_bits(),
+                light.intensity(Vec3::from(normal)).to_bits(),
+                "{normal:?}"
+            );
+        }
+    }
 
     /// The channel-by-channel conversion [`to_rgba8`] stands for.
     fn per_channel(c: Vec4) -> [u8; 4] {

@@ -30,7 +30,10 @@
 //! For a shader whose colour is uniform over a triangle, a whole span goes
 //! through steps 1, 2, 3 and 7 in one loop, written once as plain Rust and
 //! compiled both for the baseline vectors and for AVX2, the copy picked at
-//! run time (the `raster::vector` module); both give the same bits.
+//! run time (the `raster::vector` module); both give the same bits. Any
+//! other shader's spans of four pixels or more go through all seven steps
+//! eight pixels at a time ([`FragmentShader::shade_lanes`], the
+//! `raster::shaded_span` module), again the same bits as one at a time.
 //!
 //! Because every step is a pure function of the fragment's pixel and
 //! integer edge values, back-ends that emit the same fragments in the same
@@ -41,6 +44,7 @@ use crate::raster::fragment::{FragmentSink, LineFragment, TriangleFragment, Tria
 use crate::raster::primitive::{
     DepthPlane, ShadedLine, ShadedTriangle, ShadedVertex, TriangleData, Varyings,
 };
+use crate::raster::shaded_span::{self, ShadedSpan};
 use crate::raster::shader::{from_rgba8, to_rgba8, FragmentInput, FragmentShader};
 use crate::raster::target::{DepthState, DepthTest, RenderTarget, TargetRows};
 use crate::raster::vector;
@@ -51,6 +55,11 @@ const PREFETCH_AHEAD: usize = 8;
 
 /// Rows of a triangle's box whose first pixel the stage prefetches.
 const PREFETCH_ROWS: i64 = 3;
+
+/// The shortest span whose fragments a shader that is not uniform per
+/// primitive shades eight at a time ([`ShadedSpan`]); shorter spans go
+/// fragment by fragment. Both give the same bits.
+const SHADED_SPAN_MIN: u32 = 4;
 
 /// How varyings are interpolated across a primitive.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -224,6 +233,21 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
         for y in y..y + PREFETCH_ROWS {
             if rect.contains(x, y) {
                 let idx = self.target.index(x as u32, y as u32);
+                vector::prefetch(&self.target.depth[idx]);
+                vector::prefetch(&self.target.color[idx]);
+            }
+        }
+    }
+
+    /// Asks for the depths and colours under the ends of `span` one row
+    /// down, where the back-ends that walk a triangle row by row send its
+    /// next span: a span's first depth test otherwise waits for memory.
+    #[inline(always)]
+    fn prefetch_next_row(&self, span: &TriangleSpan) {
+        let y = i64::from(span.y) + 1;
+        if self.target.rect().contains(i64::from(span.x0), y) {
+            for x in [span.x0, span.x1] {
+                let idx = self.target.index(x, y as u32);
                 vector::prefetch(&self.target.depth[idx]);
                 vector::prefetch(&self.target.color[idx]);
             }
@@ -683,9 +707,36 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
             let Some(vertices) = self.vertex_refs(t) else {
                 return;
             };
-            for f in span.fragments() {
-                self.triangle_sample(t, vertices, &f);
-            }
+            self.prefetch_next_row(span);
+            let area = match shaded_span::exact_area(span) {
+                Some(area) if span.x1 - span.x0 >= SHADED_SPAN_MIN - 1 => area,
+                _ => {
+                    for f in span.fragments() {
+                        self.triangle_sample(t, vertices, &f);
+                    }
+                    return;
+                }
+            };
+            self.target.load_row(span.y);
+            let start = self.target.index(span.x0, span.y);
+            let end = start + (span.x1 - span.x0) as usize + 1;
+            let counts = self.target.counts_coverage();
+            vector::run(ShadedSpan {
+                color: &mut self.target.color[start..end],
+                depth: &mut self.target.depth[start..end],
+                coverage: if counts {
+                    &mut self.target.coverage[start..end]
+                } else {
+                    &mut []
+                },
+                span,
+                plane: t.depth,
+                vertices,
+                shader: self.shader,
+                state: self.depth,
+                interpolation: self.interpolation,
+                area,
+            });
             return;
         }
         // The colour is the same for every pixel of the triangle: shade the
