@@ -339,7 +339,11 @@ mod tests {
     /// edge function's do; every tenth with values past [`EXACT_EDGE`],
     /// which go fragment by fragment.
     fn span(rng: &mut fastrand::Rng, n: usize) -> TriangleSpan {
-        let scale = if n.is_multiple_of(10) { 1 << 54 } else { 1 << 30 };
+        let scale = if n.is_multiple_of(10) {
+            1 << 54
+        } else {
+            1 << 30
+        };
         let x0 = rng.u32(0..WIDTH - 1);
         let x1 = rng.u32(x0..WIDTH);
         let area = rng.i64(1..scale);

@@ -52,6 +52,48 @@ pub trait FragmentShader: Sync {
     /// `shade` on each active lane; a shader overrides it with the same
     /// equations written over the lanes (see [`Gouraud`] and [`Diffuse`]),
     /// which the compiler then runs eight at a time.
+    ///
+    /// A shader of its own, its lanes the same equation as its `shade`:
+    ///
+    /// ```
+    /// use glam::Vec4;
+    /// use rasterlab::raster::{
+    ///     ColorLanes, FragmentInput, FragmentLanes, FragmentShader, Varyings, LANES,
+    /// };
+    ///
+    /// /// The interpolated colour's red, as grey.
+    /// struct Red;
+    ///
+    /// impl FragmentShader for Red {
+    ///     fn shade(&self, input: &FragmentInput) -> Vec4 {
+    ///         let r = input.varyings.color.x;
+    ///         Vec4::new(r, r, r, 1.0)
+    ///     }
+    ///
+    ///     #[inline(always)]
+    ///     fn shade_lanes(&self, lanes: &FragmentLanes) -> ColorLanes {
+    ///         let red = lanes.color[0];
+    ///         [red, red, red, [1.0; LANES]]
+    ///     }
+    /// }
+    ///
+    /// let lanes = FragmentLanes {
+    ///     x0: 10,
+    ///     y: 3,
+    ///     depth: [0.5; LANES],
+    ///     color: [[0.25; LANES], [0.5; LANES], [0.75; LANES], [1.0; LANES]],
+    ///     uv: [[0.0; LANES]; 2],
+    ///     normal: [[0.0; LANES]; 3],
+    ///     flat: Varyings::color(Vec4::ONE),
+    ///     primitive: 0,
+    ///     active: [true; LANES],
+    /// };
+    /// let shaded = Red.shade_lanes(&lanes);
+    /// for k in 0..LANES {
+    ///     let one = Red.shade(&lanes.input(k)).to_array();
+    ///     assert_eq!([0, 1, 2, 3].map(|c| shaded[c][k]), one);
+    /// }
+    /// ```
     #[inline(always)]
     fn shade_lanes(&self, lanes: &FragmentLanes) -> ColorLanes {
         let mut out = [[0.0; LANES]; 4];
