@@ -61,7 +61,6 @@ pub(crate) mod multisample;
 pub(crate) mod multisample_stage;
 pub(crate) mod primitive;
 pub(crate) mod registry;
-pub(crate) mod shaded_span;
 pub(crate) mod shader;
 pub(crate) mod stage;
 pub(crate) mod supersample;

@@ -33,7 +33,7 @@
 //! run time (the `raster::vector` module); both give the same bits. Any
 //! other shader's spans of four pixels or more go through all seven steps
 //! eight pixels at a time ([`FragmentShader::shade_lanes`], the
-//! `raster::shaded_span` module), again the same bits as one at a time.
+//! `shaded_span` submodule), again the same bits as one at a time.
 //!
 //! Because every step is a pure function of the fragment's pixel and
 //! integer edge values, back-ends that emit the same fragments in the same
@@ -44,11 +44,13 @@ use crate::raster::fragment::{FragmentSink, LineFragment, TriangleFragment, Tria
 use crate::raster::primitive::{
     DepthPlane, ShadedLine, ShadedTriangle, ShadedVertex, TriangleData, Varyings,
 };
-use crate::raster::shaded_span::{self, ShadedSpan};
 use crate::raster::shader::{from_rgba8, to_rgba8, FragmentInput, FragmentShader};
 use crate::raster::target::{DepthState, DepthTest, RenderTarget, TargetRows};
 use crate::raster::vector;
 use glam::Vec4;
+use shaded_span::ShadedSpan;
+
+mod shaded_span;
 
 /// How many triangle ids ahead the stage prefetches.
 const PREFETCH_AHEAD: usize = 8;

@@ -27,10 +27,10 @@
 // that shape.
 #![allow(clippy::needless_range_loop)]
 
+use super::Interpolation;
 use crate::raster::fragment::TriangleSpan;
 use crate::raster::primitive::{DepthPlane, ShadedVertex};
 use crate::raster::shader::{ColorLanes, FragmentLanes, FragmentShader, LANES};
-use crate::raster::stage::Interpolation;
 use crate::raster::target::{DepthState, DepthTest};
 use crate::raster::vector;
 
