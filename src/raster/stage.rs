@@ -415,7 +415,26 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
     }
 }
 
-/// The buffers under one span, for the uniform-colour fast path.
+/// The buffers of `target` under `span`, its row loaded (cleared first
+/// when the draw clears as it goes).
+#[inline(always)]
+fn span_rows<'t>(target: &'t mut TargetRows<'_>, span: &TriangleSpan) -> SpanRows<'t> {
+    target.load_row(span.y);
+    let start = target.index(span.x0, span.y);
+    let end = start + (span.x1 - span.x0) as usize + 1;
+    let counts = target.counts_coverage();
+    SpanRows {
+        color: &mut target.color[start..end],
+        depth: &mut target.depth[start..end],
+        coverage: if counts {
+            &mut target.coverage[start..end]
+        } else {
+            &mut []
+        },
+    }
+}
+
+/// The buffers under one span, for the span loops.
 struct SpanRows<'s> {
     color: &'s mut [[u8; 4]],
     depth: &'s mut [f32],
@@ -719,18 +738,8 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
                     return;
                 }
             };
-            self.target.load_row(span.y);
-            let start = self.target.index(span.x0, span.y);
-            let end = start + (span.x1 - span.x0) as usize + 1;
-            let counts = self.target.counts_coverage();
             vector::run(ShadedSpan {
-                color: &mut self.target.color[start..end],
-                depth: &mut self.target.depth[start..end],
-                coverage: if counts {
-                    &mut self.target.coverage[start..end]
-                } else {
-                    &mut []
-                },
+                rows: span_rows(&mut self.target, span),
                 span,
                 plane: t.depth,
                 vertices,
@@ -768,21 +777,8 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
                 color
             }
         };
-        self.target.load_row(span.y);
-        let start = self.target.index(span.x0, span.y);
-        let end = start + (span.x1 - span.x0) as usize + 1;
-        let counts = self.target.counts_coverage();
-        let rows = SpanRows {
-            color: &mut self.target.color[start..end],
-            depth: &mut self.target.depth[start..end],
-            coverage: if counts {
-                &mut self.target.coverage[start..end]
-            } else {
-                &mut []
-            },
-        };
         let fill = SpanFill {
-            rows,
+            rows: span_rows(&mut self.target, span),
             depth: self.depth,
             plane,
             y: span.y,

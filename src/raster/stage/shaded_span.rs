@@ -27,7 +27,7 @@
 // that shape.
 #![allow(clippy::needless_range_loop)]
 
-use super::Interpolation;
+use super::{Interpolation, SpanRows};
 use crate::raster::fragment::TriangleSpan;
 use crate::raster::primitive::{DepthPlane, ShadedVertex};
 use crate::raster::shader::{ColorLanes, FragmentLanes, FragmentShader, LANES};
@@ -36,11 +36,8 @@ use crate::raster::vector;
 
 /// The buffers under one span, and what shades it.
 pub(crate) struct ShadedSpan<'s, S: FragmentShader + ?Sized> {
-    /// Colour, depth and coverage of the span's pixels (coverage empty
-    /// when the target does not count it).
-    pub color: &'s mut [[u8; 4]],
-    pub depth: &'s mut [f32],
-    pub coverage: &'s mut [u16],
+    /// Colour, depth and coverage of the span's pixels.
+    pub rows: SpanRows<'s>,
     pub span: &'s TriangleSpan,
     pub plane: DepthPlane,
     pub vertices: [&'s ShadedVertex; 3],
@@ -102,10 +99,8 @@ impl<S: FragmentShader + ?Sized> vector::Kernel for ShadedSpan<'_, S> {
 impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
     /// The span, group by group, with the depth test `passes`.
     #[inline(always)]
-    fn shade(self, passes: impl Fn(f32, f32) -> bool) {
-        for c in self.coverage.iter_mut() {
-            *c = c.saturating_add(1);
-        }
+    fn shade(mut self, passes: impl Fn(f32, f32) -> bool) {
+        self.rows.count_coverage();
         let span = self.span;
         let plane = self.plane;
         let row = plane.row(span.y);
@@ -114,9 +109,7 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
         // keeps below 2^17, so the same `f32`.
         let first = (i64::from(span.x0) - plane.origin_x) as i32;
         let reads_depth = self.state.test != DepthTest::Always;
-        let len = self.color.len();
-        let [a, b, c] = self.vertices;
-
+        let len = self.rows.color.len();
         let mut start = 0;
         while start < len {
             let n = (len - start).min(LANES);
@@ -125,9 +118,9 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
             let mut stored = [0.0f32; LANES];
             if reads_depth {
                 if n == LANES {
-                    stored.copy_from_slice(&self.depth[start..start + LANES]);
+                    stored.copy_from_slice(&self.rows.depth[start..start + LANES]);
                 } else {
-                    stored[..n].copy_from_slice(&self.depth[start..start + n]);
+                    stored[..n].copy_from_slice(&self.rows.depth[start..start + n]);
                 }
             }
             let mut z = [0.0f32; LANES];
@@ -137,24 +130,24 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
                 active[k] = passes(z[k], stored[k]) & (k < n);
             }
             if active.iter().any(|&a| a) {
-                let lanes = self.lanes(start, z, active, [a, b, c]);
+                let lanes = self.lanes(start, z, active, self.vertices);
                 let colour = to_pixels(self.shader.shade_lanes(&lanes));
                 let write = self.state.write;
                 if n == LANES && active.iter().all(|&a| a) {
                     // The whole group passed: plain stores.
-                    let colours = &mut self.color[start..start + LANES];
+                    let colours = &mut self.rows.color[start..start + LANES];
                     for (c, &colour) in colours.iter_mut().zip(&colour) {
                         *c = colour.to_le_bytes();
                     }
                     if write {
-                        self.depth[start..start + LANES].copy_from_slice(&z);
+                        self.rows.depth[start..start + LANES].copy_from_slice(&z);
                     }
                 } else {
                     for k in 0..n {
                         if active[k] {
-                            self.color[start + k] = colour[k].to_le_bytes();
+                            self.rows.color[start + k] = colour[k].to_le_bytes();
                             if write {
-                                self.depth[start + k] = z[k];
+                                self.rows.depth[start + k] = z[k];
                             }
                         }
                     }
