@@ -729,14 +729,12 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
                 return;
             };
             self.prefetch_next_row(span);
-            let area = match shaded_span::exact_area(span) {
-                Some(area) if span.x1 - span.x0 >= SHADED_SPAN_MIN - 1 => area,
-                _ => {
-                    for f in span.fragments() {
-                        self.triangle_sample(t, vertices, &f);
-                    }
-                    return;
+            let long = span.x1 - span.x0 >= SHADED_SPAN_MIN - 1;
+            let Some(area) = long.then(|| shaded_span::exact_area(span)).flatten() else {
+                for f in span.fragments() {
+                    self.triangle_sample(t, vertices, &f);
                 }
+                return;
             };
             vector::run(ShadedSpan {
                 rows: span_rows(&mut self.target, span),
