@@ -218,13 +218,14 @@ impl DirectionalLight {
     /// The intensity on a surface with normal `n` (not necessarily unit).
     #[inline]
     pub fn intensity(&self, n: Vec3) -> f32 {
-        self.ambient + self.diffuse * n.normalize_or_zero().dot(self.direction).max(0.0)
+        self.intensity_of(n.to_array())
     }
 
-    /// [`intensity`](Self::intensity) of the normal `[x, y, z]`, written
-    /// out as plain arithmetic on `f32` (glam's `normalize_or_zero` and
-    /// `dot`, step by step) so that a loop over lanes runs on vectors; the
-    /// same bits.
+    /// [`intensity`](Self::intensity) of the normal `[x, y, z]`:
+    /// `ambient + diffuse * max(0, n / |n| . l)`, with a normal of zero or
+    /// non-finite length counted as zero. Written out as plain arithmetic
+    /// on `f32` (glam's `normalize_or_zero` and `dot`, step by step, the
+    /// same bits) so that a loop over lanes runs on vectors.
     #[inline(always)]
     pub(crate) fn intensity_of(&self, [x, y, z]: [f32; 3]) -> f32 {
         let length = (x * x + y * y + z * z).sqrt();
@@ -451,8 +452,9 @@ impl FragmentShader for Textured {
 mod tests {
     use super::*;
 
-    /// The intensity written out for lanes is glam's, bit for bit: on
-    /// random normals, zero, tiny and huge ones, and non-finite ones.
+    /// The intensity, written out so that lanes run it, is glam's
+    /// normalise-and-dot bit for bit: on random normals, zero, tiny and
+    /// huge ones, and non-finite ones.
     #[test]
     fn intensity_of_lanes_is_the_intensity_bit_for_bit() {
         let light = DirectionalLight::default();
@@ -473,9 +475,13 @@ mod tests {
                 _ => (rng.f32() - 0.5) * [1.0, 1e-10, 1e10][n % 3],
             };
             let normal = [f(), f(), f()];
+            let glam = Vec3::from(normal)
+                .normalize_or_zero()
+                .dot(light.direction)
+                .max(0.0);
             assert_eq!(
                 light.intensity_of(normal).to_bits(),
-                light.intensity(Vec3::from(normal)).to_bits(),
+                (light.ambient + light.diffuse * glam).to_bits(),
                 "{normal:?}"
             );
         }
