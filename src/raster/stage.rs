@@ -629,7 +629,7 @@ fn varying_weights<const N: usize>(
                 sum += w[i];
             }
             if sum > 0.0 {
-                w.map(|wi| wi / sum)
+                vector::divide_each(w, sum)
             } else {
                 screen
             }
@@ -701,7 +701,7 @@ impl Sample<3> {
             y: f.y,
             primitive: f.triangle,
             depth,
-            screen: f.edges.map(|e| (e as f64 / area) as f32),
+            screen: vector::ratios_to_f32(f.edges, area),
             vertices,
             coverage: 1.0,
         }

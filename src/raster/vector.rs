@@ -133,6 +133,58 @@ pub(crate) fn truncate_to_bytes(v: glam::Vec4) -> [u8; 4] {
     v.as_ivec4().to_array().map(|v| v as u8)
 }
 
+/// `(n as f64 / d) as f32` for each numerator, two at a time: on x86-64
+/// SSE2 divides and converts two lanes per instruction, so three
+/// barycentrics take two divisions instead of three. Each lane's
+/// conversion, division and rounding to `f32` are those of the scalar
+/// expression, so the bits are the same.
+#[inline(always)]
+pub(crate) fn ratios_to_f32<const N: usize>(n: [i64; N], d: f64) -> [f32; N] {
+    const { assert!(N <= 4, "four lanes at most") };
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: SSE2, which these intrinsics need, is part of baseline
+    // x86-64; the store writes the four lanes to a local array of four.
+    unsafe {
+        use std::arch::x86_64::{
+            _mm_cvtpd_ps, _mm_div_pd, _mm_movelh_ps, _mm_set1_pd, _mm_set_pd, _mm_storeu_ps,
+        };
+        let lane = |i: usize| n.get(i).map_or(0.0, |&v| v as f64);
+        let d = _mm_set1_pd(d);
+        let low = _mm_cvtpd_ps(_mm_div_pd(_mm_set_pd(lane(1), lane(0)), d));
+        let high = if N > 2 {
+            _mm_cvtpd_ps(_mm_div_pd(_mm_set_pd(lane(3), lane(2)), d))
+        } else {
+            low
+        };
+        let mut lanes = [0.0f32; 4];
+        _mm_storeu_ps(lanes.as_mut_ptr(), _mm_movelh_ps(low, high));
+        std::array::from_fn(|i| lanes[i])
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    n.map(|v| (v as f64 / d) as f32)
+}
+
+/// `v / d` for each lane of `v`, in one SSE2 division on x86-64 (the same
+/// bits as dividing each: a vector division rounds each lane as a scalar
+/// one does).
+#[inline(always)]
+pub(crate) fn divide_each<const N: usize>(v: [f32; N], d: f32) -> [f32; N] {
+    const { assert!(N <= 4, "four lanes at most") };
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: SSE2, which these intrinsics need, is part of baseline
+    // x86-64; the load and store read and write local arrays of four.
+    unsafe {
+        use std::arch::x86_64::{_mm_div_ps, _mm_loadu_ps, _mm_set1_ps, _mm_storeu_ps};
+        let mut lanes = [1.0f32; 4];
+        lanes[..N].copy_from_slice(&v);
+        let quotient = _mm_div_ps(_mm_loadu_ps(lanes.as_ptr()), _mm_set1_ps(d));
+        _mm_storeu_ps(lanes.as_mut_ptr(), quotient);
+        std::array::from_fn(|i| lanes[i])
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    v.map(|x| x / d)
+}
+
 /// The widest copy the tests allow.
 #[cfg(not(test))]
 #[inline(always)]
