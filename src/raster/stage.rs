@@ -217,6 +217,14 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
             while self.selection.get(self.position).is_some_and(|&s| s < id) {
                 self.position += 1;
             }
+            // The stage data of a triangle further on, read (for its
+            // vertices) when it comes [`PREFETCH_AHEAD`] ids ahead: the
+            // selection's ids have gaps the hardware does not follow.
+            if let Some(&further) = self.selection.get(self.position + 2 * PREFETCH_AHEAD) {
+                if let Some(t) = self.triangles.get(further as usize) {
+                    vector::prefetch_all(t);
+                }
+            }
             match self.selection.get(self.position + PREFETCH_AHEAD) {
                 Some(&ahead) => ahead as usize,
                 None => return,

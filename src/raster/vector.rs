@@ -25,7 +25,7 @@
 //!   leave (and everything, on a CPU without AVX2) one at a time.
 //!
 //! It also has [`prefetch`], the hint that brings a cache line in ahead of
-//! its use, and [`truncate_to_bytes`], a colour's conversion to bytes.
+//! its use ([`prefetch_all`] for every line of a larger value), and [`truncate_to_bytes`], a colour's conversion to bytes.
 //!
 //! This module is the crate's only unsafe code. Calling a function
 //! compiled for AVX2 is unsafe because running it on a CPU without AVX2
@@ -109,6 +109,25 @@ pub(crate) fn prefetch<T>(value: &T) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = value;
+}
+
+/// [`prefetch`] of every cache line `value` spans, for a value larger
+/// than one line (64 bytes) or not aligned to one.
+#[inline(always)]
+pub(crate) fn prefetch_all<T>(value: &T) {
+    let start = (value as *const T).cast::<u8>();
+    let lines = (start as usize % 64 + std::mem::size_of::<T>()).div_ceil(64);
+    for line in 0..lines {
+        // SAFETY: as in `prefetch`; the addresses are those of `value`'s
+        // bytes, rounded down to their line, and a prefetch reads nothing.
+        #[cfg(target_arch = "x86_64")]
+        unsafe {
+            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+            _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(line * 64).cast::<i8>());
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = lines;
 }
 
 /// The four lanes of `v`, each in `[0, 256)`, truncated to bytes: on

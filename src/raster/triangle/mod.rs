@@ -344,6 +344,9 @@ pub struct TriangleSelection<'a> {
     indices: Option<&'a [u32]>,
 }
 
+/// How many triangles ahead an indexed selection asks for the set-up of.
+const SETUP_PREFETCH_AHEAD: usize = 4;
+
 impl<'a> TriangleSelection<'a> {
     /// Every triangle of `setups`.
     pub fn all(setups: &'a [TriangleSetup]) -> Self {
@@ -375,7 +378,18 @@ impl<'a> TriangleSelection<'a> {
     pub fn iter(&self) -> impl Iterator<Item = &'a TriangleSetup> + 'a {
         let (setups, indices) = (self.setups, self.indices);
         let all = indices.is_none().then(|| setups.iter());
-        let some = indices.map(|i| i.iter().map(move |&i| &setups[i as usize]));
+        // Indexed, the set-ups are read with gaps the hardware's stride
+        // prefetcher does not follow: each is asked for a few ahead.
+        let some = indices.map(|indices| {
+            indices.iter().enumerate().map(move |(j, &i)| {
+                if let Some(&ahead) = indices.get(j + SETUP_PREFETCH_AHEAD) {
+                    if let Some(setup) = setups.get(ahead as usize) {
+                        crate::raster::vector::prefetch_all(setup);
+                    }
+                }
+                &setups[i as usize]
+            })
+        });
         all.into_iter().flatten().chain(some.into_iter().flatten())
     }
 }
