@@ -222,8 +222,9 @@ impl DirectionalLight {
     }
 
     /// [`intensity`](Self::intensity) of the normal `[x, y, z]`:
-    /// `ambient + diffuse * max(0, n / |n| . l)`, with a normal of zero or
-    /// non-finite length counted as zero. Written out as plain arithmetic
+    /// `ambient + diffuse * max(0, n / |n| . l)`, with a normal counted as
+    /// zero where glam's `normalize_or_zero` gives zero: a length of zero,
+    /// one so small that its reciprocal is not finite, or one not finite. Written out as plain arithmetic
     /// on `f32` (glam's `normalize_or_zero` and `dot`, step by step, the
     /// same bits) so that a loop over lanes runs on vectors.
     #[inline(always)]

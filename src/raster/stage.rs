@@ -52,7 +52,9 @@ use shaded_span::ShadedSpan;
 
 mod shaded_span;
 
-/// How many triangle ids ahead the stage prefetches.
+/// How many triangle ids ahead the stage prefetches a triangle's
+/// vertices and first pixels (and, for a selection, twice as many ahead
+/// the triangle's own stage data, which that prefetch reads).
 const PREFETCH_AHEAD: usize = 8;
 
 /// Rows of a triangle's box whose first pixel the stage prefetches.
@@ -203,7 +205,10 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
     /// [`PREFETCH_AHEAD`] ids further on, so that they are in the cache
     /// when its fragments come (each fragment's depth test and shading
     /// otherwise waits for memory: a mesh's triangles are small, and its
-    /// vertices and pixels spread over tens of megabytes).
+    /// vertices and pixels spread over tens of megabytes). With a
+    /// selection (a band's triangles), also the stage data of the triangle
+    /// twice as far on, which the hardware, following ids with gaps, does
+    /// not bring in itself.
     #[inline(always)]
     fn prefetch_ahead(&mut self, id: u32) {
         if id == self.current {

@@ -25,16 +25,21 @@
 //!   leave (and everything, on a CPU without AVX2) one at a time.
 //!
 //! It also has [`prefetch`], the hint that brings a cache line in ahead of
-//! its use ([`prefetch_all`] for every line of a larger value), and [`truncate_to_bytes`], a colour's conversion to bytes.
+//! its use ([`prefetch_all`] for every line of a larger value);
+//! [`truncate_to_bytes`], a colour's conversion to bytes; and
+//! [`ratios_to_f32`] and [`divide_each`], a fragment's divisions two and
+//! four lanes at a time.
 //!
 //! This module is the crate's only unsafe code. Calling a function
 //! compiled for AVX2 is unsafe because running it on a CPU without AVX2
 //! would fault: [`run`], [`transform::shade`] and [`triangles::classify`]
 //! each call their AVX2 code only after the CPU said it has the feature.
-//! [`truncate_to_bytes`]'s intrinsics need only SSE2, which every x86-64
-//! CPU has. The prefetch intrinsic is unsafe as every `std::arch` call
-//! taking a pointer is, though it reads nothing; [`prefetch`] takes a
-//! reference.
+//! The intrinsics of [`truncate_to_bytes`], [`ratios_to_f32`] and
+//! [`divide_each`] need only SSE2, which every x86-64 CPU has; the last
+//! two load and store through pointers to local arrays of four lanes. The
+//! prefetch intrinsic is unsafe as every `std::arch` call taking a pointer
+//! is, though it reads nothing and cannot fault: [`prefetch`] takes a
+//! reference, and [`prefetch_all`] the lines that reference's value spans.
 #![allow(unsafe_code)]
 
 pub(crate) mod transform;
@@ -115,19 +120,26 @@ pub(crate) fn prefetch<T>(value: &T) {
 /// than one line (64 bytes) or not aligned to one.
 #[inline(always)]
 pub(crate) fn prefetch_all<T>(value: &T) {
-    let start = (value as *const T).cast::<u8>();
-    let lines = (start as usize % 64 + std::mem::size_of::<T>()).div_ceil(64);
-    for line in 0..lines {
-        // SAFETY: as in `prefetch`; the addresses are those of `value`'s
-        // bytes, rounded down to their line, and a prefetch reads nothing.
-        #[cfg(target_arch = "x86_64")]
-        unsafe {
-            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-            _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(line * 64).cast::<i8>());
+    #[cfg(target_arch = "x86_64")]
+    {
+        let start = (value as *const T).cast::<u8>();
+        let lines = (start as usize % 64 + std::mem::size_of::<T>()).div_ceil(64);
+        for line in 0..lines {
+            // SAFETY: SSE, which `_mm_prefetch` needs, is part of baseline
+            // x86-64, and a prefetch reads nothing and cannot fault,
+            // whatever the address. Each address is `value`'s first byte
+            // plus whole lines, so it lies in one of the cache lines
+            // `value` spans (the last one may be past `value`'s end, not
+            // past its line); `wrapping_add` computes it without a claim
+            // that it is in bounds.
+            unsafe {
+                use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+                _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(line * 64).cast::<i8>());
+            }
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = lines;
+    let _ = value;
 }
 
 /// The four lanes of `v`, each in `[0, 256)`, truncated to bytes: on
@@ -243,4 +255,53 @@ pub(crate) fn limited_to<R>(copy: Width, f: impl FnOnce() -> R) -> R {
     let result = f();
     ALLOWED.store(Width::Avx2 as u8, std::sync::atomic::Ordering::Relaxed);
     result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The lane-wise divisions give, lane for lane, the bits of the scalar
+    /// expressions they stand for, for one to four lanes, over numerators
+    /// and divisors of every size (ties, zeros and negative values
+    /// included).
+    #[test]
+    fn the_divisions_in_lanes_give_the_scalar_bits() {
+        let mut rng = fastrand::Rng::with_seed(3921);
+        for _ in 0..50_000 {
+            let bits = rng.u32(0..63);
+            let mut int = || rng.i64(..) >> bits;
+            let n = [int(), int(), int(), int()];
+            let d = (rng.i64(1..i64::MAX) >> rng.u32(0..63)) as f64;
+            let scalar = |n: i64| (n as f64 / d) as f32;
+            let same = |a: &[f32], b: &[f32]| {
+                assert_eq!(
+                    a.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                    b.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                    "{n:?} / {d}"
+                )
+            };
+            same(&ratios_to_f32([n[0]], d), &[scalar(n[0])]);
+            same(
+                &ratios_to_f32([n[0], n[1]], d),
+                &n[..2].iter().map(|&v| scalar(v)).collect::<Vec<_>>(),
+            );
+            same(
+                &ratios_to_f32([n[0], n[1], n[2]], d),
+                &n[..3].iter().map(|&v| scalar(v)).collect::<Vec<_>>(),
+            );
+            same(&ratios_to_f32(n, d), &n.map(scalar));
+
+            let v =
+                n.map(|n| f32::from_bits(n as u32 & 0x7f7f_ffff) * if n < 0 { -1.0 } else { 1.0 });
+            let s = f32::from_bits(rng.u32(0x0080_0000..0x7f7f_ffff));
+            same(&divide_each([v[0]], s), &[v[0] / s]);
+            same(&divide_each([v[0], v[1]], s), &[v[0] / s, v[1] / s]);
+            same(
+                &divide_each([v[0], v[1], v[2]], s),
+                &[v[0] / s, v[1] / s, v[2] / s],
+            );
+            same(&divide_each(v, s), &v.map(|x| x / s));
+        }
+    }
 }

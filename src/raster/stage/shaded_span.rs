@@ -172,7 +172,7 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
         let span = self.span;
         // Barycentrics from the exact edge values, as `Sample::of_triangle`:
         // `E_i / area` in `f64`. The edge values are found in `f64`, from
-        // the group's first: every one is an integer below 2^53 (`exact`
+        // the group's first: every one is an integer below 2^53 (`exact_area`
         // checked it), so each sum and product is exact, the very values
         // `E_i as f64` gives.
         let mut screen = [[0.0f32; LANES]; 3];
