@@ -225,10 +225,9 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
             // The stage data of a triangle further on, read (for its
             // vertices) when it comes [`PREFETCH_AHEAD`] ids ahead: the
             // selection's ids have gaps the hardware does not follow.
-            if let Some(&further) = self.selection.get(self.position + 2 * PREFETCH_AHEAD) {
-                if let Some(t) = self.triangles.get(further as usize) {
-                    vector::prefetch_all(t);
-                }
+            let further = self.selection.get(self.position + 2 * PREFETCH_AHEAD);
+            if let Some(t) = further.and_then(|&f| self.triangles.get(f as usize)) {
+                vector::prefetch_all(t);
             }
             match self.selection.get(self.position + PREFETCH_AHEAD) {
                 Some(&ahead) => ahead as usize,

@@ -104,42 +104,37 @@ unsafe fn avx2<K: Kernel>(kernel: K) -> K::Output {
 /// it reads nothing and changes nothing the program can see.
 #[inline(always)]
 pub(crate) fn prefetch<T>(value: &T) {
-    // SAFETY: SSE, which `_mm_prefetch` needs, is part of baseline x86-64;
-    // a prefetch does not access memory as far as the program can tell, and
-    // the address is that of a live reference besides.
-    #[cfg(target_arch = "x86_64")]
-    unsafe {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast::<i8>());
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = value;
+    prefetch_line((value as *const T).cast());
 }
 
 /// [`prefetch`] of every cache line `value` spans, for a value larger
 /// than one line (64 bytes) or not aligned to one.
 #[inline(always)]
 pub(crate) fn prefetch_all<T>(value: &T) {
+    let start = (value as *const T).cast::<u8>();
+    let lines = (start as usize % 64 + std::mem::size_of::<T>()).div_ceil(64);
+    for line in 0..lines {
+        // `value`'s first byte plus whole lines: an address in one of the
+        // lines `value` spans (the last may be past its end, not past its
+        // line), computed with `wrapping_add`, which claims nothing of it.
+        prefetch_line(start.wrapping_add(line * 64));
+    }
+}
+
+/// The prefetch hint for the cache line holding `address`, whatever the
+/// address: a prefetch reads nothing and cannot fault.
+#[inline(always)]
+fn prefetch_line(address: *const u8) {
+    // SAFETY: SSE, which `_mm_prefetch` needs, is part of baseline x86-64;
+    // a prefetch does not access memory as far as the program can tell,
+    // and does not fault on any address.
     #[cfg(target_arch = "x86_64")]
-    {
-        let start = (value as *const T).cast::<u8>();
-        let lines = (start as usize % 64 + std::mem::size_of::<T>()).div_ceil(64);
-        for line in 0..lines {
-            // SAFETY: SSE, which `_mm_prefetch` needs, is part of baseline
-            // x86-64, and a prefetch reads nothing and cannot fault,
-            // whatever the address. Each address is `value`'s first byte
-            // plus whole lines, so it lies in one of the cache lines
-            // `value` spans (the last one may be past `value`'s end, not
-            // past its line); `wrapping_add` computes it without a claim
-            // that it is in bounds.
-            unsafe {
-                use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-                _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(line * 64).cast::<i8>());
-            }
-        }
+    unsafe {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        _mm_prefetch::<_MM_HINT_T0>(address.cast::<i8>());
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = value;
+    let _ = address;
 }
 
 /// The four lanes of `v`, each in `[0, 256)`, truncated to bytes: on

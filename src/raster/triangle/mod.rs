@@ -382,10 +382,9 @@ impl<'a> TriangleSelection<'a> {
         // prefetcher does not follow: each is asked for a few ahead.
         let some = indices.map(|indices| {
             indices.iter().enumerate().map(move |(j, &i)| {
-                if let Some(&ahead) = indices.get(j + SETUP_PREFETCH_AHEAD) {
-                    if let Some(setup) = setups.get(ahead as usize) {
-                        crate::raster::vector::prefetch_all(setup);
-                    }
+                let ahead = indices.get(j + SETUP_PREFETCH_AHEAD);
+                if let Some(setup) = ahead.and_then(|&a| setups.get(a as usize)) {
+                    crate::raster::vector::prefetch_all(setup);
                 }
                 &setups[i as usize]
             })
