@@ -224,9 +224,10 @@ impl DirectionalLight {
     /// [`intensity`](Self::intensity) of the normal `[x, y, z]`:
     /// `ambient + diffuse * max(0, n / |n| . l)`, with a normal counted as
     /// zero where glam's `normalize_or_zero` gives zero: a length of zero,
-    /// one so small that its reciprocal is not finite, or one not finite. Written out as plain arithmetic
-    /// on `f32` (glam's `normalize_or_zero` and `dot`, step by step, the
-    /// same bits) so that a loop over lanes runs on vectors.
+    /// one so small that its reciprocal is not finite, or one not finite.
+    /// Written out as plain arithmetic on `f32` (glam's `normalize_or_zero`
+    /// and `dot`, step by step, the same bits) so that a loop over lanes
+    /// runs on vectors.
     #[inline(always)]
     pub(crate) fn intensity_of(&self, [x, y, z]: [f32; 3]) -> f32 {
         let length = (x * x + y * y + z * z).sqrt();
