@@ -242,6 +242,25 @@ pub(super) struct Scratch {
     pub(super) screen: Vec<ScreenPoint>,
     /// What each task made of its chunk of the triangles.
     pub(super) parts: Vec<Part>,
+    /// Parts a draw with fewer chunks did not use, kept with their memory
+    /// for the next draw with more ([`use_parts`](Self::use_parts)).
+    spare: Vec<Part>,
+}
+
+impl Scratch {
+    /// Gives the scratch `count` parts. Parts it no longer needs are kept
+    /// aside, not dropped, and come back first when a draw needs more: a
+    /// renderer drawn on one thread and then on two (one part, then 64)
+    /// would otherwise free 63 parts' set-ups, bins and stage triangles
+    /// and grow new ones from empty, on fresh pages, at every change.
+    pub(super) fn use_parts(&mut self, count: usize) {
+        if self.parts.len() > count {
+            self.spare.extend(self.parts.drain(count..));
+        }
+        while self.parts.len() < count {
+            self.parts.push(self.spare.pop().unwrap_or_default());
+        }
+    }
 }
 
 /// A run of set-up triangles and their stage data: the set-up with id `i`
@@ -270,4 +289,34 @@ pub(crate) struct PartBins<'a> {
     pub viewport: Viewport,
     /// Per run, per band, the indices of the run's triangles meeting it.
     pub per_run: Vec<&'a [Vec<u32>]>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Parts a draw with fewer chunks leaves are kept with their memory and
+    /// come back to the next draw with more, emptied by it as any part is.
+    #[test]
+    fn parts_left_unused_come_back_with_their_memory() {
+        let mut scratch = Scratch::default();
+        scratch.use_parts(3);
+        for (i, part) in scratch.parts.iter_mut().enumerate() {
+            part.source.reserve_exact(1000 * (i + 1));
+        }
+        let capacities = |s: &Scratch| {
+            let mut c: Vec<usize> = s.parts.iter().map(|p| p.source.capacity()).collect();
+            c.sort_unstable();
+            c
+        };
+        let before = capacities(&scratch);
+        scratch.use_parts(1);
+        assert_eq!(scratch.parts.len(), 1);
+        assert_eq!(scratch.parts[0].source.capacity(), before[0]);
+        scratch.use_parts(3);
+        assert_eq!(capacities(&scratch), before);
+        scratch.use_parts(4);
+        assert_eq!(scratch.parts.len(), 4);
+        assert_eq!(scratch.parts[3].source.capacity(), 0);
+    }
 }

@@ -7,7 +7,7 @@ use super::bands::{chunk_len, Bands};
 use super::clip::{ClipVertex, ClipVolume, W_MIN};
 use super::geometry::{Geometry, GeometryInParts, Scratch};
 use super::setup::{
-    AssemblyInput, GeometryStats, Part, ScreenPoint, MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNKS_PER_THREAD,
+    AssemblyInput, GeometryStats, ScreenPoint, MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNKS_PER_THREAD,
 };
 use super::vertex::{MeshVertex, Transform, VertexShader};
 use super::viewport::to_screen_vertex;
@@ -366,6 +366,7 @@ fn assemble<V: Sync, S: VertexShader<V>>(
     // them, sparing it a pass over the set-ups.
     let bands = (bin && chunks > 1)
         .then(|| Bands::for_threads(viewport.height, rayon::current_num_threads()));
+    scratch.use_parts(chunks);
     let input = AssemblyInput {
         vertices,
         shader,
@@ -376,7 +377,6 @@ fn assemble<V: Sync, S: VertexShader<V>>(
         options,
         bands,
     };
-    scratch.parts.resize_with(chunks, Part::default);
     scratch
         .parts
         .par_iter_mut()
