@@ -75,10 +75,12 @@ impl ShadedVertex {
 /// every back-end and every code path gets bit-identical depths.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct DepthPlane {
-    /// Pixel column of the origin.
-    pub origin_x: i64,
+    /// Pixel column of the origin. (Pixel coordinates fit in `i32`
+    /// anywhere in the guard band; 64-bit ones made each stage triangle 48
+    /// bytes instead of 32.)
+    pub origin_x: i32,
     /// Pixel row of the origin.
-    pub origin_y: i64,
+    pub origin_y: i32,
     /// Depth at the origin pixel's centre.
     pub z_origin: f32,
     /// Change of depth per pixel to the right.
@@ -102,9 +104,11 @@ impl DepthPlane {
         let e = setup.edge_values_at_pixel(ox, oy);
         let [_, e1, e2] = setup.edges;
         let scale = SUBPIXEL_SCALE as f64;
+        // The box's first pixel, found from snapped coordinates that are
+        // `i32` in 1/256 pixel: its column and row fit in `i32` as they are.
         DepthPlane {
-            origin_x: ox,
-            origin_y: oy,
+            origin_x: ox as i32,
+            origin_y: oy as i32,
             z_origin: (z0 + (d1 * e[1] as f64 + d2 * e[2] as f64) / area) as f32,
             dz_dx: ((d1 * e1.a as f64 + d2 * e2.a as f64) * scale / area) as f32,
             dz_dy: ((d1 * e1.b as f64 + d2 * e2.b as f64) * scale / area) as f32,
@@ -125,7 +129,7 @@ impl DepthPlane {
     /// The depth at the start of row `y`, before the column term.
     #[inline]
     pub fn row(&self, y: u32) -> f32 {
-        self.z_origin + self.dz_dy * (i64::from(y) - self.origin_y) as f32
+        self.z_origin + self.dz_dy * (i64::from(y) - i64::from(self.origin_y)) as f32
     }
 
     /// The depth at column `x` of a row whose [`row`](Self::row) value is
@@ -134,7 +138,7 @@ impl DepthPlane {
     /// can otherwise step outside it).
     #[inline]
     pub fn in_row(&self, row: f32, x: u32) -> f32 {
-        self.in_row_at_offset(row, (i64::from(x) - self.origin_x) as f32)
+        self.in_row_at_offset(row, (i64::from(x) - i64::from(self.origin_x)) as f32)
     }
 
     /// [`in_row`](Self::in_row) for the column `dx` pixels right of the
@@ -155,8 +159,9 @@ impl DepthPlane {
     /// offset `(0, 0)` it is the very bits of [`at`](Self::at).
     #[inline]
     pub fn at_offset(&self, x: u32, y: u32, dx: f32, dy: f32) -> f32 {
-        let row = self.z_origin + self.dz_dy * ((i64::from(y) - self.origin_y) as f32 + dy);
-        self.in_row_at_offset(row, (i64::from(x) - self.origin_x) as f32 + dx)
+        let row =
+            self.z_origin + self.dz_dy * ((i64::from(y) - i64::from(self.origin_y)) as f32 + dy);
+        self.in_row_at_offset(row, (i64::from(x) - i64::from(self.origin_x)) as f32 + dx)
     }
 }
 

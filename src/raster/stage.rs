@@ -242,7 +242,7 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
                 vector::prefetch(v);
             }
         }
-        let (x, y) = (t.depth.origin_x, t.depth.origin_y);
+        let (x, y) = (i64::from(t.depth.origin_x), i64::from(t.depth.origin_y));
         let rect = self.target.rect();
         for y in y..y + PREFETCH_ROWS {
             if rect.contains(x, y) {
@@ -514,7 +514,7 @@ impl SpanRows<'_> {
         passes: impl Fn(f32, f32) -> bool,
     ) {
         self.count_coverage();
-        let first = (i64::from(x0) - plane.origin_x) as i32;
+        let first = (i64::from(x0) - i64::from(plane.origin_x)) as i32;
         let color = u32::from_ne_bytes(color);
         // All ones where the test passes, as a vector compare gives.
         let mask = |z: f32, d: f32| u32::from(passes(z, d)).wrapping_neg();
@@ -838,8 +838,8 @@ mod tests {
                 let len = rng.usize(1..=70);
                 let x0 = rng.u32(0..200);
                 let plane = DepthPlane {
-                    origin_x: rng.i64(-50..250),
-                    origin_y: rng.i64(-50..50),
+                    origin_x: rng.i32(-50..250),
+                    origin_y: rng.i32(-50..50),
                     z_origin: rng.f32(),
                     dz_dx: (rng.f32() - 0.5) * 0.02,
                     dz_dy: (rng.f32() - 0.5) * 0.02,

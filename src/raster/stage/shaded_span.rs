@@ -107,7 +107,7 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
         // The column offset in `i32`, as the uniform span loop counts it:
         // the same integer as `DepthPlane::in_row`'s, which the guard band
         // keeps below 2^17, so the same `f32`.
-        let first = (i64::from(span.x0) - plane.origin_x) as i32;
+        let first = (i64::from(span.x0) - i64::from(plane.origin_x)) as i32;
         let reads_depth = self.state.test != DepthTest::Always;
         let len = self.rows.color.len();
         let mut start = 0;
@@ -374,7 +374,7 @@ mod tests {
                 triangles: vec![ShadedTriangle {
                     vertices: [0, 1, 2],
                     depth: DepthPlane {
-                        origin_x: rng.i64(-50..250),
+                        origin_x: rng.i32(-50..250),
                         origin_y: 0,
                         z_origin: rng.f32(),
                         dz_dx: (rng.f32() - 0.5) * 0.02,
