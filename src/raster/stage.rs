@@ -757,6 +757,7 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
                 state: self.depth,
                 interpolation: self.interpolation,
                 area,
+                inv_area: 1.0 / area,
             });
             return;
         }
