@@ -60,19 +60,20 @@ const DROPPED_BITS: u32 = 52 - 23;
 /// rounded `1 / area`), and `false` where that product may round to
 /// another `f32` than the quotient: the lane must then divide.
 ///
-/// A multiplication costs far less than a division (the eight lanes'
-/// three quotients are six AVX2 divisions, at eight cycles apart on the
-/// Intel Xeon). The product is within three units in the last place
-/// (ulp) of the exact quotient: two roundings, each off by at most half
-/// a unit relative to the value. Rounding to `f32` drops the
+/// A multiplication costs far less than a division: the eight lanes'
+/// three quotients are six AVX2 divisions of four `f64`, and on recent
+/// Intel cores the divider takes one only every eight cycles or so. The
+/// product is within two units in the last place (ulp) of the quotient
+/// `e / area` of the same `f64` values: two roundings, each off by at
+/// most half a unit relative to the value. Rounding to `f32` drops the
 /// [`DROPPED_BITS`] lowest bits, and its only decision points are the
 /// midpoints between two `f32`s, where those bits read `1000...0` (ties
-/// go to even). Where the product's dropped bits are more than three
-/// units from that pattern, no midpoint lies between it and the exact
-/// quotient, and both round alike; the check keeps a margin of 16. The
-/// quotients here are 0 or at least `1 / area >= 2^-53`, normal in `f32`
-/// too, whose rounding is then exactly this. A product rarely fails the
-/// check (32 patterns in 2^29).
+/// go to even). Where the product's dropped bits are three units or more
+/// from that pattern, no midpoint lies between it and the quotient, and
+/// both round alike; the check keeps a margin of 16. The quotients here
+/// are 0 or at least `1 / area`, above 2^-54 (each edge value is at most
+/// 2^52), normal in `f32` too, whose rounding is then exactly this. A
+/// product rarely fails the check (31 patterns in 2^29).
 #[inline(always)]
 fn by_reciprocal(e: f64, inv_area: f64) -> (f32, bool) {
     const MIDPOINT: i64 = 1 << (DROPPED_BITS - 1);
