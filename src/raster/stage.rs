@@ -757,7 +757,6 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
                 state: self.depth,
                 interpolation: self.interpolation,
                 area,
-                inv_area: 1.0 / area,
             });
             return;
         }

@@ -49,8 +49,6 @@ pub(crate) struct ShadedSpan<'s, S: FragmentShader + ?Sized> {
     /// The triangle's doubled area, `E_0 + E_1 + E_2`, the same at every
     /// pixel.
     pub area: f64,
-    /// `1 / area`, rounded to `f64` ([`by_reciprocal`]).
-    pub inv_area: f64,
 }
 
 /// The bits an `f64` has below an `f32`'s 23-bit fraction.
@@ -144,6 +142,8 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
         // keeps below 2^17, so the same `f32`.
         let first = (i64::from(span.x0) - i64::from(plane.origin_x)) as i32;
         let reads_depth = self.state.test != DepthTest::Always;
+        // Once per span, for the barycentrics ([`by_reciprocal`]).
+        let inv_area = 1.0 / self.area;
         let len = self.rows.color.len();
         let mut start = 0;
         while start < len {
@@ -165,7 +165,7 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
                 active[k] = passes(z[k], stored[k]) & (k < n);
             }
             if active.iter().any(|&a| a) {
-                let lanes = self.lanes(start, z, active, self.vertices);
+                let lanes = self.lanes(start, z, active, self.vertices, inv_area);
                 let colour = to_pixels(self.shader.shade_lanes(&lanes));
                 let write = self.state.write;
                 if n == LANES && active.iter().all(|&a| a) {
@@ -193,9 +193,10 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
     }
 
     /// The shader's input for the group of pixels from `start`: steps 4
-    /// and 5 of the stage ([`crate::raster::stage`]) on each lane. Every
-    /// loop runs over the lanes innermost, so that each statement becomes
-    /// one vector instruction.
+    /// and 5 of the stage ([`crate::raster::stage`]) on each lane, with
+    /// `inv_area` the area's reciprocal ([`by_reciprocal`]). Every loop
+    /// runs over the lanes innermost, so that each statement becomes one
+    /// vector instruction.
     #[inline(always)]
     fn lanes(
         &self,
@@ -203,6 +204,7 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
         depth: [f32; LANES],
         active: [bool; LANES],
         v: [&ShadedVertex; 3],
+        inv_area: f64,
     ) -> FragmentLanes {
         let span = self.span;
         // Barycentrics from the exact edge values, as `Sample::of_triangle`:
@@ -220,7 +222,7 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
             let step = span.step[i] as f64;
             for k in 0..LANES {
                 edge[i][k] = first + k as f64 * step;
-                let (ratio, exact) = by_reciprocal(edge[i][k], self.inv_area);
+                let (ratio, exact) = by_reciprocal(edge[i][k], inv_area);
                 screen[i][k] = ratio;
                 sure[k] &= exact;
             }
