@@ -9,6 +9,7 @@
 
 use crate::error::{Error, Result};
 use crate::raster::edge::PixelRect;
+use crate::raster::vector;
 use rayon::prelude::*;
 use std::path::Path;
 
@@ -166,9 +167,9 @@ impl RenderTarget {
         Ok(RenderTarget {
             width,
             height,
-            color: vec![Self::BLACK; n],
-            depth: vec![Self::FAR_DEPTH; n],
-            coverage: vec![0; n],
+            color: vector::filled_in_huge_pages(n, Self::BLACK),
+            depth: vector::filled_in_huge_pages(n, Self::FAR_DEPTH),
+            coverage: vector::filled_in_huge_pages(n, 0),
         })
     }
 

@@ -26,6 +26,8 @@
 //!
 //! It also has [`prefetch`], the hint that brings a cache line in ahead of
 //! its use ([`prefetch_all`] for every line of a larger value);
+//! [`advise_huge_pages`], the hint that asks Linux for 2 MiB pages under a
+//! large buffer;
 //! [`truncate_to_bytes`], a colour's conversion to bytes; and
 //! [`ratios_to_f32`] and [`divide_each`], a fragment's divisions two and
 //! four lanes at a time.
@@ -40,6 +42,9 @@
 //! prefetch intrinsic is unsafe as every `std::arch` call taking a pointer
 //! is, though it reads nothing and cannot fault: [`prefetch`] takes a
 //! reference, and [`prefetch_all`] the lines that reference's value spans.
+//! `madvise` is a system call, unsafe as every foreign function is; the
+//! advice it is given changes no byte of the range, which lies inside a
+//! live allocation.
 #![allow(unsafe_code)]
 
 pub(crate) mod transform;
@@ -118,6 +123,73 @@ pub(crate) fn prefetch_all<T>(value: &T) {
         // lines `value` spans (the last may be past its end, not past its
         // line), computed with `wrapping_add`, which claims nothing of it.
         prefetch_line(start.wrapping_add(line * 64));
+    }
+}
+
+/// The size of the large pages Linux backs a region with when asked
+/// (transparent huge pages, 2 MiB on x86-64).
+const HUGE_PAGE: usize = 2 << 20;
+
+/// Asks the kernel to back the memory of `buffer`'s allocation (its
+/// capacity, not only its length) with 2 MiB pages, wherever whole such
+/// pages lie in it. Only a hint: it changes no byte, and the kernel may
+/// ignore it (transparent huge pages off, or no 2 MiB page free).
+///
+/// The frame's large buffers (the target, the shaded vertices, the
+/// set-ups) are read and written all over: a fragment's depth and colour,
+/// a triangle's three corners. In 4 KiB pages their 100 MB are 25,000
+/// pages, far more than the TLB holds, and each miss walks the page
+/// tables; in 2 MiB pages they are 50. Linux's default (`madvise`) gives
+/// the large pages only to memory that asks for them, and the system
+/// allocator does not ask (mimalloc, the `rasterlab` program's allocator,
+/// does). Memory not yet written then faults in in 2 MiB pages; memory
+/// already written (an allocation the allocator reused) is collapsed into
+/// them at once (`MADV_COLLAPSE`, Linux 6.1 and later; an older kernel
+/// refuses it and the pages stay as they were).
+///
+/// A renderer of the full dragon drawn frame after frame on one thread
+/// with the system allocator (`tiled`, 1920x1080, Gouraud): 38.2 to 40.5
+/// ms a frame without the hint, 33.7 to 34.3 with it; with mimalloc, 31.4.
+pub(crate) fn advise_huge_pages<T>(buffer: &Vec<T>) {
+    let start = buffer.as_ptr() as usize;
+    let end = start + buffer.capacity() * std::mem::size_of::<T>();
+    let (first, last) = (
+        start.next_multiple_of(HUGE_PAGE),
+        end / HUGE_PAGE * HUGE_PAGE,
+    );
+    if last <= first {
+        return;
+    }
+    #[cfg(target_os = "linux")]
+    // SAFETY: `madvise` with `MADV_HUGEPAGE` changes no content, mapping or
+    // protection, only how the kernel backs the range; the range is
+    // page-aligned and lies within `buffer`'s live allocation. Its result
+    // is ignored: a refused hint leaves the memory as it was.
+    unsafe {
+        const MADV_COLLAPSE: libc::c_int = 25;
+        let range = (first as *mut libc::c_void, last - first);
+        libc::madvise(range.0, range.1, libc::MADV_HUGEPAGE);
+        libc::madvise(range.0, range.1, MADV_COLLAPSE);
+    }
+}
+
+/// A vector of `n` copies of `value`, in memory asked for in 2 MiB pages
+/// before its first write ([`advise_huge_pages`]).
+pub(crate) fn filled_in_huge_pages<T: Clone>(n: usize, value: T) -> Vec<T> {
+    let mut buffer = Vec::with_capacity(n);
+    advise_huge_pages(&buffer);
+    buffer.resize(n, value);
+    buffer
+}
+
+/// Reserves room for `additional` more elements in `buffer`, and when that
+/// takes a new allocation, asks for it in 2 MiB pages
+/// ([`advise_huge_pages`]).
+pub(crate) fn reserve_in_huge_pages<T>(buffer: &mut Vec<T>, additional: usize) {
+    let before = buffer.capacity();
+    buffer.reserve(additional);
+    if buffer.capacity() != before {
+        advise_huge_pages(buffer);
     }
 }
 
@@ -298,5 +370,66 @@ mod tests {
             );
             same(&divide_each(v, s), &v.map(|x| x / s));
         }
+    }
+
+    /// The huge-page hint changes no value: a filled buffer holds its
+    /// values, a reserved one keeps those it had, and an empty or small one
+    /// (no whole 2 MiB page in it) is left alone.
+    #[test]
+    fn buffers_asked_for_in_huge_pages_keep_their_values() {
+        let filled = filled_in_huge_pages(3 << 20, 7u32);
+        assert_eq!(filled.len(), 3 << 20);
+        assert!(filled.iter().all(|&v| v == 7));
+        let mut kept: Vec<u64> = (0..1000).collect();
+        reserve_in_huge_pages(&mut kept, 1 << 20);
+        assert!(kept.capacity() >= 1000 + (1 << 20));
+        assert!(kept.iter().copied().eq(0..1000));
+        assert!(filled_in_huge_pages(0, 1u8).is_empty());
+        assert_eq!(filled_in_huge_pages(3, 1u8), [1, 1, 1]);
+    }
+
+    /// Where Linux gives huge pages to memory that asks for them, a buffer
+    /// filled after the hint lies, in part at least, in 2 MiB pages (the
+    /// mapping's `AnonHugePages` in `/proc/self/smaps`). Without the hint,
+    /// under the default `madvise` setting, it has none.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn the_kernel_backs_a_buffer_filled_after_the_hint_with_huge_pages() {
+        let setting = "/sys/kernel/mm/transparent_hugepage/enabled";
+        let enabled = std::fs::read_to_string(setting).unwrap_or_default();
+        if !enabled.contains("[madvise]") && !enabled.contains("[always]") {
+            eprintln!("NOT CHECKED: transparent huge pages are off here ({setting}: {enabled:?})");
+            return;
+        }
+        let buffer = filled_in_huge_pages(8 << 20, 1u32);
+        let start = buffer.as_ptr() as usize;
+        let end = start + buffer.len() * 4;
+        // The hint splits the buffer's mapping where its 2 MiB pages begin
+        // and end: every mapping it overlaps counts.
+        let smaps = std::fs::read_to_string("/proc/self/smaps").unwrap();
+        let mut overlaps = false;
+        let mut huge_kb = 0;
+        for line in smaps.lines() {
+            let range = line.split_whitespace().next().unwrap_or("");
+            if let Some((low, high)) = range.split_once('-') {
+                let parse = |hex| usize::from_str_radix(hex, 16);
+                if let (Ok(low), Ok(high)) = (parse(low), parse(high)) {
+                    overlaps = low < end && start < high;
+                    continue;
+                }
+            }
+            if let Some(kb) = line.strip_prefix("AnonHugePages:").filter(|_| overlaps) {
+                huge_kb += kb
+                    .trim()
+                    .trim_end_matches("kB")
+                    .trim()
+                    .parse::<u64>()
+                    .unwrap();
+            }
+        }
+        assert!(
+            huge_kb >= 2048,
+            "a 32 MiB buffer asked for in huge pages has {huge_kb} kB of them"
+        );
     }
 }

@@ -12,6 +12,7 @@ use super::setup::{GeometryStats, Part, ScreenPoint};
 use super::Viewport;
 use crate::raster::edge::TriangleSetup;
 use crate::raster::primitive::{ShadedTriangle, ShadedVertex, TriangleData};
+use crate::raster::vector;
 use rayon::prelude::*;
 
 /// Triangles ready for a back-end, and their data for the fragment stage.
@@ -167,6 +168,7 @@ pub(super) fn index_in_draw(v: u32, n: u32, clip_start: u32) -> u32 {
 /// entries past its old length (which the caller then overwrites).
 fn resize_keeping<T: Copy>(v: &mut Vec<T>, len: usize, filler: T) {
     v.truncate(len);
+    vector::reserve_in_huge_pages(v, len - v.len());
     v.resize(len, filler);
 }
 

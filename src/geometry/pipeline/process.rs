@@ -406,6 +406,7 @@ fn assemble<V: Sync, S: VertexShader<V>>(
 fn size_for_overwrite<T: bytemuck::Zeroable + Copy>(buffer: &mut Vec<T>, n: usize) {
     if buffer.capacity() < n {
         *buffer = bytemuck::zeroed_vec(n);
+        vector::advise_huge_pages(buffer);
     } else {
         buffer.truncate(n);
         buffer.resize(n, T::zeroed());

@@ -276,9 +276,9 @@ impl<V, S: VertexShader<V>> AssemblyInput<'_, V, S> {
     pub(super) fn process(&self, triangles: &[[u32; 3]], first: usize, part: &mut Part) {
         part.clear(self.bands);
         if triangles.len() >= RESERVE_MIN_CHUNK {
-            part.setups.reserve(triangles.len());
-            part.triangles.reserve(triangles.len());
-            part.source.reserve(triangles.len());
+            vector::reserve_in_huge_pages(&mut part.setups, triangles.len());
+            vector::reserve_in_huge_pages(&mut part.triangles, triangles.len());
+            vector::reserve_in_huge_pages(&mut part.source, triangles.len());
         }
         let assemble = Assemble {
             input: self,
