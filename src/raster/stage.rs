@@ -428,16 +428,28 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
 }
 
 /// The buffers of `target` under `span`, its row loaded (cleared first
-/// when the draw clears as it goes).
+/// when the draw clears as it goes). With `depth_to_row_end`, the depths
+/// run on to the end of the row: a group of eight pixels at the span's
+/// end then loads its stored depths as one vector (the lanes past the
+/// span read depths the group does not write).
 #[inline(always)]
-fn span_rows<'t>(target: &'t mut TargetRows<'_>, span: &TriangleSpan) -> SpanRows<'t> {
+fn span_rows<'t>(
+    target: &'t mut TargetRows<'_>,
+    span: &TriangleSpan,
+    depth_to_row_end: bool,
+) -> SpanRows<'t> {
     target.load_row(span.y);
     let start = target.index(span.x0, span.y);
     let end = start + (span.x1 - span.x0) as usize + 1;
+    let depth_end = if depth_to_row_end {
+        start - span.x0 as usize + target.width() as usize
+    } else {
+        end
+    };
     let counts = target.counts_coverage();
     SpanRows {
         color: &mut target.color[start..end],
-        depth: &mut target.depth[start..end],
+        depth: &mut target.depth[start..depth_end],
         coverage: if counts {
             &mut target.coverage[start..end]
         } else {
@@ -749,7 +761,7 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
                 return;
             };
             vector::run(ShadedSpan {
-                rows: span_rows(&mut self.target, span),
+                rows: span_rows(&mut self.target, span, true),
                 span,
                 plane: t.depth,
                 vertices,
@@ -788,7 +800,7 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
             }
         };
         let fill = SpanFill {
-            rows: span_rows(&mut self.target, span),
+            rows: span_rows(&mut self.target, span, false),
             depth: self.depth,
             plane,
             y: span.y,

@@ -152,10 +152,9 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
             // compare reads as one vector.
             let mut stored = [0.0f32; LANES];
             if reads_depth {
-                if n == LANES {
-                    stored.copy_from_slice(&self.rows.depth[start..start + LANES]);
-                } else {
-                    stored[..n].copy_from_slice(&self.rows.depth[start..start + n]);
+                match self.rows.depth.get(start..start + LANES) {
+                    Some(whole) => stored.copy_from_slice(whole),
+                    None => stored[..n].copy_from_slice(&self.rows.depth[start..start + n]),
                 }
             }
             let mut z = [0.0f32; LANES];
