@@ -425,6 +425,10 @@ pub struct TargetRows<'a> {
     /// Per row held, whether it still waits for its clear; empty when
     /// nothing is cleared.
     unloaded: Vec<bool>,
+    /// One row of the clear colour; empty when the colour is kept.
+    clear_color_row: Vec<[u8; 4]>,
+    /// One row of the far depth; empty when depth is kept.
+    clear_depth_row: Vec<f32>,
 }
 
 impl<'a> TargetRows<'a> {
@@ -453,6 +457,12 @@ impl<'a> TargetRows<'a> {
             coverage,
             clear,
             unloaded,
+            clear_color_row: clear.color.map_or(Vec::new(), |c| vec![c; width as usize]),
+            clear_depth_row: if clear.depth_and_coverage {
+                vec![RenderTarget::FAR_DEPTH; width as usize]
+            } else {
+                Vec::new()
+            },
         }
     }
 
@@ -476,6 +486,14 @@ impl<'a> TargetRows<'a> {
     }
 
     /// Clears the `row`-th row held, if it still waits for its clear.
+    ///
+    /// Each buffer's row is copied from a cleared row, not filled value by
+    /// value: a copy this long goes to the C library's `memcpy`, which with
+    /// glibc on x86-64 is `rep movsb`, whose whole-line writes do not read
+    /// the lines from memory first, where a loop of vector stores does. The bundled
+    /// dragon's frame (`render … --backend scanline --frames 300`, eight
+    /// pairs alternated on one core): raster 4.87 to 5.37 ms filled, 4.67
+    /// to 4.92 copied.
     #[cold]
     fn clear_row(&mut self, row: usize) {
         if !std::mem::replace(&mut self.unloaded[row], false) {
@@ -483,11 +501,11 @@ impl<'a> TargetRows<'a> {
         }
         let width = self.width as usize;
         let pixels = row * width..(row + 1) * width;
-        if let Some(color) = self.clear.color {
-            self.color[pixels.clone()].fill(color);
+        if self.clear.color.is_some() {
+            self.color[pixels.clone()].copy_from_slice(&self.clear_color_row);
         }
         if self.clear.depth_and_coverage {
-            self.depth[pixels.clone()].fill(RenderTarget::FAR_DEPTH);
+            self.depth[pixels.clone()].copy_from_slice(&self.clear_depth_row);
             if let Some(coverage) = self.coverage.get_mut(pixels) {
                 coverage.fill(0);
             }
