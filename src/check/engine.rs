@@ -23,7 +23,7 @@
 //!    index), until [`CONFIRMING_FAILURES`] fail, so that a cause is tried
 //!    on more than one failure and two causes that fit one case can be
 //!    told apart. They are not scored.
-//! 4. **Cause.** [`cause::diagnose`](super::cause::diagnose) tries the
+//! 4. **Cause.** [`cause::diagnose`] tries the
 //!    catalogue on the failing cases as generated, and holds each change
 //!    against the passing cases. A cause named so far is then probed:
 //!    of [`PROBE_CASES`] more cases, those where it and one of its rivals

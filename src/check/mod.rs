@@ -23,7 +23,7 @@
 //! * [`Property::CrackFree`]: every centre on a shared edge or shared
 //!   vertex inside a mesh drawn exactly once, no pixel drawn twice,
 //!   whatever is drawn at the mesh's outline (the two side by side in
-//!   [`judge`]);
+//!   [`judge()`]);
 //! * [`Property::Line`]: lines drawn by the midpoint rule or the diamond
 //!   exit rule exactly, within Vulkan's tolerance of the diamond rule, or
 //!   by integer Bresenham between pixel-index endpoints

@@ -23,7 +23,7 @@
 //! Pixels off the target are left out.
 //!
 //! Integer Bresenham breaks that tie more than one way in the wild, and
-//! each way is a [`Tie`]: toward the start as above; toward the end
+//! each way is a [`WholePixelWalk`]: toward the start as above; toward the end
 //! (`D >= 0` steps, or the walk from the other end); and as the course's
 //! midpoint pseudocode does, which swaps the endpoints so as to walk along
 //! the major axis increasing (left to right, x increasing, for a line

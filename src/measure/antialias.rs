@@ -10,7 +10,7 @@
 //! |---|---|---|
 //! | one sample | 1 | the pixel centre: aliased, coverage 0 or 1 |
 //! | multisampling, MSAA N | 2, 4, 8, 16 | the standard patterns ([`SamplePattern`]) |
-//! | supersampling, SSAA k x k | 4, 9, 16, 64 | a regular grid: the picture drawn k times larger, then averaged ([`supersample`]) |
+//! | supersampling, SSAA k x k | 4, 9, 16, 64 | a regular grid: the picture drawn k times larger, then averaged ([`supersample()`]) |
 //!
 //! Every sample is decided as a pixel centre is (snapped vertices, exact
 //! edge functions, the fill rule's ties), by a back-end's own walk.

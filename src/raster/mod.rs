@@ -19,7 +19,7 @@
 //! * multisampling: a triangle's coverage mask at the standard sample
 //!   patterns of Direct3D and Vulkan ([`SamplePattern`], [`masks_of`],
 //!   checked against [`reference_masks`]); supersampling on a regular
-//!   `k x k` grid ([`supersample`]); and the exact area each triangle
+//!   `k x k` grid ([`supersample()`]); and the exact area each triangle
 //!   covers in each pixel ([`area_coverage`]), which anti-aliasing
 //!   approximates; the multisampled stage, with a depth and a colour per
 //!   sample and a resolve ([`draw_multisampled`], [`MultisampleTarget`]);

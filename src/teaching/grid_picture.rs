@@ -305,7 +305,7 @@ impl GridPicture {
     /// This picture with the samples of `pattern` in every pixel: a dot
     /// where one of `triangles` covers the sample under `rule`, a ring
     /// where none does, each decided as a pixel centre is
-    /// ([`reference_masks`](crate::raster::reference_masks)). The cells
+    /// ([`reference_masks`]). The cells
     /// still say what the back-end did with one sample a pixel.
     pub fn with_samples(
         mut self,

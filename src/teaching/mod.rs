@@ -11,9 +11,9 @@
 //!   uses, and the legends themselves: [`Role`], [`Legend`];
 //! * the side-by-side HTML comparison of every back-end on one input
 //!   (images, differences, work and time): [`Report`], and the `compare`
-//!   command around it, [`compare`];
+//!   command around it, [`compare()`];
 //! * one algorithm traced on a small input, as `explain` prints it:
-//!   [`explain`];
+//!   [`explain()`];
 //! * every back-end on the bundled scenes and meshes, its images compared
 //!   with the reference's: [`run_demo`];
 //! * pixel grids as text, one character a pixel: [`ascii_rows`].

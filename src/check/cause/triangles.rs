@@ -192,7 +192,7 @@ impl Model {
 }
 
 /// Twice the signed area of a triangle as given (`+` counter-clockwise on
-/// screen, y down, as [`TriangleSetup::signed_area`] has it).
+/// screen, y down, as [`TriangleSetup::signed_area`](crate::raster::edge::TriangleSetup::signed_area) has it).
 fn signed_twice_area(t: &[Point; 3]) -> f64 {
     let [a, b, c] = *t;
     -((b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0))

@@ -124,7 +124,7 @@ pub fn read_ply<R: BufRead>(source: R, path: &Path) -> Result<Mesh> {
     read_parsing(source, path, Parsing::on(rayon::current_num_threads()))
 }
 
-/// [`read`], with the parsing of ASCII elements shared out as `parsing`
+/// [`read_ply`], with the parsing of ASCII elements shared out as `parsing`
 /// says.
 pub(super) fn read_parsing<R: BufRead>(source: R, path: &Path, parsing: Parsing) -> Result<Mesh> {
     let parse_error = |e: ply_rs_bw::parser::ParseError, ascii: bool| Error::Parse {

@@ -20,10 +20,10 @@
 //! band walks its chunk lists in chunk order). Every back-end emits a
 //! pixel's fragments in triangle order, and the stage is a pure function of
 //! the fragment, so each pixel sees exactly the same sequence of fragments
-//! as in [`draw`](crate::geometry::pipeline::draw).
+//! as in [`draw`](fn@crate::geometry::pipeline::draw).
 //!
 //! With one thread there is nothing to share out, and the draw is
-//! [`pipeline::draw`](crate::geometry::pipeline::draw) itself. That draw
+//! [`pipeline::draw`](fn@crate::geometry::pipeline::draw) itself. That draw
 //! goes band by band too when the triangles are few (at most 256), in
 //! bands whose colour and depth fit a core's cache (64 rows at 1920
 //! pixels wide), each band walking every triangle: large triangles over
@@ -208,7 +208,7 @@ fn draw_runs<S: FragmentShader + ?Sized>(
 
 /// Rasterizes `geometry` with `backend` into `target` through the shared
 /// fragment stage, band by band in parallel; bit-identical to
-/// [`pipeline::draw`](crate::geometry::pipeline::draw).
+/// [`pipeline::draw`](fn@crate::geometry::pipeline::draw).
 pub fn draw_binned<S: FragmentShader + ?Sized>(
     geometry: &Geometry,
     backend: &dyn TriangleRasterizer,

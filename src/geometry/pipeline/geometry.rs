@@ -194,7 +194,7 @@ impl GeometryInParts {
     /// Leaves several parts where they are, for a draw that reads them as
     /// runs: only their clip vertices are appended after the
     /// `mesh_vertices` shaded ones, and the parts' references to them
-    /// renumbered. Saves the copy of [`gather`](Self::gather). The parts
+    /// renumbered. Saves the copy of [`Geometry::gather`]. The parts
     /// binned their triangles into bands of `band_rows` rows of `viewport`.
     pub(super) fn keep_in_parts(
         &mut self,

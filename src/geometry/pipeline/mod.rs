@@ -17,7 +17,7 @@
 //!
 //! [`process_triangles`] runs steps 2 and 3 and returns a [`Geometry`]: the
 //! set-up triangles for a back-end, their vertex data for the fragment
-//! stage, and counts of what was clipped, culled and dropped. [`draw`]
+//! stage, and counts of what was clipped, culled and dropped. [`draw()`]
 //! then rasterizes it with a back-end through the shared stage. Nothing
 //! with `w <= 0` reaches the rasterizer: such vertices are clipped away
 //! first, and [`Viewport::to_screen`] refuses them.

@@ -71,7 +71,7 @@ fn classify_block(t: &TriangleSetup, r: PixelRect) -> BlockClass {
     classify_from_corner(t, top_left, step_x, step_y, r.x1 - r.x0, r.y1 - r.y0)
 }
 
-/// [`classify_block`] for a block `w + 1` by `h + 1` pixels whose top-left
+/// The tests' `classify_block` for a block `w + 1` by `h + 1` pixels whose top-left
 /// sample has edge values `top_left`; `step_x` and `step_y` are the edges'
 /// changes per pixel right and per pixel down.
 ///
