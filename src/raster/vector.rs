@@ -182,6 +182,16 @@ pub(crate) fn filled_in_huge_pages<T: Clone>(n: usize, value: T) -> Vec<T> {
     buffer
 }
 
+/// A vector of `n` zeroes, in memory asked for in 2 MiB pages. The
+/// allocator hands fresh memory out zeroed without writing it, so the
+/// first write of each page is its user's; memory it reused, which it
+/// zeroed, is collapsed into 2 MiB pages ([`advise_huge_pages`]).
+pub(crate) fn zeroed_in_huge_pages<T: bytemuck::Zeroable>(n: usize) -> Vec<T> {
+    let buffer = bytemuck::zeroed_vec(n);
+    advise_huge_pages(&buffer);
+    buffer
+}
+
 /// Reserves room for `additional` more elements in `buffer`, and when that
 /// takes a new allocation, asks for it in 2 MiB pages
 /// ([`advise_huge_pages`]).

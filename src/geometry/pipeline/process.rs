@@ -405,8 +405,7 @@ fn assemble<V: Sync, S: VertexShader<V>>(
 /// stage's 5.1 to 5.3.
 fn size_for_overwrite<T: bytemuck::Zeroable + Copy>(buffer: &mut Vec<T>, n: usize) {
     if buffer.capacity() < n {
-        *buffer = bytemuck::zeroed_vec(n);
-        vector::advise_huge_pages(buffer);
+        *buffer = vector::zeroed_in_huge_pages(n);
     } else {
         buffer.truncate(n);
         buffer.resize(n, T::zeroed());
