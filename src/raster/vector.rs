@@ -22,7 +22,11 @@
 //!   transposed into lanes in registers), and [`triangles`], the area,
 //!   culling, bounds and small-triangle tests of eight triangles. The
 //!   vertex loop and the assembly loop call them, and do the lanes they
-//!   leave (and everything, on a CPU without AVX2) one at a time.
+//!   leave (and everything, on a CPU without AVX2) one at a time. A third,
+//!   [`weights`], gives the interpolation weights of eight pixels of a
+//!   span: the compiler vectorised the span loop's plain Rust for them,
+//!   but passed the values through memory. The loop's copy for AVX2
+//!   calls it; the baseline copy keeps the plain Rust.
 //!
 //! It also has [`prefetch`], the hint that brings a cache line in ahead of
 //! its use ([`prefetch_all`] for every line of a larger value);
@@ -34,8 +38,9 @@
 //!
 //! This module is the crate's only unsafe code. Calling a function
 //! compiled for AVX2 is unsafe because running it on a CPU without AVX2
-//! would fault: [`run`], [`transform::shade`] and [`triangles::classify`]
-//! each call their AVX2 code only after the CPU said it has the feature.
+//! would fault: [`run`], [`transform::shade`], [`triangles::classify`]
+//! and [`weights::weights`] each call their AVX2 code only after the CPU
+//! said it has the feature.
 //! The intrinsics of [`truncate_to_bytes`], [`ratios_to_f32`] and
 //! [`divide_each`] need only SSE2, which every x86-64 CPU has; the last
 //! two load and store through pointers to local arrays of four lanes. The
@@ -49,6 +54,7 @@
 
 pub(crate) mod transform;
 pub(crate) mod triangles;
+pub(crate) mod weights;
 
 /// The vector widths a loop is compiled for, narrowest first.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]

@@ -20,7 +20,10 @@
 //! Every step is the scalar stage's equation, in its order, on each lane:
 //! the loop is plain Rust over arrays of eight, compiled for the baseline
 //! vectors and for AVX2 ([`vector`]), and gives the very bits the
-//! fragment-by-fragment path gives. The test
+//! fragment-by-fragment path gives. In the copy for AVX2, steps 2 and 3
+//! are written lane by lane ([`vector::weights`]): compiled from the
+//! plain Rust, they passed their arrays through memory, and took a sixth
+//! of the small dragon's raster. The test
 //! `every_copy_of_the_shaded_span_loop_writes_the_fragment_paths_bits`
 //! compares them.
 
@@ -206,57 +209,17 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
         inv_area: f64,
     ) -> FragmentLanes {
         let span = self.span;
-        // Barycentrics from the exact edge values, as `Sample::of_triangle`:
-        // `E_i / area` in `f64`, rounded to `f32`. The edge values are found
-        // in `f64`, from the group's first: every one is an integer below
-        // 2^53 (`exact_area` checked it), so each sum and product is exact,
-        // the very values `E_i as f64` gives. Each is multiplied by the
-        // area's reciprocal, and a group where a lane's product might round
-        // otherwise than the quotient divides them all ([`by_reciprocal`]).
-        let mut screen = [[0.0f32; LANES]; 3];
-        let mut edge = [[0.0f64; LANES]; 3];
-        let mut sure = [true; LANES];
-        for i in 0..3 {
-            let first = (span.edges[i] + start as i64 * span.step[i]) as f64;
-            let step = span.step[i] as f64;
-            for k in 0..LANES {
-                edge[i][k] = first + k as f64 * step;
-                let (ratio, exact) = by_reciprocal(edge[i][k], inv_area);
-                screen[i][k] = ratio;
-                sure[k] &= exact;
-            }
-        }
-        if !sure.iter().all(|&s| s) {
-            for i in 0..3 {
-                for k in 0..LANES {
-                    screen[i][k] = (edge[i][k] / self.area) as f32;
-                }
-            }
-        }
-        // Interpolation weights, as `varying_weights`.
-        let weights = match self.interpolation {
-            Interpolation::Linear => screen,
-            Interpolation::PerspectiveCorrect => {
-                let mut w = [[0.0f32; LANES]; 3];
-                let mut sum = [0.0f32; LANES];
-                for i in 0..3 {
-                    for k in 0..LANES {
-                        w[i][k] = screen[i][k] * v[i].inv_w;
-                        sum[k] += w[i][k];
-                    }
-                }
-                for i in 0..3 {
-                    for k in 0..LANES {
-                        w[i][k] = if sum[k] > 0.0 {
-                            w[i][k] / sum[k]
-                        } else {
-                            screen[i][k]
-                        };
-                    }
-                }
-                w
-            }
+        let first: [i64; 3] = std::array::from_fn(|i| span.edges[i] + start as i64 * span.step[i]);
+        let group = vector::weights::Group {
+            edges: first.map(|e| e as f64),
+            step: span.step.map(|s| s as f64),
+            area: self.area,
+            inv_area,
+            inv_w: (self.interpolation == Interpolation::PerspectiveCorrect)
+                .then(|| v.map(|v| v.inv_w)),
         };
+        let weights =
+            vector::weights::weights(&group).unwrap_or_else(|| self.weights(first, v, inv_area));
         // The varyings, as `Varyings::weighted`: a sum from zero, vertex
         // by vertex.
         let weigh = |component: fn(&ShadedVertex) -> f32| {
@@ -288,6 +251,66 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
             flat: v[0].varyings,
             primitive: span.triangle,
             active,
+        }
+    }
+
+    /// The interpolation weights of the group whose first pixel's edge
+    /// values are `first`: steps 2 and 3 of the loop, in plain Rust (the
+    /// copy for AVX2 has them written lane by lane,
+    /// [`vector::weights`]).
+    #[inline(always)]
+    fn weights(&self, first: [i64; 3], v: [&ShadedVertex; 3], inv_area: f64) -> [[f32; LANES]; 3] {
+        let span = self.span;
+        // Barycentrics from the exact edge values, as `Sample::of_triangle`:
+        // `E_i / area` in `f64`, rounded to `f32`. The edge values are found
+        // in `f64`, from the group's first: every one is an integer below
+        // 2^53 (`exact_area` checked it), so each sum and product is exact,
+        // the very values `E_i as f64` gives. Each is multiplied by the
+        // area's reciprocal, and a group where a lane's product might round
+        // otherwise than the quotient divides them all ([`by_reciprocal`]).
+        let mut screen = [[0.0f32; LANES]; 3];
+        let mut edge = [[0.0f64; LANES]; 3];
+        let mut sure = [true; LANES];
+        for i in 0..3 {
+            let first = first[i] as f64;
+            let step = span.step[i] as f64;
+            for k in 0..LANES {
+                edge[i][k] = first + k as f64 * step;
+                let (ratio, exact) = by_reciprocal(edge[i][k], inv_area);
+                screen[i][k] = ratio;
+                sure[k] &= exact;
+            }
+        }
+        if !sure.iter().all(|&s| s) {
+            for i in 0..3 {
+                for k in 0..LANES {
+                    screen[i][k] = (edge[i][k] / self.area) as f32;
+                }
+            }
+        }
+        // Interpolation weights, as `varying_weights`.
+        match self.interpolation {
+            Interpolation::Linear => screen,
+            Interpolation::PerspectiveCorrect => {
+                let mut w = [[0.0f32; LANES]; 3];
+                let mut sum = [0.0f32; LANES];
+                for i in 0..3 {
+                    for k in 0..LANES {
+                        w[i][k] = screen[i][k] * v[i].inv_w;
+                        sum[k] += w[i][k];
+                    }
+                }
+                for i in 0..3 {
+                    for k in 0..LANES {
+                        w[i][k] = if sum[k] > 0.0 {
+                            w[i][k] / sum[k]
+                        } else {
+                            screen[i][k]
+                        };
+                    }
+                }
+                w
+            }
         }
     }
 }
