@@ -564,16 +564,41 @@ impl TargetRows<'_> {
 /// Sets every element of `buffer` to `value`, in chunks of 256 KiB shared
 /// between rayon's threads: one core alone does not reach the memory's
 /// write bandwidth (a 1080p colour and depth clear took 1.1 ms on one core).
+/// A 1080p depth clear on one core, 300 times in a row: 0.30-0.33 ms
+/// filled value by value, 0.285-0.29 ms copied.
 fn fill_in_parallel<T: Copy + Send + Sync>(buffer: &mut [T], value: T) {
-    let chunk = (256 * 1024 / std::mem::size_of::<T>().max(1)).max(1);
-    buffer
-        .par_chunks_mut(chunk)
-        .for_each(|part| part.fill(value));
+    let size = std::mem::size_of::<T>().max(1);
+    let (chunk, head) = ((256 * 1024 / size).max(1), (8 * 1024 / size).max(1));
+    buffer.par_chunks_mut(chunk).for_each(|part| {
+        // The chunk's first 8 KiB filled, and copied over the rest: as
+        // `TargetRows::clear_row` copies a cleared row, for the same
+        // reason (`rep movsb` does not read the lines it overwrites).
+        let (first, rest) = part.split_at_mut(head.min(part.len()));
+        first.fill(value);
+        for copy in rest.chunks_mut(head) {
+            copy.copy_from_slice(&first[..copy.len()]);
+        }
+    });
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every element is set, whatever the length: shorter than the filled
+    /// head, a whole number of heads, and several chunks with a part of a
+    /// head left over.
+    #[test]
+    fn filling_in_parallel_sets_every_element() {
+        for len in [0, 1, 2047, 2048, 2049, 4096, 3 * 65_536 + 5] {
+            let mut depth = vec![0.5f32; len];
+            fill_in_parallel(&mut depth, 1.0);
+            assert!(depth.iter().all(|&d| d == 1.0), "f32, {len}");
+            let mut coverage = vec![7u16; len];
+            fill_in_parallel(&mut coverage, 0);
+            assert!(coverage.iter().all(|&c| c == 0), "u16, {len}");
+        }
+    }
 
     #[test]
     fn a_clear_folded_into_the_rows_ends_as_an_eager_clear() {
