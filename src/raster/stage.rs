@@ -31,7 +31,7 @@
 //! through steps 1, 2, 3 and 7 in one loop, written once as plain Rust and
 //! compiled both for the baseline vectors and for AVX2, the copy picked at
 //! run time (the `raster::vector` module); both give the same bits. Any
-//! other shader's spans of four pixels or more go through all seven steps
+//! other shader's spans of six pixels or more go through all seven steps
 //! eight pixels at a time ([`FragmentShader::shade_lanes`], the
 //! `shaded_span` submodule), again the same bits as one at a time.
 //!
@@ -62,8 +62,13 @@ const PREFETCH_ROWS: i64 = 3;
 
 /// The shortest span whose fragments a shader that is not uniform per
 /// primitive shades eight at a time ([`ShadedSpan`]); shorter spans go
-/// fragment by fragment. Both give the same bits.
-const SHADED_SPAN_MIN: u32 = 4;
+/// fragment by fragment. Both give the same bits. Spans of four and five
+/// pixels went faster one by one (`render --threads 1 --azimuth 30
+/// --shading gouraud --backend scanline`, three pairs alternated): the
+/// full dragon zoomed 2.5x, raster 43.3-45.4 ms with 4, 41.8-43.3 with 6;
+/// the bundled dragon 4.71-4.84 and 4.59-4.67 ms. From 2 or 3 it was
+/// slower still (53 and 47.5 ms zoomed).
+const SHADED_SPAN_MIN: u32 = 6;
 
 /// How varyings are interpolated across a primitive.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]

@@ -373,7 +373,7 @@ mod tests {
     use crate::raster::fragment::FragmentSink;
     use crate::raster::primitive::{ShadedTriangle, TriangleData, Varyings};
     use crate::raster::shader::{Diffuse, DirectionalLight, Gouraud, NormalColors};
-    use crate::raster::stage::FragmentStage;
+    use crate::raster::stage::{FragmentStage, SHADED_SPAN_MIN};
     use crate::raster::target::RenderTarget;
     use glam::{Vec2, Vec3, Vec4};
 
@@ -480,7 +480,7 @@ mod tests {
         let mut spans_in_lanes = 0;
         for n in 0..3000 {
             let span = span(&mut rng, n);
-            if exact_area(&span).is_some() && span.x1 - span.x0 >= 3 {
+            if exact_area(&span).is_some() && span.x1 - span.x0 >= SHADED_SPAN_MIN - 1 {
                 spans_in_lanes += 1;
             }
             let data = TriangleData {
