@@ -503,8 +503,10 @@ impl PixelEmitter {
             Endpoints::HalfOpen => Some(frame.i1),
         };
         // Only the columns whose pixels can lie in the viewport are
-        // walked: the major axis gives them directly.
-        let ((lo, hi), _) = frame.ranges_within(viewport);
+        // walked: the major axis gives them directly. A walked column's
+        // pixel is then in the viewport exactly when its row `k` is in
+        // the minor axis's range, tested before the pixel is mapped.
+        let ((lo, hi), (k_lo, k_hi)) = frame.ranges_within(viewport);
         let (first, last) = (frame.i0.max(lo), frame.i1.min(hi));
         // The buffer is kept at least as long as the longest segment so
         // far and written by index: no capacity test or growth (a call the
@@ -524,8 +526,8 @@ impl PixelEmitter {
         let id = line.id;
         if first <= last {
             A::walk_columns(&frame, first, last, |i, k| {
-                let (x, y) = frame.to_screen(i, k);
-                if viewport.contains(x, y) {
+                if (k_lo..=k_hi).contains(&k) {
+                    let (x, y) = frame.to_screen(i, k);
                     slots[drawn] = LineFragment {
                         x: x as u32,
                         y: y as u32,
