@@ -643,7 +643,7 @@ fn blend(color: Vec4, coverage: f32, dst: [u8; 4]) -> [u8; 4] {
 
 /// Interpolation weights for the varyings from screen-space weights.
 #[inline]
-fn varying_weights<const N: usize>(
+pub(crate) fn varying_weights<const N: usize>(
     interpolation: Interpolation,
     screen: [f32; N],
     v: &[ShadedVertex; N],

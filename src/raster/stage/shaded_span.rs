@@ -38,6 +38,7 @@ use crate::raster::primitive::{DepthPlane, ShadedVertex};
 use crate::raster::shader::{ColorLanes, FragmentLanes, FragmentShader, LANES};
 use crate::raster::target::{DepthState, DepthTest};
 use crate::raster::vector;
+use crate::raster::vector::weights::{DROPPED_BITS, MARGIN, MIDPOINT};
 
 /// The buffers under one span, and what shades it.
 pub(crate) struct ShadedSpan<'s, S: FragmentShader + ?Sized> {
@@ -54,9 +55,6 @@ pub(crate) struct ShadedSpan<'s, S: FragmentShader + ?Sized> {
     pub area: f64,
 }
 
-/// The bits an `f64` has below an `f32`'s 23-bit fraction.
-const DROPPED_BITS: u32 = 52 - 23;
-
 /// `e / area` rounded to `f32`, found as `e * inv_area` (`inv_area` the
 /// rounded `1 / area`), and `false` where that product may round to
 /// another `f32` than the quotient: the lane must then divide.
@@ -71,14 +69,12 @@ const DROPPED_BITS: u32 = 52 - 23;
 /// midpoints between two `f32`s, where those bits read `1000...0` (ties
 /// go to even). Where the product's dropped bits are three units or more
 /// from that pattern, no midpoint lies between it and the quotient, and
-/// both round alike; the check keeps a margin of 16. The quotients here
+/// both round alike; the check keeps a margin of [`MARGIN`]. The quotients here
 /// are 0 or at least `1 / area`, above 2^-54 (each edge value is at most
 /// 2^52), normal in `f32` too, whose rounding is then exactly this. A
 /// product rarely fails the check (31 patterns in 2^29).
 #[inline(always)]
 fn by_reciprocal(e: f64, inv_area: f64) -> (f32, bool) {
-    const MIDPOINT: i64 = 1 << (DROPPED_BITS - 1);
-    const MARGIN: i64 = 16;
     let product = e * inv_area;
     let dropped = (product.to_bits() & ((1 << DROPPED_BITS) - 1)) as i64;
     let sure = (dropped <= MIDPOINT - MARGIN) | (dropped >= MIDPOINT + MARGIN);

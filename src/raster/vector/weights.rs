@@ -52,13 +52,14 @@ pub(crate) fn weights(group: &Group) -> Option<[[f32; 8]; 3]> {
 }
 
 /// The bits an `f64` has below an `f32`'s 23-bit fraction.
-const DROPPED_BITS: u32 = 52 - 23;
+pub(crate) const DROPPED_BITS: u32 = 52 - 23;
 
 /// Where those bits read `1000...0`: a midpoint between two `f32`s.
-const MIDPOINT: i64 = 1 << (DROPPED_BITS - 1);
+pub(crate) const MIDPOINT: i64 = 1 << (DROPPED_BITS - 1);
 
-/// How far from [`MIDPOINT`] a product's dropped bits must lie to be sure.
-const MARGIN: i64 = 16;
+/// How far from [`MIDPOINT`] a product's dropped bits must lie for the
+/// product to round as the quotient does.
+pub(crate) const MARGIN: i64 = 16;
 
 /// [`weights`] with AVX2.
 #[cfg(target_arch = "x86_64")]
@@ -69,7 +70,7 @@ fn weights_avx2(group: &Group) -> [[f32; 8]; 3] {
         _mm256_set_pd(3.0, 2.0, 1.0, 0.0),
         _mm256_set_pd(7.0, 6.0, 5.0, 4.0),
     ];
-    // Edge values: `first + k * step`, as the loop's `edge_values`.
+    // Edge values: `first + k * step`, as the loop's plain Rust.
     let edge: [[__m256d; 2]; 3] = std::array::from_fn(|i| {
         let (first, step) = (
             _mm256_set1_pd(group.edges[i]),
@@ -135,23 +136,25 @@ fn weights_avx2(group: &Group) -> [[f32; 8]; 3] {
 #[cfg(all(test, target_arch = "x86_64"))]
 mod tests {
     use super::*;
+    use crate::raster::primitive::{ShadedVertex, Varyings};
+    use crate::raster::stage::{varying_weights, Interpolation};
 
-    /// The weights of lane `k` as the fragment path finds them: the
-    /// quotients `E_i / area` rounded to `f32`, then `varying_weights`.
+    /// The weights of lane `k` as the fragment path finds them, with its
+    /// own functions: the barycentrics from the pixel's edge values
+    /// (`ratios_to_f32`), then `varying_weights`.
     fn one_lane(group: &Group, k: usize) -> [f32; 3] {
-        let screen: [f32; 3] = std::array::from_fn(|i| {
-            ((group.edges[i] + k as f64 * group.step[i]) / group.area) as f32
-        });
-        let Some(inv_w) = group.inv_w else {
-            return screen;
+        let edges = [0, 1, 2].map(|i| (group.edges[i] + k as f64 * group.step[i]) as i64);
+        let screen = super::super::ratios_to_f32(edges, group.area);
+        let (interpolation, inv_w) = match group.inv_w {
+            Some(inv_w) => (Interpolation::PerspectiveCorrect, inv_w),
+            None => (Interpolation::Linear, [1.0; 3]),
         };
-        let w: [f32; 3] = std::array::from_fn(|i| screen[i] * inv_w[i]);
-        let sum = w.iter().fold(0.0f32, |sum, &w| sum + w);
-        if sum > 0.0 {
-            w.map(|w| w / sum)
-        } else {
-            screen
-        }
+        let vertices = inv_w.map(|inv_w| ShadedVertex {
+            depth: 0.0,
+            inv_w,
+            varyings: Varyings::default(),
+        });
+        varying_weights(interpolation, screen, &vertices)
     }
 
     /// Whether a lane's product by the reciprocal is not sure, so that the
