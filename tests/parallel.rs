@@ -167,6 +167,64 @@ fn frames_drawn_from_assembly_chunks_equal_the_single_threaded_frame() {
     }
 }
 
+/// On one thread the renderer assembles and draws the triangles a batch
+/// at a time, each batch's set-ups drawn before the next batch is
+/// assembled into the same buffers. Twelve bunnies (44k triangles, many
+/// batches), cut by the near plane (clip vertices in every batch) or
+/// framed whole (rows above and below them that no batch writes), drawn
+/// so by every back-end, into a fresh and into a used target, give the
+/// buffers, the counts and the work of the whole geometry drawn at once.
+#[test]
+fn frames_drawn_batch_by_batch_equal_the_whole_geometry_drawn_at_once() {
+    let bunnies = twelve_bunnies(|k| Vec3::new((k % 4) as f32, (k / 4) as f32, 0.0) * 0.15);
+    for zoom in [8.0, 1.0] {
+        frame_batch_by_batch_equals_whole_geometry(&bunnies, zoom);
+    }
+}
+
+fn frame_batch_by_batch_equals_whole_geometry(bunnies: &Mesh, zoom: f32) {
+    let settings = RenderSettings {
+        width: 320,
+        height: 240,
+        zoom,
+        elevation: 0.0,
+        shading: Shading::Gouraud,
+        ..RenderSettings::default()
+    };
+    let renderer = MeshRenderer::new(bunnies, settings).unwrap();
+    let geometry = pool(1).install(|| renderer.geometry().unwrap());
+    let stats = geometry.stats;
+    assert!(stats.triangles > 3000, "{stats:?}");
+    if zoom > 1.0 {
+        assert!(stats.clipped > 1000, "{stats:?}");
+    }
+    // All but the naive loop, which tests every pixel for every triangle.
+    for b in triangle_backends().iter().skip(1) {
+        let mut whole = RenderTarget::new(320, 240).unwrap();
+        let clear = Clear::all(settings.background);
+        let work = draw_clearing(
+            &geometry,
+            *b,
+            &Gouraud,
+            settings.depth,
+            settings.interpolation,
+            clear,
+            &mut whole,
+        );
+        let mut used = whole.clone();
+        used.color.iter_mut().for_each(|c| c[1] ^= 0x33);
+        used.depth.iter_mut().for_each(|d| *d *= 0.5);
+        used.coverage.iter_mut().for_each(|k| *k += 2);
+        for target in [RenderTarget::new(320, 240).unwrap(), used] {
+            let mut target = target;
+            let stats = pool(1).install(|| renderer.render_into(*b, &mut target).unwrap());
+            assert!(target == whole, "zoom {zoom}, {}", b.name());
+            assert_eq!(stats.geometry, geometry.stats, "zoom {zoom}, {}", b.name());
+            assert_eq!(stats.work, work, "zoom {zoom}, {}", b.name());
+        }
+    }
+}
+
 /// The bunny (3.7k triangles) is processed and drawn identically on 1, 2
 /// and 3 threads by every back-end.
 #[test]

@@ -22,7 +22,8 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::vertex::{MeshVertex, Transform};
 use crate::geometry::pipeline::Camera;
 use crate::geometry::pipeline::{
-    self, Geometry, GeometryInParts, GeometryStats, PipelineOptions, Runs, Viewport,
+    self, BatchDraw, DrawInput, Geometry, GeometryInParts, GeometryStats, PipelineOptions, Runs,
+    Viewport,
 };
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
@@ -37,6 +38,13 @@ use crate::raster::triangle::TriangleRasterizer;
 use glam::{Mat4, Vec4};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
+
+/// Triangles assembled per batch when a frame is drawn on one thread
+/// ([`GeometryInParts::process_in_batches`]): a batch's set-ups and stage
+/// triangles (about a quarter of a dense mesh's triangles are kept, at
+/// 200 bytes) stay well inside a core's second-level cache. 1,024 and
+/// 16,384 drew the full dragon as fast, within the noise.
+const BATCH: usize = 4096;
 
 /// How a mesh is coloured.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -337,15 +345,32 @@ impl MeshRenderer {
     pub fn prepare(&self) -> Result<Duration> {
         let start = Instant::now();
         if let Ok(mut geometry) = self.geometry.try_lock() {
-            geometry.process_into(
-                &self.vertices,
-                &self.triangles,
-                &self.transform,
-                self.viewport(),
-                &self.settings.pipeline,
-            )?;
+            if self.in_batches() {
+                // The buffers of a draw batch by batch: one batch's.
+                geometry.process_in_batches(&self.draw_input(), BATCH, |_, _| {})?;
+            } else {
+                geometry.process_into(&self.draw_input())?;
+            }
         }
         Ok(start.elapsed())
+    }
+
+    /// What the geometry stages take from the renderer.
+    fn draw_input(&self) -> DrawInput<'_, MeshVertex, Transform> {
+        DrawInput {
+            vertices: &self.vertices,
+            triangles: &self.triangles,
+            shader: &self.transform,
+            viewport: self.viewport(),
+            options: &self.settings.pipeline,
+        }
+    }
+
+    /// Whether a frame is assembled and drawn batch by batch
+    /// ([`GeometryInParts::process_in_batches`]): on one thread, when the
+    /// mesh has more than one batch of triangles.
+    fn in_batches(&self) -> bool {
+        rayon::current_num_threads() == 1 && self.triangles.len() > BATCH
     }
 
     /// Runs the geometry stages (vertex shader, clipping, set-up).
@@ -384,6 +409,13 @@ impl MeshRenderer {
     /// redraws its framebuffer: the buffers are reused, and a target made
     /// [`without_coverage`](RenderTarget::without_coverage) skips the
     /// coverage count. Errors if `target` is not the size of the settings.
+    ///
+    /// On one thread a mesh of more than 4,096 triangles is assembled
+    /// and drawn a batch at a time, so that each batch's set-ups are read
+    /// back from the cache, not from memory (the full dragon, `scanline`,
+    /// one core: 38.5 to 39.4 ms a frame whole, 36.0 to 37.1 in batches;
+    /// zoomed 2.5x, 64.6 to 66.3 against 60.4 to 61.8). The image is the
+    /// same bits either way.
     pub fn render_into(
         &self,
         backend: &dyn TriangleRasterizer,
@@ -391,20 +423,11 @@ impl MeshRenderer {
     ) -> Result<FrameStats> {
         self.check_target((target.width(), target.height()))?;
         let frame_start = Instant::now();
-        let start = frame_start;
         // A renderer drawing from several threads at once gives the other
         // threads buffers of their own.
         let mut reused = self.geometry.try_lock().ok();
         let mut own = GeometryInParts::default();
         let geometry = reused.as_deref_mut().unwrap_or(&mut own);
-        geometry.process_into(
-            &self.vertices,
-            &self.triangles,
-            &self.transform,
-            self.viewport(),
-            &self.settings.pipeline,
-        )?;
-        let geometry = &*geometry;
         let lines = if self.edges.is_empty() {
             Vec::new()
         } else {
@@ -415,20 +438,37 @@ impl MeshRenderer {
                 self.viewport(),
             )?
         };
-        let geometry_time = start.elapsed();
-        let start = Instant::now();
-        let runs = geometry.runs();
-        let work = match &self.shader {
-            MeshShader::Flat(shader) => self.draw(&runs, backend, shader, target),
-            MeshShader::Gouraud(shader) => self.draw(&runs, backend, shader, target),
-            MeshShader::Diffuse(shader) => self.draw(&runs, backend, shader, target),
-            MeshShader::Normals(shader) => self.draw(&runs, backend, shader, target),
-            MeshShader::Texture(shader) => self.draw(&runs, backend, shader, target),
+        // On one thread a mesh of several batches is assembled and drawn
+        // batch by batch; otherwise assembled whole (in parts, binned on
+        // several threads), then drawn.
+        let (work, mut raster_time) = if self.in_batches() {
+            match &self.shader {
+                MeshShader::Flat(s) => self.draw_in_batches(geometry, backend, s, target),
+                MeshShader::Gouraud(s) => self.draw_in_batches(geometry, backend, s, target),
+                MeshShader::Diffuse(s) => self.draw_in_batches(geometry, backend, s, target),
+                MeshShader::Normals(s) => self.draw_in_batches(geometry, backend, s, target),
+                MeshShader::Texture(s) => self.draw_in_batches(geometry, backend, s, target),
+            }?
+        } else {
+            geometry.process_into(&self.draw_input())?;
+            let start = Instant::now();
+            let runs = geometry.runs();
+            let work = match &self.shader {
+                MeshShader::Flat(s) => self.draw(&runs, backend, s, target),
+                MeshShader::Gouraud(s) => self.draw(&runs, backend, s, target),
+                MeshShader::Diffuse(s) => self.draw(&runs, backend, s, target),
+                MeshShader::Normals(s) => self.draw(&runs, backend, s, target),
+                MeshShader::Texture(s) => self.draw(&runs, backend, s, target),
+            };
+            (work, start.elapsed())
         };
+        let start = Instant::now();
         if let Some(line_backend) = self.settings.wireframe {
             self.draw_wireframe(line_backend, &lines, target);
         }
-        let raster_time = start.elapsed();
+        raster_time += start.elapsed();
+        let frame_time = frame_start.elapsed();
+        let geometry_time = frame_time.saturating_sub(raster_time);
         let geometry_stats = geometry.stats;
         drop(reused);
         Ok(FrameStats {
@@ -436,7 +476,7 @@ impl MeshRenderer {
             work,
             geometry_time,
             raster_time,
-            times: FrameTimes::new(frame_start.elapsed(), None, geometry_time, raster_time),
+            times: FrameTimes::new(frame_time, None, geometry_time, raster_time),
         })
     }
 
@@ -519,6 +559,34 @@ impl MeshRenderer {
             raster_time,
             times: FrameTimes::new(frame_start.elapsed(), None, geometry_time, raster_time),
         })
+    }
+
+    /// The geometry stages and the draw on one thread, batch by batch
+    /// ([`GeometryInParts::process_in_batches`]): the work, and the time
+    /// spent rasterizing.
+    fn draw_in_batches<S: FragmentShader>(
+        &self,
+        geometry: &mut GeometryInParts,
+        backend: &dyn TriangleRasterizer,
+        shader: &S,
+        target: &mut RenderTarget,
+    ) -> Result<(WorkCounters, Duration)> {
+        let pass = pipeline::Pass {
+            shader,
+            depth: self.settings.depth,
+            interpolation: self.settings.interpolation,
+            clear: Clear::all(self.settings.background),
+        };
+        let mut draw = BatchDraw::new(target, backend, pass);
+        let mut raster_time = Duration::ZERO;
+        geometry.process_in_batches(&self.draw_input(), BATCH, |shaded, setups| {
+            let start = Instant::now();
+            draw.draw(shaded, setups);
+            raster_time += start.elapsed();
+        })?;
+        let start = Instant::now();
+        let work = draw.finish();
+        Ok((work, raster_time + start.elapsed()))
     }
 
     /// Draws the triangles of `runs` with `shader`, the stage compiled for

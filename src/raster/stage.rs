@@ -200,6 +200,12 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
         self.target.finish();
     }
 
+    /// Ends a batch of the draw: gives back the rows, for a stage of the
+    /// next batch ([`TargetRows::lend`]).
+    pub(crate) fn into_rows(self) -> TargetRows<'a> {
+        self.target
+    }
+
     /// The pixels this stage writes, in target coordinates.
     pub fn rect(&self) -> PixelRect {
         self.target.rect()

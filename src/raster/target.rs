@@ -440,6 +440,14 @@ pub struct TargetRows<'a> {
     clear_depth_row: Vec<f32>,
 }
 
+/// The rows still waiting for their clear when lent rows are given back
+/// ([`TargetRows::lend`]), with the cleared rows they are copied from.
+pub(crate) struct PendingClear {
+    unloaded: Vec<bool>,
+    clear_color_row: Vec<[u8; 4]>,
+    clear_depth_row: Vec<f32>,
+}
+
 impl<'a> TargetRows<'a> {
     /// Rows `first_row..first_row + rows` of the buffers, which hold just
     /// those rows, cleared on first load by `clear`.
@@ -492,6 +500,42 @@ impl<'a> TargetRows<'a> {
         for row in 0..self.unloaded.len() {
             self.clear_row(row);
         }
+    }
+
+    /// The same rows, lent for a shorter time: a draw that makes a stage
+    /// for each batch of triangles (whose data lives no longer than the
+    /// batch) lends the rows to each, and takes back with
+    /// [`resume`](Self::resume) which rows are still to clear.
+    pub(crate) fn lend(&mut self) -> TargetRows<'_> {
+        TargetRows {
+            width: self.width,
+            first_row: self.first_row,
+            rows: self.rows,
+            color: self.color,
+            depth: self.depth,
+            coverage: self.coverage,
+            clear: self.clear,
+            unloaded: std::mem::take(&mut self.unloaded),
+            clear_color_row: std::mem::take(&mut self.clear_color_row),
+            clear_depth_row: std::mem::take(&mut self.clear_depth_row),
+        }
+    }
+
+    /// What rows lent by [`lend`](Self::lend) still have to clear, for
+    /// the rows they were lent from.
+    pub(crate) fn into_pending(self) -> PendingClear {
+        PendingClear {
+            unloaded: self.unloaded,
+            clear_color_row: self.clear_color_row,
+            clear_depth_row: self.clear_depth_row,
+        }
+    }
+
+    /// Takes back what rows lent by [`lend`](Self::lend) left to clear.
+    pub(crate) fn resume(&mut self, pending: PendingClear) {
+        self.unloaded = pending.unloaded;
+        self.clear_color_row = pending.clear_color_row;
+        self.clear_depth_row = pending.clear_depth_row;
     }
 
     /// Clears the `row`-th row held, if it still waits for its clear.

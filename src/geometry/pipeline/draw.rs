@@ -23,7 +23,9 @@
 //! as in [`draw`](fn@crate::geometry::pipeline::draw).
 //!
 //! With one thread there is nothing to share out, and the draw is
-//! [`pipeline::draw`](fn@crate::geometry::pipeline::draw) itself. That draw
+//! [`pipeline::draw`](fn@crate::geometry::pipeline::draw) itself. (The
+//! mesh renderer on one thread goes further: it draws each batch of
+//! triangles as soon as it is assembled, [`BatchDraw`].) That draw
 //! goes band by band too when the triangles are few (at most 256), in
 //! bands whose colour and depth fit a core's cache (64 rows at 1920
 //! pixels wide), each band walking every triangle: large triangles over
@@ -146,6 +148,52 @@ impl<'a, S: FragmentShader + ?Sized> Pass<'a, S> {
             .with_triangles(shaded)
             .with_depth(self.depth)
             .with_interpolation(self.interpolation)
+    }
+}
+
+/// A draw on one thread of triangles that come batch by batch
+/// ([`process_in_batches`](super::GeometryInParts::process_in_batches)):
+/// each batch is rasterized through a stage of its own, which the
+/// target's rows are lent to, so that the rows still waiting for their
+/// clear are known from one batch to the next.
+pub(crate) struct BatchDraw<'a, S: ?Sized> {
+    rows: TargetRows<'a>,
+    pass: Pass<'a, S>,
+    backend: &'a dyn TriangleRasterizer,
+    /// The work of the batches drawn so far.
+    pub work: WorkCounters,
+}
+
+impl<'a, S: FragmentShader + ?Sized> BatchDraw<'a, S> {
+    /// A draw of `pass` with `backend` into `target`, which it clears as
+    /// it goes.
+    pub(crate) fn new(
+        target: &'a mut RenderTarget,
+        backend: &'a dyn TriangleRasterizer,
+        pass: Pass<'a, S>,
+    ) -> Self {
+        BatchDraw {
+            rows: target.rows_clearing(pass.clear),
+            pass,
+            backend,
+            work: WorkCounters::default(),
+        }
+    }
+
+    /// Rasterizes one batch: `setups`, whose stage data is `shaded`.
+    pub(crate) fn draw(&mut self, shaded: &TriangleData, setups: &[TriangleSetup]) {
+        let viewport = self.rows.rect();
+        let mut stage = self.pass.stage(self.rows.lend(), shaded);
+        let work = self.backend.rasterize(setups, viewport, &mut stage);
+        self.work.add(&work);
+        let pending = stage.into_rows().into_pending();
+        self.rows.resume(pending);
+    }
+
+    /// Ends the draw (clearing the rows no batch wrote); the work done.
+    pub(crate) fn finish(mut self) -> WorkCounters {
+        self.rows.finish();
+        self.work
     }
 }
 

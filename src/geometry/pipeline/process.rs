@@ -13,8 +13,9 @@ use super::vertex::{MeshVertex, Transform, VertexShader};
 use super::viewport::to_screen_vertex;
 use super::{PipelineOptions, Viewport};
 use crate::error::{Error, Result};
+use crate::raster::edge::TriangleSetup;
 use crate::raster::fixed::{Fixed, FixedPoint};
-use crate::raster::primitive::{ShadedLine, ShadedVertex, Varyings};
+use crate::raster::primitive::{ShadedLine, ShadedVertex, TriangleData, Varyings};
 use crate::raster::vector::{self, transform};
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
@@ -272,33 +273,86 @@ impl GeometryInParts {
     /// draw with a panic, never draw wrong.)
     pub(crate) fn process_into<V: Sync, S: VertexShader<V>>(
         &mut self,
-        vertices: &[V],
-        triangles: &[[u32; 3]],
-        shader: &S,
-        viewport: Viewport,
-        options: &PipelineOptions,
+        input: &DrawInput<'_, V, S>,
     ) -> Result<()> {
-        let input = DrawInput {
+        let (stats, bands) = assemble(&mut self.scratch, &mut self.shaded.vertices, input, true)?;
+        self.stats = stats;
+        let binned = bands.map(|b| (b, input.viewport));
+        self.keep_in_parts(input.vertices.len(), binned);
+        Ok(())
+    }
+
+    /// The geometry stages of a draw on one thread, batch by batch:
+    /// shades every vertex, then assembles, clips, culls and sets up the
+    /// triangles `batch` at a time, and hands each batch's set-ups and
+    /// stage data to `draw` before the next is assembled into the same
+    /// buffers. The batches come in the triangles' order, so a draw that
+    /// rasterizes each as it comes draws what one of the whole
+    /// [`Geometry`] draws, the same bits.
+    ///
+    /// A whole mesh's set-ups and stage triangles (40 MB for the full
+    /// dragon zoomed) do not stay in any cache between the assembly that
+    /// writes them and the draw that reads them back; a batch's do.
+    ///
+    /// The caller has checked the indices, as for [`process_into`](Self::process_into).
+    pub(crate) fn process_in_batches<V: Sync, S: VertexShader<V>>(
+        &mut self,
+        input: &DrawInput<'_, V, S>,
+        batch: usize,
+        mut draw: impl FnMut(&TriangleData, &[TriangleSetup]),
+    ) -> Result<()> {
+        let DrawInput {
             vertices,
             triangles,
             shader,
             viewport,
             options,
+        } = *input;
+        shade_vertices(&mut self.scratch, &mut self.shaded.vertices, input)?;
+        let clip = ClipVolume::new(viewport.width, viewport.height);
+        self.scratch.use_parts(1);
+        let (screen, part) = (&self.scratch.screen, &mut self.scratch.parts[0]);
+        let assembly = AssemblyInput {
+            vertices,
+            shader,
+            screen,
+            mesh_vertices: vertices.len() as u32,
+            clip: &clip,
+            viewport: &viewport,
+            options,
+            bands: None,
         };
-        let (stats, bands) = assemble(&mut self.scratch, &mut self.shaded.vertices, &input, true)?;
+        let mut stats = GeometryStats::default();
+        let shaded = &mut self.shaded;
+        for (b, list) in triangles.chunks(batch.max(1)).enumerate() {
+            assembly.process(list, b * batch, part);
+            stats.add(&part.stats);
+            // The batch's clip vertices are numbered from the mesh's
+            // vertex count, where they go.
+            shaded.vertices.truncate(vertices.len());
+            shaded.vertices.extend_from_slice(&part.clip_vertices);
+            std::mem::swap(&mut shaded.triangles, &mut part.triangles);
+            draw(shaded, &part.setups);
+            std::mem::swap(&mut shaded.triangles, &mut part.triangles);
+        }
         self.stats = stats;
-        self.keep_in_parts(vertices.len(), bands.map(|b| (b, viewport)));
+        self.binned = None;
         Ok(())
     }
 }
 
 /// One draw's input to the geometry stages.
-struct DrawInput<'a, V, S> {
-    vertices: &'a [V],
-    triangles: &'a [[u32; 3]],
-    shader: &'a S,
-    viewport: Viewport,
-    options: &'a PipelineOptions,
+pub(crate) struct DrawInput<'a, V, S> {
+    /// The vertices, as the vertex shader takes them.
+    pub vertices: &'a [V],
+    /// The triangles, as indices into `vertices`.
+    pub triangles: &'a [[u32; 3]],
+    /// The vertex shader.
+    pub shader: &'a S,
+    /// The target's size.
+    pub viewport: Viewport,
+    /// Fill rule, culling and the rest.
+    pub options: &'a PipelineOptions,
 }
 
 /// The pipeline's geometry stages, for triangles whose indices were
@@ -313,12 +367,65 @@ fn assemble<V: Sync, S: VertexShader<V>>(
     draw: &DrawInput<'_, V, S>,
     bin: bool,
 ) -> Result<(GeometryStats, Option<Bands>)> {
+    shade_vertices(scratch, shaded, draw)?;
     let DrawInput {
         vertices,
         triangles,
         shader,
         viewport,
         options,
+    } = *draw;
+    let clip = ClipVolume::new(viewport.width, viewport.height);
+    let chunk = chunk_len(
+        triangles.len(),
+        TRIANGLE_CHUNKS_PER_THREAD,
+        MIN_TRIANGLE_CHUNK,
+    );
+    let chunks = triangles.len().div_ceil(chunk).max(1);
+    // Parts that stay parts bin their triangles for the draw as they keep
+    // them, sparing it a pass over the set-ups.
+    let bands = (bin && chunks > 1)
+        .then(|| Bands::for_threads(viewport.height, rayon::current_num_threads()));
+    scratch.use_parts(chunks);
+    let input = AssemblyInput {
+        vertices,
+        shader,
+        screen: &scratch.screen,
+        mesh_vertices: vertices.len() as u32,
+        clip: &clip,
+        viewport: &viewport,
+        options,
+        bands,
+    };
+    scratch
+        .parts
+        .par_iter_mut()
+        .zip(triangles.par_chunks(chunk.max(1)))
+        .enumerate()
+        .for_each(|(c, (part, list))| input.process(list, c * chunk, part));
+    if triangles.is_empty() {
+        scratch.parts[0].clear(None);
+    }
+    let mut stats = GeometryStats::default();
+    for p in &scratch.parts {
+        stats.add(&p.stats);
+    }
+    Ok((stats, bands))
+}
+
+/// The vertex stage of a draw whose indices were checked: shades every
+/// vertex into `shaded`, and divides and snaps those inside the clip
+/// volume into `scratch.screen`. Errors on the first vertex refused.
+fn shade_vertices<V: Sync, S: VertexShader<V>>(
+    scratch: &mut Scratch,
+    shaded: &mut Vec<ShadedVertex>,
+    draw: &DrawInput<'_, V, S>,
+) -> Result<()> {
+    let DrawInput {
+        vertices,
+        shader,
+        viewport,
+        ..
     } = *draw;
     let clip = ClipVolume::new(viewport.width, viewport.height);
     // Each vertex is shaded once, however many triangles share it; those
@@ -356,41 +463,7 @@ fn assemble<V: Sync, S: VertexShader<V>>(
         Error::check_finite(out.position.to_array())?;
         to_screen_vertex(&viewport, &out)?;
     }
-    let chunk = chunk_len(
-        triangles.len(),
-        TRIANGLE_CHUNKS_PER_THREAD,
-        MIN_TRIANGLE_CHUNK,
-    );
-    let chunks = triangles.len().div_ceil(chunk).max(1);
-    // Parts that stay parts bin their triangles for the draw as they keep
-    // them, sparing it a pass over the set-ups.
-    let bands = (bin && chunks > 1)
-        .then(|| Bands::for_threads(viewport.height, rayon::current_num_threads()));
-    scratch.use_parts(chunks);
-    let input = AssemblyInput {
-        vertices,
-        shader,
-        screen: &scratch.screen,
-        mesh_vertices: vertices.len() as u32,
-        clip: &clip,
-        viewport: &viewport,
-        options,
-        bands,
-    };
-    scratch
-        .parts
-        .par_iter_mut()
-        .zip(triangles.par_chunks(chunk.max(1)))
-        .enumerate()
-        .for_each(|(c, (part, list))| input.process(list, c * chunk, part));
-    if triangles.is_empty() {
-        scratch.parts[0].clear(None);
-    }
-    let mut stats = GeometryStats::default();
-    for p in &scratch.parts {
-        stats.add(&p.stats);
-    }
-    Ok((stats, bands))
+    Ok(())
 }
 
 /// Gives `buffer` `n` elements, which the caller then overwrites.
