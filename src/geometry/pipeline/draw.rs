@@ -161,7 +161,7 @@ pub(crate) struct BatchDraw<'a, S: ?Sized> {
     pass: Pass<'a, S>,
     backend: &'a dyn TriangleRasterizer,
     /// The work of the batches drawn so far.
-    pub work: WorkCounters,
+    work: WorkCounters,
 }
 
 impl<'a, S: FragmentShader + ?Sized> BatchDraw<'a, S> {
