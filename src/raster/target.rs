@@ -431,20 +431,21 @@ pub struct TargetRows<'a> {
     pub(crate) coverage: &'a mut [u16],
     /// What the first load of a row clears.
     clear: Clear,
+    /// Which rows still wait for that clear, and the cleared rows copied.
+    pending: PendingClear,
+}
+
+/// The rows of a [`TargetRows`] still waiting for their clear, with the
+/// cleared rows they are copied from: what rows lent for a batch of a
+/// draw ([`TargetRows::lend`]) give back.
+#[derive(Debug, Default)]
+pub(crate) struct PendingClear {
     /// Per row held, whether it still waits for its clear; empty when
     /// nothing is cleared.
     unloaded: Vec<bool>,
     /// One row of the clear colour; empty when the colour is kept.
     clear_color_row: Vec<[u8; 4]>,
     /// One row of the far depth; empty when depth is kept.
-    clear_depth_row: Vec<f32>,
-}
-
-/// The rows still waiting for their clear when lent rows are given back
-/// ([`TargetRows::lend`]), with the cleared rows they are copied from.
-pub(crate) struct PendingClear {
-    unloaded: Vec<bool>,
-    clear_color_row: Vec<[u8; 4]>,
     clear_depth_row: Vec<f32>,
 }
 
@@ -473,12 +474,14 @@ impl<'a> TargetRows<'a> {
             depth,
             coverage,
             clear,
-            unloaded,
-            clear_color_row: clear.color.map_or(Vec::new(), |c| vec![c; width as usize]),
-            clear_depth_row: if clear.depth_and_coverage {
-                vec![RenderTarget::FAR_DEPTH; width as usize]
-            } else {
-                Vec::new()
+            pending: PendingClear {
+                unloaded,
+                clear_color_row: clear.color.map_or(Vec::new(), |c| vec![c; width as usize]),
+                clear_depth_row: if clear.depth_and_coverage {
+                    vec![RenderTarget::FAR_DEPTH; width as usize]
+                } else {
+                    Vec::new()
+                },
             },
         }
     }
@@ -488,7 +491,7 @@ impl<'a> TargetRows<'a> {
     #[inline(always)]
     pub(crate) fn load_row(&mut self, y: u32) {
         let row = y.wrapping_sub(self.first_row) as usize;
-        if self.unloaded.get(row) == Some(&true) {
+        if self.pending.unloaded.get(row) == Some(&true) {
             self.clear_row(row);
         }
     }
@@ -497,7 +500,7 @@ impl<'a> TargetRows<'a> {
     /// clear. A draw with rows borrowed by [`RenderTarget::rows_clearing`]
     /// or [`RenderTarget::bands_clearing`] calls this when it is done.
     pub(crate) fn finish(&mut self) {
-        for row in 0..self.unloaded.len() {
+        for row in 0..self.pending.unloaded.len() {
             self.clear_row(row);
         }
     }
@@ -515,27 +518,19 @@ impl<'a> TargetRows<'a> {
             depth: self.depth,
             coverage: self.coverage,
             clear: self.clear,
-            unloaded: std::mem::take(&mut self.unloaded),
-            clear_color_row: std::mem::take(&mut self.clear_color_row),
-            clear_depth_row: std::mem::take(&mut self.clear_depth_row),
+            pending: std::mem::take(&mut self.pending),
         }
     }
 
     /// What rows lent by [`lend`](Self::lend) still have to clear, for
     /// the rows they were lent from.
     pub(crate) fn into_pending(self) -> PendingClear {
-        PendingClear {
-            unloaded: self.unloaded,
-            clear_color_row: self.clear_color_row,
-            clear_depth_row: self.clear_depth_row,
-        }
+        self.pending
     }
 
     /// Takes back what rows lent by [`lend`](Self::lend) left to clear.
     pub(crate) fn resume(&mut self, pending: PendingClear) {
-        self.unloaded = pending.unloaded;
-        self.clear_color_row = pending.clear_color_row;
-        self.clear_depth_row = pending.clear_depth_row;
+        self.pending = pending;
     }
 
     /// Clears the `row`-th row held, if it still waits for its clear.
@@ -549,16 +544,16 @@ impl<'a> TargetRows<'a> {
     /// to 4.92 copied.
     #[cold]
     fn clear_row(&mut self, row: usize) {
-        if !std::mem::replace(&mut self.unloaded[row], false) {
+        if !std::mem::replace(&mut self.pending.unloaded[row], false) {
             return;
         }
         let width = self.width as usize;
         let pixels = row * width..(row + 1) * width;
         if self.clear.color.is_some() {
-            self.color[pixels.clone()].copy_from_slice(&self.clear_color_row);
+            self.color[pixels.clone()].copy_from_slice(&self.pending.clear_color_row);
         }
         if self.clear.depth_and_coverage {
-            self.depth[pixels.clone()].copy_from_slice(&self.clear_depth_row);
+            self.depth[pixels.clone()].copy_from_slice(&self.pending.clear_depth_row);
             if let Some(coverage) = self.coverage.get_mut(pixels) {
                 coverage.fill(0);
             }
