@@ -22,8 +22,7 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::vertex::{MeshVertex, Transform};
 use crate::geometry::pipeline::Camera;
 use crate::geometry::pipeline::{
-    self, BatchDraw, DrawInput, Geometry, GeometryInParts, GeometryStats, PipelineOptions, Runs,
-    Viewport,
+    self, BatchDraw, DrawInput, Geometry, GeometryInParts, GeometryStats, PipelineOptions, Viewport,
 };
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
@@ -438,30 +437,13 @@ impl MeshRenderer {
                 self.viewport(),
             )?
         };
-        // On one thread a mesh of several batches is assembled and drawn
-        // batch by batch; otherwise assembled whole (in parts, binned on
-        // several threads), then drawn.
-        let (work, mut raster_time) = if self.in_batches() {
-            match &self.shader {
-                MeshShader::Flat(s) => self.draw_in_batches(geometry, backend, s, target),
-                MeshShader::Gouraud(s) => self.draw_in_batches(geometry, backend, s, target),
-                MeshShader::Diffuse(s) => self.draw_in_batches(geometry, backend, s, target),
-                MeshShader::Normals(s) => self.draw_in_batches(geometry, backend, s, target),
-                MeshShader::Texture(s) => self.draw_in_batches(geometry, backend, s, target),
-            }?
-        } else {
-            geometry.process_into(&self.draw_input())?;
-            let start = Instant::now();
-            let runs = geometry.runs();
-            let work = match &self.shader {
-                MeshShader::Flat(s) => self.draw(&runs, backend, s, target),
-                MeshShader::Gouraud(s) => self.draw(&runs, backend, s, target),
-                MeshShader::Diffuse(s) => self.draw(&runs, backend, s, target),
-                MeshShader::Normals(s) => self.draw(&runs, backend, s, target),
-                MeshShader::Texture(s) => self.draw(&runs, backend, s, target),
-            };
-            (work, start.elapsed())
-        };
+        let (work, mut raster_time) = match &self.shader {
+            MeshShader::Flat(s) => self.draw(geometry, backend, s, target),
+            MeshShader::Gouraud(s) => self.draw(geometry, backend, s, target),
+            MeshShader::Diffuse(s) => self.draw(geometry, backend, s, target),
+            MeshShader::Normals(s) => self.draw(geometry, backend, s, target),
+            MeshShader::Texture(s) => self.draw(geometry, backend, s, target),
+        }?;
         let start = Instant::now();
         if let Some(line_backend) = self.settings.wireframe {
             self.draw_wireframe(line_backend, &lines, target);
@@ -561,10 +543,16 @@ impl MeshRenderer {
         })
     }
 
-    /// The geometry stages and the draw on one thread, batch by batch
-    /// ([`GeometryInParts::process_in_batches`]): the work, and the time
-    /// spent rasterizing.
-    fn draw_in_batches<S: FragmentShader>(
+    /// Runs the geometry stages into `geometry` and draws the triangles
+    /// with `shader`, the stage compiled for its type, clearing the target
+    /// as it goes (each row just before its first fragment): the work, and
+    /// the time spent rasterizing.
+    ///
+    /// On one thread a mesh of several batches is assembled and drawn
+    /// batch by batch ([`GeometryInParts::process_in_batches`]);
+    /// otherwise it is assembled whole (in parts, binned on several
+    /// threads), then drawn.
+    fn draw<S: FragmentShader>(
         &self,
         geometry: &mut GeometryInParts,
         backend: &dyn TriangleRasterizer,
@@ -577,6 +565,12 @@ impl MeshRenderer {
             interpolation: self.settings.interpolation,
             clear: Clear::all(self.settings.background),
         };
+        if !self.in_batches() {
+            geometry.process_into(&self.draw_input())?;
+            let start = Instant::now();
+            let work = pipeline::draw_runs_binned(&geometry.runs(), backend, pass, target);
+            return Ok((work, start.elapsed()));
+        }
         let mut draw = BatchDraw::new(target, backend, pass);
         let mut raster_time = Duration::ZERO;
         geometry.process_in_batches(&self.draw_input(), BATCH, |shaded, setups| {
@@ -587,25 +581,6 @@ impl MeshRenderer {
         let start = Instant::now();
         let work = draw.finish();
         Ok((work, raster_time + start.elapsed()))
-    }
-
-    /// Draws the triangles of `runs` with `shader`, the stage compiled for
-    /// its type, clearing the target as it goes (each row just before its
-    /// first fragment).
-    fn draw<S: FragmentShader>(
-        &self,
-        runs: &Runs<'_>,
-        backend: &dyn TriangleRasterizer,
-        shader: &S,
-        target: &mut RenderTarget,
-    ) -> WorkCounters {
-        let pass = pipeline::Pass {
-            shader,
-            depth: self.settings.depth,
-            interpolation: self.settings.interpolation,
-            clear: Clear::all(self.settings.background),
-        };
-        pipeline::draw_runs_binned(runs, backend, pass, target)
     }
 
     /// Draws the edges in a contrasting constant colour, depth-tested with
