@@ -301,30 +301,15 @@ impl GeometryInParts {
         batch: usize,
         mut draw: impl FnMut(&TriangleData, &[TriangleSetup]),
     ) -> Result<()> {
-        let DrawInput {
-            vertices,
-            triangles,
-            shader,
-            viewport,
-            options,
-        } = *input;
-        shade_vertices(&mut self.scratch, &mut self.shaded.vertices, input)?;
-        let clip = ClipVolume::new(viewport.width, viewport.height);
+        let clip = input.clip_volume();
+        shade_vertices(&mut self.scratch, &mut self.shaded.vertices, input, &clip)?;
         self.scratch.use_parts(1);
         let (screen, part) = (&self.scratch.screen, &mut self.scratch.parts[0]);
-        let assembly = AssemblyInput {
-            vertices,
-            shader,
-            screen,
-            mesh_vertices: vertices.len() as u32,
-            clip: &clip,
-            viewport: &viewport,
-            options,
-            bands: None,
-        };
+        let assembly = input.assembly(screen, &clip, None);
+        let vertices = input.vertices;
         let mut stats = GeometryStats::default();
         let shaded = &mut self.shaded;
-        for (b, list) in triangles.chunks(batch.max(1)).enumerate() {
+        for (b, list) in input.triangles.chunks(batch.max(1)).enumerate() {
             assembly.process(list, b * batch, part);
             stats.add(&part.stats);
             // The batch's clip vertices are numbered from the mesh's
@@ -355,6 +340,34 @@ pub(crate) struct DrawInput<'a, V, S> {
     pub options: &'a PipelineOptions,
 }
 
+impl<V, S> DrawInput<'_, V, S> {
+    /// The clip volume of the draw's viewport.
+    fn clip_volume(&self) -> ClipVolume {
+        ClipVolume::new(self.viewport.width, self.viewport.height)
+    }
+
+    /// What the assembly tasks read, once the vertices are shaded into
+    /// `screen`: the draw's triangles are clipped by `clip` and binned
+    /// into `bands`, if any.
+    fn assembly<'b>(
+        &'b self,
+        screen: &'b [ScreenPoint],
+        clip: &'b ClipVolume,
+        bands: Option<Bands>,
+    ) -> AssemblyInput<'b, V, S> {
+        AssemblyInput {
+            vertices: self.vertices,
+            shader: self.shader,
+            screen,
+            mesh_vertices: self.vertices.len() as u32,
+            clip,
+            viewport: &self.viewport,
+            options: self.options,
+            bands,
+        }
+    }
+}
+
 /// The pipeline's geometry stages, for triangles whose indices were
 /// checked: shades every vertex into `shaded`, and
 /// assembles, clips, culls and sets up the triangles into the parts of
@@ -367,15 +380,9 @@ fn assemble<V: Sync, S: VertexShader<V>>(
     draw: &DrawInput<'_, V, S>,
     bin: bool,
 ) -> Result<(GeometryStats, Option<Bands>)> {
-    shade_vertices(scratch, shaded, draw)?;
-    let DrawInput {
-        vertices,
-        triangles,
-        shader,
-        viewport,
-        options,
-    } = *draw;
-    let clip = ClipVolume::new(viewport.width, viewport.height);
+    let clip = draw.clip_volume();
+    shade_vertices(scratch, shaded, draw, &clip)?;
+    let (triangles, viewport) = (draw.triangles, draw.viewport);
     let chunk = chunk_len(
         triangles.len(),
         TRIANGLE_CHUNKS_PER_THREAD,
@@ -387,16 +394,7 @@ fn assemble<V: Sync, S: VertexShader<V>>(
     let bands = (bin && chunks > 1)
         .then(|| Bands::for_threads(viewport.height, rayon::current_num_threads()));
     scratch.use_parts(chunks);
-    let input = AssemblyInput {
-        vertices,
-        shader,
-        screen: &scratch.screen,
-        mesh_vertices: vertices.len() as u32,
-        clip: &clip,
-        viewport: &viewport,
-        options,
-        bands,
-    };
+    let input = draw.assembly(&scratch.screen, &clip, bands);
     scratch
         .parts
         .par_iter_mut()
@@ -415,11 +413,12 @@ fn assemble<V: Sync, S: VertexShader<V>>(
 
 /// The vertex stage of a draw whose indices were checked: shades every
 /// vertex into `shaded`, and divides and snaps those inside the clip
-/// volume into `scratch.screen`. Errors on the first vertex refused.
+/// volume `clip` into `scratch.screen`. Errors on the first vertex refused.
 fn shade_vertices<V: Sync, S: VertexShader<V>>(
     scratch: &mut Scratch,
     shaded: &mut Vec<ShadedVertex>,
     draw: &DrawInput<'_, V, S>,
+    clip: &ClipVolume,
 ) -> Result<()> {
     let DrawInput {
         vertices,
@@ -427,7 +426,6 @@ fn shade_vertices<V: Sync, S: VertexShader<V>>(
         viewport,
         ..
     } = *draw;
-    let clip = ClipVolume::new(viewport.width, viewport.height);
     // Each vertex is shaded once, however many triangles share it; those
     // inside the clip volume are divided and snapped once too. Both
     // buffers are sized first (reused from the last draw) and filled in
@@ -443,7 +441,7 @@ fn shade_vertices<V: Sync, S: VertexShader<V>>(
         .map(|((screen, shaded), input)| {
             let chunk = ShadeVertices {
                 shader,
-                clip: &clip,
+                clip,
                 viewport: &viewport,
                 input,
                 screen,
