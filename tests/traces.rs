@@ -361,11 +361,9 @@ mod newer_traces {
 fn an_outside_back_end_is_traced_by_its_walk() {
     use rasterlab::raster::triangle::bbox::BoundingBox;
     use rasterlab::raster::triangle::{
-        TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver,
+        TriangleAlgorithm, TriangleDescriptor, TriangleWalk, Walk, WalkObserver,
     };
-    use rasterlab::raster::{
-        CostClass, FragmentSink, PixelRect, Role, TriangleSetup, WorkCounters,
-    };
+    use rasterlab::raster::{CostClass, PixelRect, Role, TriangleSetup};
 
     struct MyBox;
     impl TriangleAlgorithm for MyBox {
@@ -380,11 +378,9 @@ fn an_outside_back_end_is_traced_by_its_walk() {
             &self,
             t: &TriangleSetup,
             viewport: PixelRect,
-            sink: &mut dyn FragmentSink,
-            work: &mut WorkCounters,
-            observer: &mut O,
+            walk: &mut Walk<O>,
         ) {
-            BoundingBox.draw_triangle(t, viewport, sink, work, observer)
+            BoundingBox.draw_triangle(t, viewport, walk)
         }
     }
     let triangle = [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)];
@@ -405,12 +401,9 @@ mod recordings {
     use rasterlab::measure::sized;
     use rasterlab::raster::triangle::bbox::BoundingBox;
     use rasterlab::raster::triangle::{
-        emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver,
+        TriangleAlgorithm, TriangleDescriptor, TriangleWalk, Walk, WalkObserver,
     };
-    use rasterlab::raster::{
-        CostClass, FillRule, FragmentSink, PixelRect, RenderTarget, Role, TriangleSetup,
-        WorkCounters,
-    };
+    use rasterlab::raster::{CostClass, FillRule, PixelRect, RenderTarget, Role, TriangleSetup};
 
     /// The bounding box walked column by column, right to left: a walk no
     /// back-end of the crate makes.
@@ -428,20 +421,14 @@ mod recordings {
             &self,
             t: &TriangleSetup,
             viewport: PixelRect,
-            sink: &mut dyn FragmentSink,
-            work: &mut WorkCounters,
-            observer: &mut O,
+            walk: &mut Walk<O>,
         ) {
             let r = t.bounds_within(viewport);
             for x in (r.x0..=r.x1).rev() {
                 for y in r.y0..=r.y1 {
-                    work.samples_tested += 1;
                     let e = t.edge_values_at_pixel(x, y);
-                    let inside = t.inside(e);
-                    observer.sample(x, y, e, inside);
-                    if inside {
-                        work.fragments += 1;
-                        emit(sink, t, x, y, e);
+                    if walk.test(x, y, e) {
+                        walk.fragment(x, y, e);
                     }
                 }
             }
@@ -460,16 +447,14 @@ mod recordings {
             &self,
             t: &TriangleSetup,
             viewport: PixelRect,
-            sink: &mut dyn FragmentSink,
-            work: &mut WorkCounters,
-            observer: &mut O,
+            walk: &mut Walk<O>,
         ) {
             let r = t.bounds_within(viewport);
             let shorter = PixelRect {
                 x1: r.x1 - 1,
                 ..viewport
             };
-            BoundingBox.draw_triangle(t, shorter, sink, work, observer)
+            BoundingBox.draw_triangle(t, shorter, walk)
         }
     }
 

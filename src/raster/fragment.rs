@@ -96,13 +96,6 @@ pub trait FragmentSink {
             self.line_fragment(f);
         }
     }
-    /// The back-end evaluated triangle `triangle`'s inside test at the
-    /// samples of pixels `x0..=x1` of row `y`, whatever the outcome. For
-    /// pictures of which pixels an algorithm tested; back-ends report each
-    /// row's tested run once, and the default ignores it.
-    fn samples_tested(&mut self, triangle: u32, y: u32, x0: u32, x1: u32) {
-        let _ = (triangle, y, x0, x1);
-    }
 }
 
 /// Work a back-end did, for comparing algorithms.

@@ -53,7 +53,7 @@ use crate::geometry::scene::{setup_triangles, Scene2D};
 use crate::markup::Markup;
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fixed::FixedPoint;
-use crate::raster::fragment::{FragmentList, FragmentSink, LineFragment, TriangleFragment};
+use crate::raster::fragment::{FragmentSink, LineFragment, TriangleFragment, WorkCounters};
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::multisample::{reference_masks, SamplePattern};
 use crate::raster::shader::Flat;
@@ -177,11 +177,17 @@ impl FragmentSink for Recorder {
         let i = self.index(f.x, f.y);
         self.weight[i] += f.coverage;
     }
+}
 
-    fn samples_tested(&mut self, _triangle: u32, y: u32, x0: u32, x1: u32) {
-        for x in x0..=x1 {
-            let i = self.index(x, y);
-            self.tested[i] = true;
+impl Recorder {
+    /// Marks the samples a triangle walk tested, as its steps recorded
+    /// them.
+    fn tested_in(&mut self, steps: &[WalkStep]) {
+        for step in steps {
+            if let WalkStep::Sample { x, y, .. } = *step {
+                let i = self.index(x as u32, y as u32);
+                self.tested[i] = true;
+            }
         }
     }
 }
@@ -267,7 +273,21 @@ impl GridPicture {
         check_grid(width, height)?;
         let mut recorder = Recorder::new(width, height);
         let setups = setup_triangles(triangles, rule);
-        let work = backend.rasterize(&setups, PixelRect::of_target(width, height), &mut recorder);
+        // Each triangle's walk, recorded: its fragments go to the
+        // recorder, and its steps say which samples it tested and which
+        // blocks it classified.
+        let grid = PixelRect::of_target(width, height);
+        let mut work = WorkCounters::default();
+        let mut blocks = Vec::new();
+        for t in &setups {
+            let (steps, triangle_work) = backend.record(t, grid, &mut recorder);
+            work.add(&triangle_work);
+            recorder.tested_in(&steps);
+            blocks.extend(steps.into_iter().filter_map(|s| match s {
+                WalkStep::Block { rect, class } => Some((rect, class)),
+                _ => None,
+            }));
+        }
         let caption = format!(
             "{}, {} rule: {} pixels tested (sky blue: outside), {} fragments (green)",
             backend.name(),
@@ -277,15 +297,7 @@ impl GridPicture {
         );
         let mut picture = Self::recorded(&recorder, width, height, caption);
         picture.outlines = outlines(triangles);
-        // The blocks the walk classified, as it recorded them.
-        let grid = PixelRect::of_target(width, height);
-        picture.blocks = merged_blocks(setups.iter().flat_map(|t| {
-            let (steps, _) = backend.record(t, grid, &mut FragmentList::default());
-            steps.into_iter().filter_map(|s| match s {
-                WalkStep::Block { rect, class } => Some((rect, class)),
-                _ => None,
-            })
-        }));
+        picture.blocks = merged_blocks(blocks.into_iter());
         let names: Vec<String> = (0..triangles.len()).map(triangle_name).collect();
         picture.legend = with_edges(
             Legend::new(&[Role::Drawn, Role::TestedOutside, Role::Untested]),

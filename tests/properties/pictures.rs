@@ -6,24 +6,9 @@
 use crate::common::SIZE;
 use proptest::prelude::*;
 use rasterlab::geometry::setup_triangles;
-use rasterlab::raster::{
-    triangle_backends, FillRule, FixedPoint, FragmentList, FragmentSink, LineFragment, PixelRect,
-    TriangleFragment,
-};
+use rasterlab::raster::triangle::WalkStep;
+use rasterlab::raster::{triangle_backends, FillRule, FixedPoint, FragmentList, PixelRect};
 use rasterlab::teaching::{is_fragment_green, GridPicture, TESTED_OUTSIDE};
-
-/// Counts the samples a back-end reports as tested, per pixel.
-struct TestedCells(Vec<bool>);
-
-impl FragmentSink for TestedCells {
-    fn triangle_fragment(&mut self, _: &TriangleFragment) {}
-    fn line_fragment(&mut self, _: &LineFragment) {}
-    fn samples_tested(&mut self, _: u32, y: u32, x0: u32, x1: u32) {
-        for x in x0..=x1 {
-            self.0[(y * SIZE + x) as usize] = true;
-        }
-    }
-}
 
 /// The cell colour at an offset inside each cell of a PNG drawn at `zoom`
 /// (clear of the borders and the centre dot; the outlines, which may cross
@@ -62,16 +47,26 @@ pub fn green_cells_are_the_fragments_and_red_cells_the_failed_tests(
     let setups = setup_triangles(&[t], rule);
     for backend in triangle_backends() {
         let picture = GridPicture::of_snapped_triangles(*backend, &[t], rule, SIZE, SIZE).unwrap();
+        let grid = PixelRect::of_target(SIZE, SIZE);
         let mut list = FragmentList::default();
-        let work = backend.rasterize(&setups, PixelRect::of_target(SIZE, SIZE), &mut list);
-        let mut tested = TestedCells(vec![false; (SIZE * SIZE) as usize]);
-        backend.rasterize(&setups, PixelRect::of_target(SIZE, SIZE), &mut tested);
+        let work = backend.rasterize(&setups, grid, &mut list);
+        // The samples the walk tested, as its recording lists them.
+        let mut tested = vec![false; (SIZE * SIZE) as usize];
+        let mut sample_steps = 0u64;
+        for t in &setups {
+            for step in backend.record(t, grid, &mut FragmentList::default()).0 {
+                if let WalkStep::Sample { x, y, .. } = step {
+                    sample_steps += 1;
+                    tested[(y * i64::from(SIZE) + x) as usize] = true;
+                }
+            }
+        }
         let mut inside = vec![false; (SIZE * SIZE) as usize];
         for f in &list.triangles {
             inside[(f.y * SIZE + f.x) as usize] = true;
         }
         let failed = (0..inside.len())
-            .filter(|&i| tested.0[i] && !inside[i])
+            .filter(|&i| tested[i] && !inside[i])
             .count();
         prop_assert_eq!(
             picture.inside_cells() as u64,
@@ -80,8 +75,15 @@ pub fn green_cells_are_the_fragments_and_red_cells_the_failed_tests(
             backend.name()
         );
         prop_assert_eq!(picture.outside_cells(), failed, "{}", backend.name());
-        // Each back-end reports each tested sample once.
-        prop_assert!(tested.0.iter().filter(|&&b| b).count() as u64 <= work.samples_tested);
+        // Every back-end tests each sample at most once, and records every
+        // test it counts: as many tested cells as samples counted.
+        prop_assert_eq!(sample_steps, work.samples_tested, "{}", backend.name());
+        prop_assert_eq!(
+            tested.iter().filter(|&&b| b).count() as u64,
+            work.samples_tested,
+            "{}",
+            backend.name()
+        );
         match backend.name() {
             "naive" if !setups.is_empty() => prop_assert_eq!(
                 picture.inside_cells() + picture.outside_cells(),

@@ -14,10 +14,9 @@
 //!     if p is inside t: emit a fragment
 //! ```
 
-use super::{emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
+use super::{TriangleAlgorithm, TriangleDescriptor, TriangleWalk, Walk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
-use crate::raster::fragment::{FragmentSink, WorkCounters};
 
 /// Bounding box plus a direct edge-function test per pixel.
 #[derive(Copy, Clone, Debug, Default)]
@@ -37,24 +36,14 @@ impl TriangleAlgorithm for BoundingBox {
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
-        sink: &mut dyn FragmentSink,
-        work: &mut WorkCounters,
-        observer: &mut O,
+        walk: &mut Walk<O>,
     ) {
         let r = t.bounds_within(viewport);
-        if r.is_empty() {
-            return;
-        }
         for y in r.y0..=r.y1 {
-            sink.samples_tested(t.id, y as u32, r.x0 as u32, r.x1 as u32);
             for x in r.x0..=r.x1 {
-                work.samples_tested += 1;
                 let e = t.edge_values_at_pixel(x, y);
-                let inside = t.inside(e);
-                observer.sample(x, y, e, inside);
-                if inside {
-                    work.fragments += 1;
-                    emit(sink, t, x, y, e);
+                if walk.test(x, y, e) {
+                    walk.fragment(x, y, e);
                 }
             }
         }

@@ -20,10 +20,9 @@
 //!   row += step_y
 //! ```
 
-use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
+use super::{TriangleAlgorithm, TriangleDescriptor, TriangleWalk, Walk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
-use crate::raster::fragment::{FragmentSink, WorkCounters};
 
 /// Bounding box with edge functions stepped by additions.
 #[derive(Copy, Clone, Debug, Default)]
@@ -43,13 +42,11 @@ impl TriangleAlgorithm for Incremental {
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
-        sink: &mut dyn FragmentSink,
-        work: &mut WorkCounters,
-        observer: &mut O,
+        walk: &mut Walk<O>,
     ) {
         let r = t.bounds_within(viewport);
         if !r.is_empty() {
-            step_over(t, r, sink, work, observer);
+            step_over(t, r, walk);
         }
     }
 }
@@ -58,42 +55,16 @@ impl TriangleAlgorithm for Incremental {
 /// values by additions, and emits those inside `t`, one span per row (the
 /// inside pixels of a row are consecutive, the triangle being convex).
 #[inline]
-pub(crate) fn step_over<O: WalkObserver>(
-    t: &TriangleSetup,
-    r: PixelRect,
-    sink: &mut dyn FragmentSink,
-    work: &mut WorkCounters,
-    observer: &mut O,
-) {
+pub(crate) fn step_over<O: WalkObserver>(t: &TriangleSetup, r: PixelRect, walk: &mut Walk<O>) {
     let (step_x, step_y) = t.pixel_steps();
     let mut row = t.edge_values_at_pixel(r.x0, r.y0);
     for y in r.y0..=r.y1 {
-        let (run, tested) = run_in_row(t, row, step_x, r.x0, r.x1, y, observer);
-        report_tested(sink, t, y, r.x0, tested, work);
-        if let Some(run) = run {
-            work.fragments += (run.last - run.first + 1) as u64;
-            emit_span(sink, t, y, run.first, run.last, run.edges);
+        if let Some(run) = run_in_row(row, step_x, r.x0, r.x1, y, walk) {
+            walk.span(y, run.first, run.last, run.edges);
         }
         for k in 0..3 {
             row[k] += step_y[k];
         }
-    }
-}
-
-/// Counts `tested` samples from column `x0` of row `y` and reports them
-/// to the sink as one tested run.
-pub(crate) fn report_tested(
-    sink: &mut dyn FragmentSink,
-    t: &TriangleSetup,
-    y: i64,
-    x0: i64,
-    tested: u64,
-    work: &mut WorkCounters,
-) {
-    if tested > 0 {
-        work.samples_tested += tested;
-        let x1 = x0 + tested as i64 - 1;
-        sink.samples_tested(t.id, y as u32, x0 as u32, x1 as u32);
     }
 }
 
@@ -108,26 +79,21 @@ pub(crate) struct Run {
 }
 
 /// Tests pixels `x0..=x1` of row `y` whose edge values at `x0` are `e`,
-/// left to right (each sample reported to `observer`), and returns the run of inside pixels, if any, and how many
-/// pixels were tested (the walk stops at the first outside pixel after the
-/// run: the triangle is convex, so nothing further right is inside).
+/// left to right, and returns the run of inside pixels, if any. The test
+/// stops at the first outside pixel after the run: the triangle is
+/// convex, so nothing further right is inside.
 #[inline]
 pub(crate) fn run_in_row<O: WalkObserver>(
-    t: &TriangleSetup,
     mut e: [i64; 3],
     step_x: [i64; 3],
     x0: i64,
     x1: i64,
     y: i64,
-    observer: &mut O,
-) -> (Option<Run>, u64) {
+    walk: &mut Walk<O>,
+) -> Option<Run> {
     let mut run: Option<Run> = None;
-    let mut tested = 0;
     for x in x0..=x1 {
-        tested += 1;
-        let inside = t.inside(e);
-        observer.sample(x, y, e, inside);
-        if inside {
+        if walk.test(x, y, e) {
             match &mut run {
                 Some(r) => r.last = x,
                 None => {
@@ -139,12 +105,12 @@ pub(crate) fn run_in_row<O: WalkObserver>(
                 }
             }
         } else if run.is_some() {
-            observer.row_stops(y, x);
+            walk.row_stops(y, x);
             break;
         }
         for k in 0..3 {
             e[k] += step_x[k];
         }
     }
-    (run, tested)
+    run
 }

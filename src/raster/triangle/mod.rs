@@ -192,13 +192,131 @@ impl WalkObserver for Vec<WalkStep> {
     }
 }
 
+/// One triangle's walk in progress: what a back-end reports to as it
+/// draws. It holds the triangle, the sink its fragments go to, the work
+/// counters and the observer, so that a back-end says each thing once:
+/// [`test`](Self::test) a sample (counted, and recorded by a trace),
+/// emit a [`fragment`](Self::fragment) or a [`span`](Self::span) (counted,
+/// and handed to the sink), and report a row's
+/// [`crossing`](Self::crossing) or a [`block`](Self::block) it classified.
+///
+/// The observer is a type parameter: with [`Unobserved`], how every draw
+/// runs, the reports compile to nothing but the counters.
+pub struct Walk<'a, O: WalkObserver = Unobserved> {
+    triangle: &'a TriangleSetup,
+    sink: &'a mut dyn FragmentSink,
+    work: &'a mut WorkCounters,
+    observer: &'a mut O,
+}
+
+impl<'a, O: WalkObserver> Walk<'a, O> {
+    /// The walk of `triangle` into `sink`, counted in `work` and reported
+    /// to `observer`; it counts the triangle as one primitive.
+    #[inline]
+    pub fn new(
+        triangle: &'a TriangleSetup,
+        sink: &'a mut dyn FragmentSink,
+        work: &'a mut WorkCounters,
+        observer: &'a mut O,
+    ) -> Self {
+        work.primitives += 1;
+        Walk {
+            triangle,
+            sink,
+            work,
+            observer,
+        }
+    }
+
+    /// The triangle walked.
+    #[inline(always)]
+    pub fn triangle(&self) -> &'a TriangleSetup {
+        self.triangle
+    }
+
+    /// The inside test of pixel `(x, y)`'s sample, whose edge values are
+    /// `edges` (the fill rule's tie-breaking included): counted as one
+    /// sample tested, and reported to the observer.
+    #[inline(always)]
+    pub fn test(&mut self, x: i64, y: i64, edges: [i64; 3]) -> bool {
+        self.work.samples_tested += 1;
+        let inside = self.triangle.inside(edges);
+        self.observer.sample(x, y, edges, inside);
+        inside
+    }
+
+    /// Emits pixel `(x, y)` (inside the viewport) as a fragment, with the
+    /// edge values `edges` there.
+    #[inline(always)]
+    pub fn fragment(&mut self, x: i64, y: i64, edges: [i64; 3]) {
+        self.work.fragments += 1;
+        emit(self.sink, self.triangle, x, y, edges);
+    }
+
+    /// Emits pixels `first..=last` of row `y` (inside the viewport,
+    /// `first <= last`) as one span, given the edge values `edges` at
+    /// `first`; a single pixel (most rows of a small triangle) as a plain
+    /// fragment, which costs the stage less.
+    #[inline(always)]
+    pub fn span(&mut self, y: i64, first: i64, last: i64, edges: [i64; 3]) {
+        self.work.fragments += (last - first + 1) as u64;
+        if first == last {
+            emit(self.sink, self.triangle, first, y, edges);
+            return;
+        }
+        self.sink.triangle_span(&TriangleSpan {
+            y: y as u32,
+            x0: first as u32,
+            x1: last as u32,
+            triangle: self.triangle.id,
+            edges,
+            step: self.triangle.pixel_steps().0,
+        });
+    }
+
+    /// One row (a scanline walk) or one block or stretch of blocks (a
+    /// hierarchical walk) visited: the counters' `spans`.
+    #[inline(always)]
+    pub fn visit(&mut self) {
+        self.work.spans += 1;
+    }
+
+    /// Row `y`'s test stops after pixel `x`: the row's run of inside
+    /// pixels is behind it.
+    #[inline(always)]
+    pub fn row_stops(&mut self, y: i64, x: i64) {
+        self.observer.row_stops(y, x);
+    }
+
+    /// Edge `edge` bounds row `y`'s span so (solved, not tested).
+    #[inline(always)]
+    pub fn crossing(&mut self, y: i64, edge: usize, bound: Bound) {
+        self.observer.crossing(y, edge, bound);
+    }
+
+    /// Row `y`'s span, as its crossings solved it, is `first..=last`
+    /// (empty when `last < first`).
+    #[inline(always)]
+    pub fn row_span(&mut self, y: i64, first: i64, last: i64) {
+        self.observer.span(y, first, last);
+    }
+
+    /// The pixels of `rect` were classified as a whole.
+    #[inline(always)]
+    pub fn block(&mut self, rect: PixelRect, class: BlockClass) {
+        self.observer.block(rect, class);
+    }
+}
+
 /// A triangle rasterization algorithm, as its file writes it: its facts
-/// and the per-triangle step. The loop over the triangles a draw selects
-/// is provided once, by the [`TriangleRasterizer`] every algorithm is.
+/// and its walk over one triangle's pixels. Counting, recording and
+/// emitting are the [`Walk`]'s, and the loop over the triangles a draw
+/// selects is provided once, by the [`TriangleRasterizer`] every
+/// algorithm is: a new back-end is its walk and one descriptor.
 ///
 /// ```
-/// use rasterlab::raster::{CostClass, FragmentSink, PixelRect, Role, TriangleSetup, WorkCounters};
-/// use rasterlab::raster::triangle::{emit, TriangleAlgorithm, TriangleDescriptor, TriangleRasterizer, TriangleWalk, WalkObserver};
+/// use rasterlab::raster::{CostClass, PixelRect, Role, TriangleSetup};
+/// use rasterlab::raster::triangle::{TriangleAlgorithm, TriangleDescriptor, TriangleRasterizer, TriangleWalk, Walk, WalkObserver};
 ///
 /// /// The bounding box, walked bottom row first.
 /// struct BottomUp;
@@ -211,19 +329,13 @@ impl WalkObserver for Vec<WalkStep> {
 ///         role: Role::Alternative,
 ///         cost: CostClass::FollowsSize,
 ///     };
-///     fn draw_triangle<O: WalkObserver>(&self, t: &TriangleSetup, viewport: PixelRect,
-///                      sink: &mut dyn FragmentSink, work: &mut WorkCounters,
-///                      observer: &mut O) {
+///     fn draw_triangle<O: WalkObserver>(&self, t: &TriangleSetup, viewport: PixelRect, walk: &mut Walk<O>) {
 ///         let r = t.bounds_within(viewport);
 ///         for y in (r.y0..=r.y1).rev() {
 ///             for x in r.x0..=r.x1 {
-///                 work.samples_tested += 1;
 ///                 let e = t.edge_values_at_pixel(x, y);
-///                 let inside = t.inside(e);
-///                 observer.sample(x, y, e, inside);
-///                 if inside {
-///                     work.fragments += 1;
-///                     emit(sink, t, x, y, e);
+///                 if walk.test(x, y, e) {
+///                     walk.fragment(x, y, e);
 ///                 }
 ///             }
 ///         }
@@ -234,25 +346,25 @@ impl WalkObserver for Vec<WalkStep> {
 /// let t = TriangleSetup::new(0, [(0.5, 0.5), (4.5, 0.5), (0.5, 3.5)]
 ///     .map(|(x, y)| rasterlab::raster::FixedPoint::snap_f64(x, y).unwrap()),
 ///     rasterlab::raster::FillRule::TopLeft).unwrap();
-/// let (steps, _) = BottomUp.record(&t, PixelRect::of_target(6, 4), &mut rasterlab::raster::FragmentList::default());
+/// let (steps, work) = BottomUp.record(&t, PixelRect::of_target(6, 4), &mut rasterlab::raster::FragmentList::default());
 /// assert!(matches!(steps[0], rasterlab::raster::triangle::WalkStep::Sample { y: 3, .. }));
+/// // Every sample the walk tested was counted once.
+/// assert_eq!(work.samples_tested, 20);
 /// ```
 pub trait TriangleAlgorithm: Send + Sync {
     /// The back-end's name, description, walk, role and cost class.
     const DESCRIPTOR: TriangleDescriptor;
 
-    /// Emits every fragment of triangle `t` whose pixel lies in
-    /// `viewport`, for each pixel in ascending triangle order (one call per
-    /// triangle does that), adds the samples tested, fragments and spans
-    /// to `work`, and reports its steps to `observer` (a sample tested, a
-    /// row's crossings and span, a block's class).
+    /// Walks triangle `t` (the walk's own) over the pixels of `viewport`:
+    /// tests samples, emits every fragment whose pixel lies in `viewport`
+    /// (for each pixel once: one call per triangle keeps each pixel's
+    /// fragments in triangle order), and reports its rows and blocks, all
+    /// through `walk`.
     fn draw_triangle<O: WalkObserver>(
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
-        sink: &mut dyn FragmentSink,
-        work: &mut WorkCounters,
-        observer: &mut O,
+        walk: &mut Walk<O>,
     );
 }
 
@@ -317,8 +429,11 @@ impl<A: TriangleAlgorithm> TriangleRasterizer for A {
     ) -> WorkCounters {
         let mut work = WorkCounters::default();
         for t in triangles.iter() {
-            work.primitives += 1;
-            self.draw_triangle(t, viewport, sink, &mut work, &mut Unobserved);
+            self.draw_triangle(
+                t,
+                viewport,
+                &mut Walk::new(t, sink, &mut work, &mut Unobserved),
+            );
         }
         work
     }
@@ -330,8 +445,7 @@ impl<A: TriangleAlgorithm> TriangleRasterizer for A {
         sink: &mut dyn FragmentSink,
     ) -> (Vec<WalkStep>, WorkCounters) {
         let (mut steps, mut work) = (Vec::new(), WorkCounters::default());
-        work.primitives += 1;
-        self.draw_triangle(t, viewport, sink, &mut work, &mut steps);
+        self.draw_triangle(t, viewport, &mut Walk::new(t, sink, &mut work, &mut steps));
         (steps, work)
     }
 }
@@ -393,47 +507,14 @@ impl<'a> TriangleSelection<'a> {
     }
 }
 
-/// Emits one fragment of `triangle` at pixel `(x, y)` (inside the
-/// viewport) with the edge values `edges` there.
-#[inline]
-pub fn emit(
-    sink: &mut dyn FragmentSink,
-    triangle: &TriangleSetup,
-    x: i64,
-    y: i64,
-    edges: [i64; 3],
-) {
+/// Hands one fragment of `triangle` at pixel `(x, y)` (inside the
+/// viewport) with the edge values `edges` there to `sink`.
+#[inline(always)]
+fn emit(sink: &mut dyn FragmentSink, triangle: &TriangleSetup, x: i64, y: i64, edges: [i64; 3]) {
     sink.triangle_fragment(&TriangleFragment {
         x: x as u32,
         y: y as u32,
         triangle: triangle.id,
         edges,
-    });
-}
-
-/// Emits pixels `x0..=x1` of row `y` (inside the viewport, `x0 <= x1`) as
-/// one span, given the edge values `edges` at `x0`; a single pixel (most
-/// rows of a small triangle) as a plain fragment, which costs the stage
-/// less.
-#[inline]
-pub fn emit_span(
-    sink: &mut dyn FragmentSink,
-    triangle: &TriangleSetup,
-    y: i64,
-    x0: i64,
-    x1: i64,
-    edges: [i64; 3],
-) {
-    if x0 == x1 {
-        emit(sink, triangle, x0, y, edges);
-        return;
-    }
-    sink.triangle_span(&TriangleSpan {
-        y: y as u32,
-        x0: x0 as u32,
-        x1: x1 as u32,
-        triangle: triangle.id,
-        edges,
-        step: triangle.pixel_steps().0,
     });
 }

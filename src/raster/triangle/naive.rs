@@ -18,10 +18,9 @@
 //! reference every other back-end is checked against, and the red/green
 //! picture of the rasterization slides' "checking every pixel" slide.
 
-use super::{emit, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
+use super::{TriangleAlgorithm, TriangleDescriptor, TriangleWalk, Walk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
-use crate::raster::fragment::{FragmentSink, WorkCounters};
 
 /// Every pixel tested against every triangle.
 #[derive(Copy, Clone, Debug, Default)]
@@ -41,20 +40,13 @@ impl TriangleAlgorithm for Naive {
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
-        sink: &mut dyn FragmentSink,
-        work: &mut WorkCounters,
-        observer: &mut O,
+        walk: &mut Walk<O>,
     ) {
         for y in viewport.y0..=viewport.y1 {
             for x in viewport.x0..=viewport.x1 {
-                work.samples_tested += 1;
-                sink.samples_tested(t.id, y as u32, x as u32, x as u32);
                 let e = t.edge_values_at_pixel(x, y);
-                let inside = t.inside(e);
-                observer.sample(x, y, e, inside);
-                if inside {
-                    work.fragments += 1;
-                    emit(sink, t, x, y, e);
+                if walk.test(x, y, e) {
+                    walk.fragment(x, y, e);
                 }
             }
         }

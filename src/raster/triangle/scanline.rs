@@ -28,13 +28,12 @@
 //! is tested: the work is one solve per active edge per row, and each
 //! row's pixels go to the fragment stage as one span.
 
-use super::{emit_span, Bound, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
+use super::{Bound, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, Walk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{EdgeFunction, PixelRect, TriangleSetup};
 use crate::raster::fixed::{
     first_sample_at_or_after, last_sample_at_or_before, HALF_PIXEL, SUBPIXEL_SCALE,
 };
-use crate::raster::fragment::{FragmentSink, WorkCounters};
 
 /// Classic scanline with exact span ends.
 #[derive(Copy, Clone, Debug, Default)]
@@ -116,14 +115,14 @@ pub(crate) fn active_edges(
 }
 
 /// The span of row `j` (clipped to `viewport` columns), each active
-/// edge's bound and the span reported to `observer`.
+/// edge's bound and the span reported to the walk.
 #[inline]
 pub(crate) fn row_span<O: WalkObserver>(
     t: &TriangleSetup,
     order: [usize; 3],
     j: i64,
     viewport: PixelRect,
-    observer: &mut O,
+    walk: &mut Walk<O>,
 ) -> Span {
     let y = j * SUBPIXEL_SCALE + HALF_PIXEL;
     let mut span = Span {
@@ -132,9 +131,9 @@ pub(crate) fn row_span<O: WalkObserver>(
     };
     for k in active_edges(t, order, y) {
         let bound = span.clip_to_edge(&t.edges[k], t.bias[k], y);
-        observer.crossing(j, k, bound);
+        walk.crossing(j, k, bound);
     }
-    observer.span(j, span.first, span.last);
+    walk.row_span(j, span.first, span.last);
     span
 }
 
@@ -163,15 +162,13 @@ impl TriangleAlgorithm for Scanline {
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
-        sink: &mut dyn FragmentSink,
-        work: &mut WorkCounters,
-        observer: &mut O,
+        walk: &mut Walk<O>,
     ) {
         let order = sorted_by_y(t);
         let (first_row, last_row) = row_range(t, order, viewport);
         for j in first_row..=last_row {
-            work.spans += 1;
-            let span = row_span(t, order, j, viewport, observer);
+            walk.visit();
+            let span = row_span(t, order, j, viewport, walk);
             if span.is_empty() {
                 continue;
             }
@@ -181,8 +178,7 @@ impl TriangleAlgorithm for Scanline {
                 "span start ({}, {j}) fails the inside test",
                 span.first
             );
-            work.fragments += (span.last - span.first + 1) as u64;
-            emit_span(sink, t, j, span.first, span.last, e);
+            walk.span(j, span.first, span.last, e);
         }
     }
 }

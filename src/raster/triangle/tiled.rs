@@ -44,12 +44,11 @@
 //! for each pixel row: emit the run of inside pixels across the blocks
 //! ```
 
-use super::incremental::{report_tested, run_in_row, step_over, Run};
+use super::incremental::{run_in_row, step_over, Run};
 use super::BlockClass;
-use super::{emit_span, TriangleAlgorithm, TriangleDescriptor, TriangleWalk, WalkObserver};
+use super::{TriangleAlgorithm, TriangleDescriptor, TriangleWalk, Walk, WalkObserver};
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::{PixelRect, TriangleSetup};
-use crate::raster::fragment::{FragmentSink, WorkCounters};
 
 /// Block side in pixels.
 pub const BLOCK: i64 = 8;
@@ -117,9 +116,7 @@ impl TriangleAlgorithm for Tiled {
         &self,
         t: &TriangleSetup,
         viewport: PixelRect,
-        sink: &mut dyn FragmentSink,
-        work: &mut WorkCounters,
-        observer: &mut O,
+        walk: &mut Walk<O>,
     ) {
         let r = t.bounds_within(viewport);
         if r.is_empty() {
@@ -130,14 +127,14 @@ impl TriangleAlgorithm for Tiled {
         // thread) tests the same samples as one draw of the target.
         let (w, h) = (r.x1 - r.x0, t.bounds.y1 - t.bounds.y0);
         if w <= 1 && h <= 1 {
-            tiny_box(t, r, sink, work, observer);
+            tiny_box(t, r, walk);
             return;
         }
         if w < BLOCK && h < BLOCK {
-            step_over(t, r, sink, work, observer);
+            step_over(t, r, walk);
             return;
         }
-        BLOCK_ROW.with_borrow_mut(|blocks| walk_blocks(t, r, blocks, sink, work, observer));
+        BLOCK_ROW.with_borrow_mut(|blocks| walk_blocks(t, r, blocks, walk));
     }
 }
 
@@ -161,9 +158,7 @@ fn walk_blocks<O: WalkObserver>(
     t: &TriangleSetup,
     r: PixelRect,
     blocks: &mut Vec<(PixelRect, BlockClass)>,
-    sink: &mut dyn FragmentSink,
-    work: &mut WorkCounters,
-    observer: &mut O,
+    walk: &mut Walk<O>,
 ) {
     let (step_x, step_y) = t.pixel_steps();
     let (bx0, by0) = (r.x0.div_euclid(BLOCK), r.y0.div_euclid(BLOCK));
@@ -199,16 +194,16 @@ fn walk_blocks<O: WalkObserver>(
             // A stretch of aligned blocks is classified as a whole
             // first; only a straddling one is looked into.
             let last = ((bx / stretch + 1) * stretch - 1).min(bx1);
-            work.spans += 1;
+            walk.visit();
             let (stretch_rect, class) = classify(bx, last);
             if class != BlockClass::Partial || last == bx {
-                observer.block(stretch_rect, class);
+                walk.block(stretch_rect, class);
                 push_merged(blocks, stretch_rect, class);
             } else {
                 for b in bx..=last {
-                    work.spans += 1;
+                    walk.visit();
                     let (block, class) = classify(b, b);
-                    observer.block(block, class);
+                    walk.block(block, class);
                     push_merged(blocks, block, class);
                 }
             }
@@ -220,9 +215,8 @@ fn walk_blocks<O: WalkObserver>(
                 let n = x - r.x0;
                 [0, 1, 2].map(|k| row[k] + step_x[k] * n)
             };
-            if let Some(run) = row_run(t, y, blocks, step_x, at, sink, work, observer) {
-                work.fragments += (run.last - run.first + 1) as u64;
-                emit_span(sink, t, y, run.first, run.last, run.edges);
+            if let Some(run) = row_run(y, blocks, step_x, at, walk) {
+                walk.span(y, run.first, run.last, run.edges);
             }
             for k in 0..3 {
                 row[k] += step_y[k];
@@ -238,33 +232,21 @@ fn walk_blocks<O: WalkObserver>(
 /// has both tested: the walk stops after an outside pixel that follows
 /// the run, which here is the last one anyway).
 #[inline]
-fn tiny_box<O: WalkObserver>(
-    t: &TriangleSetup,
-    r: PixelRect,
-    sink: &mut dyn FragmentSink,
-    work: &mut WorkCounters,
-    observer: &mut O,
-) {
+fn tiny_box<O: WalkObserver>(t: &TriangleSetup, r: PixelRect, walk: &mut Walk<O>) {
     let (step_x, step_y) = t.pixel_steps();
     let plus = |e: [i64; 3], step: [i64; 3]| [e[0] + step[0], e[1] + step[1], e[2] + step[2]];
     let mut left = t.edge_values_at_pixel(r.x0, r.y0);
     for y in r.y0..=r.y1 {
         if r.x0 == r.x1 {
-            report_tested(sink, t, y, r.x0, 1, work);
-            let inside = t.inside(left);
-            observer.sample(r.x0, y, left, inside);
-            if inside {
-                work.fragments += 1;
-                emit_span(sink, t, y, r.x0, r.x0, left);
+            if walk.test(r.x0, y, left) {
+                walk.fragment(r.x0, y, left);
             }
         } else {
-            report_tested(sink, t, y, r.x0, 2, work);
             let right = plus(left, step_x);
-            let (l, r_in) = (t.inside(left), t.inside(right));
-            observer.sample(r.x0, y, left, l);
-            observer.sample(r.x1, y, right, r_in);
+            let l = walk.test(r.x0, y, left);
+            let r_in = walk.test(r.x1, y, right);
             if l && !r_in {
-                observer.row_stops(y, r.x1);
+                walk.row_stops(y, r.x1);
             }
             let run = match (l, r_in) {
                 (true, true) => Some((r.x0, r.x1, left)),
@@ -273,8 +255,7 @@ fn tiny_box<O: WalkObserver>(
                 (false, false) => None,
             };
             if let Some((first, last, edges)) = run {
-                work.fragments += (last - first + 1) as u64;
-                emit_span(sink, t, y, first, last, edges);
+                walk.span(y, first, last, edges);
             }
         }
         left = plus(left, step_y);
@@ -296,16 +277,12 @@ fn push_merged(blocks: &mut Vec<(PixelRect, BlockClass)>, block: PixelRect, clas
 /// blocks join the run untested, and
 /// only straddling blocks are tested pixel by pixel. `at(x)` gives the
 /// edge values at column `x` of the row.
-#[allow(clippy::too_many_arguments)]
 fn row_run<O: WalkObserver>(
-    t: &TriangleSetup,
     y: i64,
     blocks: &[(PixelRect, BlockClass)],
     step_x: [i64; 3],
     at: impl Fn(i64) -> [i64; 3],
-    sink: &mut dyn FragmentSink,
-    work: &mut WorkCounters,
-    observer: &mut O,
+    walk: &mut Walk<O>,
 ) -> Option<Run> {
     let mut run: Option<Run> = None;
     for &(block, class) in blocks {
@@ -314,15 +291,11 @@ fn row_run<O: WalkObserver>(
             BlockClass::Outside if run.is_some() => break,
             BlockClass::Outside => continue,
             BlockClass::Inside => (x0, x1, None),
-            BlockClass::Partial => {
-                let (part, tested) = run_in_row(t, at(x0), step_x, x0, x1, y, observer);
-                report_tested(sink, t, y, x0, tested, work);
-                match part {
-                    Some(p) => (p.first, p.last, Some(p.edges)),
-                    None if run.is_some() => break,
-                    None => continue,
-                }
-            }
+            BlockClass::Partial => match run_in_row(at(x0), step_x, x0, x1, y, walk) {
+                Some(p) => (p.first, p.last, Some(p.edges)),
+                None if run.is_some() => break,
+                None => continue,
+            },
         };
         match &mut run {
             Some(r) => {
@@ -349,24 +322,19 @@ mod tests {
     use super::*;
     use crate::raster::edge::FillRule;
     use crate::raster::fixed::FixedPoint;
-    use crate::raster::fragment::TriangleFragment;
+    use crate::raster::fragment::{FragmentList, WorkCounters};
+    use crate::raster::triangle::WalkStep;
     use proptest::prelude::*;
 
-    /// Keeps every fragment and every tested run, in order.
-    #[derive(Default, Debug, PartialEq)]
-    struct Recorder {
-        fragments: Vec<TriangleFragment>,
-        tested: Vec<(u32, u32, u32, u32)>,
-    }
-
-    impl FragmentSink for Recorder {
-        fn triangle_fragment(&mut self, f: &TriangleFragment) {
-            self.fragments.push(*f);
-        }
-        fn line_fragment(&mut self, _: &crate::raster::fragment::LineFragment) {}
-        fn samples_tested(&mut self, triangle: u32, y: u32, x0: u32, x1: u32) {
-            self.tested.push((triangle, y, x0, x1));
-        }
+    /// What a walk of box `r` by `walk_box` emits, counts and records.
+    fn walked(
+        t: &TriangleSetup,
+        r: PixelRect,
+        walk_box: fn(&TriangleSetup, PixelRect, &mut Walk<Vec<WalkStep>>),
+    ) -> (FragmentList, WorkCounters, Vec<WalkStep>) {
+        let (mut list, mut work, mut steps) = Default::default();
+        walk_box(t, r, &mut Walk::new(t, &mut list, &mut work, &mut steps));
+        (list, work, steps)
     }
 
     proptest! {
@@ -374,8 +342,8 @@ mod tests {
 
         /// A box of at most 2x2 pixels tested sample by sample gives what
         /// the per-pixel loop gives: the same fragments with the same edge
-        /// values, the same tested runs, the same counts and the same
-        /// recorded steps, under every rule.
+        /// values, the same counts and the same recorded steps (the
+        /// samples tested among them), under every rule.
         #[test]
         fn tiny_boxes_give_what_the_pixel_loop_gives(
             origin in (1i64..5, 1i64..5),
@@ -387,13 +355,9 @@ mod tests {
             let Some(t) = TriangleSetup::new(7, v, rule) else { return Ok(()) };
             let r = t.bounds_within(PixelRect::of_target(16, 16));
             prop_assume!(!r.is_empty() && r.x1 - r.x0 <= 1 && r.y1 - r.y0 <= 1);
-            let (mut tiny, mut tiny_work) = (Recorder::default(), WorkCounters::default());
-            let mut tiny_steps = Vec::new();
-            tiny_box(&t, r, &mut tiny, &mut tiny_work, &mut tiny_steps);
-            let (mut looped, mut looped_work) = (Recorder::default(), WorkCounters::default());
-            let mut looped_steps = Vec::new();
-            step_over(&t, r, &mut looped, &mut looped_work, &mut looped_steps);
-            prop_assert_eq!(tiny, looped);
+            let (tiny, tiny_work, tiny_steps) = walked(&t, r, tiny_box);
+            let (looped, looped_work, looped_steps) = walked(&t, r, step_over);
+            prop_assert_eq!(tiny.triangles, looped.triangles);
             prop_assert_eq!(tiny_work, looped_work);
             prop_assert_eq!(tiny_steps, looped_steps);
         }
