@@ -95,6 +95,6 @@ pub use shader::{
     from_rgba8, to_rgba8, ColorLanes, Constant, Diffuse, DirectionalLight, Filter, Flat,
     FragmentInput, FragmentLanes, FragmentShader, Gouraud, NormalColors, Texture, Textured, LANES,
 };
-pub use stage::{FragmentStage, Interpolation};
+pub use stage::{Blend, FragmentStage, Interpolation};
 pub use supersample::{supersample, SampleCount, MAX_SUPERSAMPLING};
 pub use target::{Clear, DepthState, DepthTest, RenderTarget, TargetRows, MAX_TARGET_SIDE};

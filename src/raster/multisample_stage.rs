@@ -58,7 +58,7 @@ use crate::raster::fragment::{FragmentList, TriangleFragment, WorkCounters};
 use crate::raster::multisample::{moved, SamplePattern, SIXTEENTH};
 use crate::raster::primitive::TriangleData;
 use crate::raster::shader::FragmentShader;
-use crate::raster::stage::{shade_triangle_fragment, Interpolation};
+use crate::raster::stage::{merge_pixel, shade_triangle_fragment, Blend, Interpolation, Source};
 use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 
@@ -337,9 +337,14 @@ fn shade_pixel<S: FragmentShader + ?Sized>(
     while left != 0 {
         let i = left.trailing_zeros() as usize;
         left &= left - 1;
-        target.color[base + i] = color;
-        if depth.write {
-            target.depth[base + i] = depths[i];
-        }
+        let slot = depth
+            .write
+            .then(|| (&mut target.depth[base + i], depths[i]));
+        merge_pixel(
+            Blend::Replace,
+            Source::Rgba8(color),
+            &mut target.color[base + i],
+            slot,
+        );
     }
 }

@@ -14,8 +14,8 @@
 //! 3. the perspective-correct weights (`beta / w` divided by their sum),
 //!    and the varyings they weigh, one array per component;
 //! 4. the shader's [`shade_lanes`](FragmentShader::shade_lanes);
-//! 5. the colour clamped and rounded to bytes, and stored with the depth
-//!    where the test passed.
+//! 5. the colour clamped and rounded to bytes, and merged with the depth
+//!    where the test passed (the stage's one [`merge`](super::merge)).
 //!
 //! Every step is the scalar stage's equation, in its order, on each lane:
 //! the loop is plain Rust over arrays of eight, compiled for the baseline
@@ -32,16 +32,56 @@
 // that shape.
 #![allow(clippy::needless_range_loop)]
 
-use super::{Interpolation, SpanRows};
+use super::span_fill::{span_rows, SpanRows};
+use super::{merge, Blend, FragmentStage, Interpolation, Passed, Source};
 use crate::raster::fragment::TriangleSpan;
-use crate::raster::primitive::{DepthPlane, ShadedVertex};
+use crate::raster::primitive::{DepthPlane, ShadedTriangle, ShadedVertex};
 use crate::raster::shader::{ColorLanes, FragmentLanes, FragmentShader, LANES};
 use crate::raster::target::{DepthState, DepthTest};
 use crate::raster::vector;
 use crate::raster::vector::weights::{DROPPED_BITS, MARGIN, MIDPOINT};
 
+/// The shortest span whose fragments this loop shades eight at a time;
+/// shorter spans go fragment by fragment, which gives the same bits and
+/// measured faster for them (docs/performance-log.md, "spans of four and
+/// five pixels shaded one fragment at a time").
+const SHADED_SPAN_MIN: u32 = 6;
+
+impl<S: FragmentShader + ?Sized> FragmentStage<'_, S> {
+    /// A span of triangle `t` whose colour changes from pixel to pixel:
+    /// eight pixels at a time when it is long enough and its edge values
+    /// are exact in `f64` ([`exact_area`]), fragment by fragment
+    /// otherwise.
+    #[inline(always)]
+    pub(super) fn shade_span(&mut self, t: &ShadedTriangle, span: &TriangleSpan) {
+        // The vertices found once for the span.
+        let Some(vertices) = self.vertex_refs(t) else {
+            return;
+        };
+        self.prefetch_next_row(span);
+        let long = span.x1 - span.x0 >= SHADED_SPAN_MIN - 1;
+        let Some(area) = long.then(|| exact_area(span)).flatten() else {
+            for f in span.fragments() {
+                self.triangle_sample(t, vertices, &f);
+            }
+            return;
+        };
+        vector::run(ShadedSpan {
+            rows: span_rows(&mut self.target, span, true),
+            span,
+            plane: t.depth,
+            vertices,
+            shader: self.shader,
+            state: self.depth,
+            blend: self.blend,
+            interpolation: self.interpolation,
+            area,
+        });
+    }
+}
+
 /// The buffers under one span, and what shades it.
-pub(crate) struct ShadedSpan<'s, S: FragmentShader + ?Sized> {
+struct ShadedSpan<'s, S: FragmentShader + ?Sized> {
     /// Colour, depth and coverage of the span's pixels.
     pub rows: SpanRows<'s>,
     pub span: &'s TriangleSpan,
@@ -49,6 +89,7 @@ pub(crate) struct ShadedSpan<'s, S: FragmentShader + ?Sized> {
     pub vertices: [&'s ShadedVertex; 3],
     pub shader: &'s S,
     pub state: DepthState,
+    pub blend: Blend,
     pub interpolation: Interpolation,
     /// The triangle's doubled area, `E_0 + E_1 + E_2`, the same at every
     /// pixel.
@@ -91,7 +132,7 @@ const EXACT_EDGE: u64 = 1 << 52;
 /// value the groups reach, up to [`LANES`] pixels past the span's end, is
 /// at most [`EXACT_EDGE`]. `None` otherwise: the span then goes fragment
 /// by fragment.
-pub(crate) fn exact_area(span: &TriangleSpan) -> Option<f64> {
+fn exact_area(span: &TriangleSpan) -> Option<f64> {
     if span.step.iter().sum::<i64>() != 0 {
         return None;
     }
@@ -165,25 +206,19 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
             if active.iter().any(|&a| a) {
                 let lanes = self.lanes(start, z, active, self.vertices, inv_area);
                 let colour = to_pixels(self.shader.shade_lanes(&lanes));
-                let write = self.state.write;
-                if n == LANES && active.iter().all(|&a| a) {
-                    // The whole group passed: plain stores.
-                    let colours = &mut self.rows.color[start..start + LANES];
-                    for (c, &colour) in colours.iter_mut().zip(&colour) {
-                        *c = colour.to_le_bytes();
-                    }
-                    if write {
-                        self.rows.depth[start..start + LANES].copy_from_slice(&z);
-                    }
+                let source = |k: usize| Source::Rgba8(colour[k].to_le_bytes());
+                let pass = active.map(|a| u32::from(a).wrapping_neg());
+                let passed = if n == LANES && active.iter().all(|&a| a) {
+                    Passed::All
                 } else {
-                    for k in 0..n {
-                        if active[k] {
-                            self.rows.color[start + k] = colour[k].to_le_bytes();
-                            if write {
-                                self.rows.depth[start + k] = z[k];
-                            }
-                        }
-                    }
+                    Passed::Where(&pass[..n])
+                };
+                let colours = &mut self.rows.color[start..start + n];
+                let depths = &mut self.rows.depth[start..start + n];
+                if self.state.write {
+                    merge::<true>(self.blend, source, passed, &z[..n], colours, depths);
+                } else {
+                    merge::<false>(self.blend, source, passed, &[], colours, depths);
                 }
             }
             start += LANES;
@@ -369,7 +404,7 @@ mod tests {
     use crate::raster::fragment::FragmentSink;
     use crate::raster::primitive::{ShadedTriangle, TriangleData, Varyings};
     use crate::raster::shader::{Diffuse, DirectionalLight, Gouraud, NormalColors};
-    use crate::raster::stage::{FragmentStage, SHADED_SPAN_MIN};
+    use crate::raster::stage::FragmentStage;
     use crate::raster::target::RenderTarget;
     use glam::{Vec2, Vec3, Vec4};
 
