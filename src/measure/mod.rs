@@ -42,6 +42,7 @@ pub(crate) mod antialias;
 pub(crate) mod benchmark;
 pub(crate) mod context;
 mod cpu;
+mod fast_lines;
 pub(crate) mod data;
 pub(crate) mod render_request;
 pub(crate) mod rounds;

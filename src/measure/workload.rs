@@ -21,7 +21,7 @@ use crate::raster::edge::FillRule;
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::FixedPoint;
 use crate::raster::fragment::WorkCounters;
-use crate::raster::line::fast::draw_lines;
+use crate::measure::fast_lines::draw_lines;
 use crate::raster::line::LineSetup;
 use crate::raster::line::{LineOptions, LineRasterizer};
 use crate::raster::primitive::{ShadedLine, ShadedVertex};

@@ -27,7 +27,6 @@ pub mod bresenham;
 pub mod dda;
 pub mod diamond;
 pub mod direct;
-pub mod fast;
 pub mod wu;
 
 use crate::error::Result;
