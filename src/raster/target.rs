@@ -538,10 +538,8 @@ impl<'a> TargetRows<'a> {
     /// Each buffer's row is copied from a cleared row, not filled value by
     /// value: a copy this long goes to the C library's `memcpy`, which with
     /// glibc on x86-64 is `rep movsb`, whose whole-line writes do not read
-    /// the lines from memory first, where a loop of vector stores does.
-    /// The bundled dragon's frame (`render … --backend scanline --frames 300`, eight
-    /// pairs alternated on one core): raster 4.87 to 5.37 ms filled, 4.67
-    /// to 4.92 copied.
+    /// the lines from memory first, where a loop of vector stores does
+    /// (measured on the bundled dragon's frame: docs/performance-log.md).
     #[cold]
     fn clear_row(&mut self, row: usize) {
         if !std::mem::replace(&mut self.pending.unloaded[row], false) {
@@ -602,9 +600,9 @@ impl TargetRows<'_> {
 
 /// Sets every element of `buffer` to `value`, in chunks of 256 KiB shared
 /// between rayon's threads: one core alone does not reach the memory's
-/// write bandwidth (a 1080p colour and depth clear took 1.1 ms on one core).
-/// A 1080p depth clear on one core, 300 times in a row: 0.30-0.33 ms
-/// filled value by value, 0.285-0.29 ms copied.
+/// write bandwidth. Each chunk is copied from a filled head rather than
+/// filled value by value, which measured a little faster
+/// (docs/performance-log.md).
 fn fill_in_parallel<T: Copy + Send + Sync>(buffer: &mut [T], value: T) {
     let size = std::mem::size_of::<T>().max(1);
     let (chunk, head) = ((256 * 1024 / size).max(1), (8 * 1024 / size).max(1));

@@ -153,9 +153,8 @@ const HUGE_PAGE: usize = 2 << 20;
 /// them at once (`MADV_COLLAPSE`, Linux 6.1 and later; an older kernel
 /// refuses it and the pages stay as they were).
 ///
-/// A renderer of the full dragon drawn frame after frame on one thread
-/// with the system allocator (`tiled`, 1920x1080, Gouraud): 38.2 to 40.5
-/// ms a frame without the hint, 33.7 to 34.3 with it; with mimalloc, 31.4.
+/// With the system allocator, the hint makes a frame of the full dragon
+/// markedly faster (docs/performance-log.md).
 pub(crate) fn advise_huge_pages<T>(buffer: &Vec<T>) {
     let start = buffer.as_ptr() as usize;
     let end = start + buffer.capacity() * std::mem::size_of::<T>();
