@@ -252,9 +252,8 @@ fn uses_only_its_legend(what: &str, svg: &str, entries: &[Entry]) {
 
 /// A grid picture as `explain --picture` writes it, by the program.
 fn explain_svg(args: &[&str]) -> String {
-    let dir = std::env::temp_dir().join(format!("rasterlab-legends-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{}.svg", args.join("_").replace(' ', "")));
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(format!("{}.svg", args.join("_").replace(' ', "")));
     let status = std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
         .arg("explain")
         .args(args)
@@ -265,9 +264,7 @@ fn explain_svg(args: &[&str]) -> String {
         .status()
         .unwrap();
     assert!(status.success(), "{args:?}");
-    let svg = std::fs::read_to_string(&path).unwrap();
-    std::fs::remove_file(&path).unwrap();
-    svg
+    std::fs::read_to_string(&path).unwrap()
 }
 
 /// Sixteen triangles around the grid's centre, as a fan.
@@ -445,8 +442,8 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
 
     // compare's report: every legend of the page, as the program writes
     // it for the bundled polygon, and for two triangles.
-    let out =
-        std::env::temp_dir().join(format!("rasterlab-legends-compare-{}", std::process::id()));
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("report");
     let status = std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
         .args([
             "compare",
@@ -459,7 +456,6 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
         .unwrap();
     assert!(status.success());
     let polygon = std::fs::read_to_string(out.join("index.html")).unwrap();
-    std::fs::remove_dir_all(&out).unwrap();
     let two = Report::compare(&CompareInput::Triangles(Scene2D::split_square()), 16, 16, 1)
         .unwrap()
         .to_html();
