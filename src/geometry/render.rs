@@ -411,10 +411,9 @@ impl MeshRenderer {
     ///
     /// On one thread a mesh of more than 4,096 triangles is assembled
     /// and drawn a batch at a time, so that each batch's set-ups are read
-    /// back from the cache, not from memory (the full dragon, `scanline`,
-    /// one core: 38.5 to 39.4 ms a frame whole, 36.0 to 37.1 in batches;
-    /// zoomed 2.5x, 64.6 to 66.3 against 60.4 to 61.8). The image is the
-    /// same bits either way.
+    /// back from the cache, not from memory (docs/performance-log.md,
+    /// "2026-12-07, `3d51a17`: a one-thread frame batch by batch"). The
+    /// image is the same bits either way.
     pub fn render_into(
         &self,
         backend: &dyn TriangleRasterizer,
