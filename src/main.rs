@@ -4,9 +4,9 @@ mod cli;
 
 /// mimalloc asks Linux for 2 MB pages for all the memory it hands out
 /// (the library asks only for its frame buffers'), which spares a frame's
-/// scattered reads and writes most TLB misses: the full dragon drawn frame
-/// after frame (`tiled`, one thread, 1920x1080) took 31.4 ms a frame with
-/// mimalloc, 33.7 to 34.3 ms with the system allocator.
+/// scattered reads and writes most TLB misses, so the full dragon drawn
+/// frame after frame is faster with it than with the system allocator
+/// (docs/performance-log.md, "2026-12-07, `7bdb999` to `cfd7d1e`").
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 

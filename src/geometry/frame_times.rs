@@ -11,7 +11,8 @@
 //!
 //! Over several frames, [`FrameTimes::median`] is the frame of the median
 //! total, with its own parts: medians taken part by part would not add
-//! up to the median total.
+//! up to the median total. Shown, a frame is its total and then each
+//! part, in milliseconds to two decimals.
 //!
 //! ```
 //! use rasterlab::geometry::FrameTimes;
@@ -21,10 +22,7 @@
 //! let frame = FrameTimes::new(ms(10), None, ms(4), ms(5));
 //! assert_eq!(frame.rest, ms(1));
 //! assert_eq!(frame.clear + frame.geometry + frame.raster + frame.rest, frame.total());
-//! assert_eq!(
-//!     frame.to_string(),
-//!     "10.00 ms = clear (folded into raster) + geometry 4.00 ms + raster 5.00 ms + rest 1.00 ms"
-//! );
+//! assert!(frame.to_string().contains("clear (folded into raster)"));
 //! let frames = [frame, FrameTimes::new(ms(30), Some(ms(3)), ms(20), ms(6)), FrameTimes::new(ms(12), None, ms(3), ms(8))];
 //! assert_eq!(FrameTimes::median(&frames), Some(frames[2]));
 //! ```
@@ -133,7 +131,7 @@ mod tests {
 
     /// The parts add up to the frame, whatever the frame, and the median
     /// frame keeps its own parts (medians part by part would not add up:
-    /// here they would give 2 + 2 = 4 ms against a median total of 6).
+    /// here they would give 2 + 2 against a median total of 6).
     #[test]
     fn the_parts_add_up_to_the_frame_and_the_median_frame() {
         let us = Duration::from_micros;
@@ -159,5 +157,20 @@ mod tests {
         assert_eq!(median.total(), ms(6));
         assert_eq!(median.geometry + median.raster + median.rest, ms(6));
         assert_eq!(FrameTimes::median(&[]), None);
+    }
+
+    /// Shown, the total comes first, then each part, a folded clear named
+    /// as such.
+    #[test]
+    fn a_frame_is_shown_total_first_in_milliseconds() {
+        let ms = Duration::from_millis;
+        assert_eq!(
+            FrameTimes::new(ms(10), None, ms(4), ms(5)).to_string(),
+            "10.00 ms = clear (folded into raster) + geometry 4.00 ms + raster 5.00 ms + rest 1.00 ms"
+        );
+        assert_eq!(
+            FrameTimes::new(ms(10), Some(ms(1)), ms(4), ms(5)).to_string(),
+            "10.00 ms = clear 1.00 ms + geometry 4.00 ms + raster 5.00 ms + rest 0.00 ms"
+        );
     }
 }

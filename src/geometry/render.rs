@@ -16,6 +16,10 @@
 //! assert!(a.stats.work.fragments > 0);
 //! ```
 
+mod settings;
+
+pub use settings::{RenderSettings, Shading, MAX_ZOOM};
+
 use crate::error::{Error, Result};
 use crate::geometry::frame_times::FrameTimes;
 use crate::geometry::mesh::Mesh;
@@ -28,10 +32,9 @@ use crate::raster::fragment::WorkCounters;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::multisample_stage::{draw_multisampled, MultisampleTarget};
 use crate::raster::primitive::ShadedLine;
-use crate::raster::shader::DirectionalLight;
 use crate::raster::shader::FragmentShader;
-use crate::raster::shader::{Diffuse, Filter, Flat, Gouraud, NormalColors, Texture, Textured};
-use crate::raster::stage::{FragmentStage, Interpolation};
+use crate::raster::shader::{Diffuse, Flat, Gouraud, NormalColors, Texture, Textured};
+use crate::raster::stage::FragmentStage;
 use crate::raster::target::{Clear, DepthState, DepthTest, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use glam::{Mat4, Vec4};
@@ -44,86 +47,6 @@ use std::time::{Duration, Instant};
 /// 200 bytes) stay well inside a core's second-level cache. 1,024 and
 /// 16,384 drew the full dragon as fast, within the noise.
 const BATCH: usize = 4096;
-
-/// How a mesh is coloured.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum Shading {
-    /// Lit per vertex, one colour per triangle (its first vertex's).
-    Flat,
-    /// Lit per vertex, colours interpolated (Gouraud).
-    Gouraud,
-    /// Lit per fragment with the interpolated normal (diffuse, the software-rasterizer article).
-    #[default]
-    Diffuse,
-    /// The interpolated normal as a colour.
-    Normals,
-    /// A checkerboard texture at the mesh's (or generated) UVs, lit per fragment.
-    Texture,
-}
-
-crate::names::named_enum!(
-    Shading,
-    "shading",
-    Flat = "flat",
-    Gouraud = "gouraud",
-    Diffuse = "diffuse",
-    Normals = "normals",
-    Texture = "texture"
-);
-
-/// Everything about a rendering except the back-end.
-#[derive(Copy, Clone, Debug, PartialEq)]
-pub struct RenderSettings {
-    /// Target width in pixels.
-    pub width: u32,
-    /// Target height in pixels.
-    pub height: u32,
-    /// Camera direction around the vertical axis, degrees (0 = from +Z).
-    pub azimuth: f32,
-    /// Camera elevation above the horizon, degrees.
-    pub elevation: f32,
-    /// Zoom factor (1 frames the whole mesh).
-    pub zoom: f32,
-    /// Colouring.
-    pub shading: Shading,
-    /// Texture filter for [`Shading::Texture`].
-    pub filter: Filter,
-    /// Perspective-correct or linear varyings.
-    pub interpolation: Interpolation,
-    /// Fill rule and culling.
-    pub pipeline: PipelineOptions,
-    /// Depth test and write.
-    pub depth: DepthState,
-    /// Surface colour where the mesh has none.
-    pub color: Vec4,
-    /// The light.
-    pub light: DirectionalLight,
-    /// Line back-end drawing the triangle edges over the surface, if any.
-    pub wireframe: Option<&'static dyn LineRasterizer>,
-    /// Background colour.
-    pub background: [u8; 4],
-}
-
-impl Default for RenderSettings {
-    fn default() -> Self {
-        RenderSettings {
-            width: 640,
-            height: 480,
-            azimuth: 0.0,
-            elevation: 15.0,
-            zoom: 1.0,
-            shading: Shading::Diffuse,
-            filter: Filter::Bilinear,
-            interpolation: Interpolation::PerspectiveCorrect,
-            pipeline: PipelineOptions::default(),
-            depth: DepthState::DEFAULT,
-            color: Vec4::new(0.85, 0.78, 0.62, 1.0),
-            light: DirectionalLight::default(),
-            wireframe: None,
-            background: [24, 26, 32, 255],
-        }
-    }
-}
 
 /// What drawing one frame did and cost.
 #[derive(Copy, Clone, Debug)]
@@ -206,10 +129,6 @@ pub struct MeshRenderer {
     multisampled: Mutex<Geometry>,
 }
 
-/// The largest zoom a camera accepts: beyond it the view is a fraction of
-/// a pixel of the mesh and the projection loses every digit.
-pub const MAX_ZOOM: f32 = 1e6;
-
 impl MeshRenderer {
     /// Frames `mesh` with a camera and prepares its vertices and shaders.
     ///
@@ -217,24 +136,7 @@ impl MeshRenderer {
     /// that is not in `(0, MAX_ZOOM]`, a vertex index out of range (the
     /// frames do not check the indices again).
     pub fn new(mesh: &Mesh, settings: RenderSettings) -> Result<MeshRenderer> {
-        RenderTarget::check_size(settings.width, settings.height)?;
-        for (name, value) in [
-            ("azimuth", settings.azimuth),
-            ("elevation", settings.elevation),
-        ] {
-            if !value.is_finite() {
-                return Err(Error::InvalidArgument(format!(
-                    "{name} must be a finite angle in degrees, not {value}"
-                )));
-            }
-        }
-        // NaN fails this test too.
-        if !(settings.zoom > 0.0 && settings.zoom <= MAX_ZOOM) {
-            return Err(Error::InvalidArgument(format!(
-                "zoom must be > 0 and at most {MAX_ZOOM}, not {}",
-                settings.zoom
-            )));
-        }
+        settings.check()?;
         // Checked once here, not in every frame's geometry stages.
         Error::check_indices(mesh.triangles.iter().flatten(), mesh.positions.len())?;
         let aspect = settings.width as f32 / settings.height as f32;
@@ -411,10 +313,9 @@ impl MeshRenderer {
     ///
     /// On one thread a mesh of more than 4,096 triangles is assembled
     /// and drawn a batch at a time, so that each batch's set-ups are read
-    /// back from the cache, not from memory (the full dragon, `scanline`,
-    /// one core: 38.5 to 39.4 ms a frame whole, 36.0 to 37.1 in batches;
-    /// zoomed 2.5x, 64.6 to 66.3 against 60.4 to 61.8). The image is the
-    /// same bits either way.
+    /// back from the cache, not from memory (docs/performance-log.md,
+    /// "2026-12-07, `3d51a17`: a one-thread frame batch by batch"). The
+    /// image is the same bits either way.
     pub fn render_into(
         &self,
         backend: &dyn TriangleRasterizer,

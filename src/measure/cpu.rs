@@ -3,8 +3,8 @@
 //! core, beside a measurement's wall time.
 //!
 //! A figure measured on a shared machine says little on its own: two
-//! threads that took 26 ms of wall time each for 26 ms of CPU had their
-//! cores; the same 26 ms with 13 ms of CPU each and 26 ms of waiting did
+//! threads on a CPU for all of their wall time had their cores; the same
+//! wall time with half of it on a CPU and the other half waiting did
 //! not. On Linux the kernel keeps both times per thread
 //! (`/proc/self/task/*/schedstat`: time on a CPU, time waiting on a run
 //! queue, in nanoseconds); elsewhere [`ThreadTimes::now`] is `None` and the
@@ -159,8 +159,9 @@ mod tests {
         done.send(()).unwrap();
         worker.join().unwrap();
         let used = before.until(&after, 2);
-        // Two threads spun for 60 and 30 ms: 45 ms per "run" on a CPU or
-        // waiting for one (other tests of this process add their own).
+        // Two threads spun, one twice as long as the other: on a CPU or
+        // waiting for one, their mean per "run" is above the bound (other
+        // tests of this process add their own).
         assert!(used.total_ms() + used.waiting_ms >= 40.0, "{used:?}");
         assert!(used.per_thread_ms.len() >= 2, "{used:?}");
         assert!(used.summary().starts_with("cpu "));

@@ -266,8 +266,8 @@ impl RenderRequest {
         // does; coverage is not counted (nothing here reads it). The
         // per-frame buffers are readied (and timed) before the frames, so
         // that each frame is a warm one; a single frame readies them
-        // itself, which spares a whole geometry pass (full dragon, one
-        // thread: 31 ms readied + 37 ms frame, or one 45 ms frame).
+        // itself, which spares a whole geometry pass (docs/performance-log.md,
+        // "2026-12-06, `f354b8e` to `b4efcdc`").
         let mut times = Vec::with_capacity(self.frames as usize);
         let mut last = None;
         let prepare_time = match self.msaa {

@@ -3,11 +3,12 @@
 //! table read off those rounds.
 //!
 //! On a shared machine, timing one program for a while and then another
-//! moves their ratio by as much as the load moves in between (30-40% was
-//! seen here). In each round every contender runs once, the order turning
-//! by one each round; a contender's figure is the median of its rounds,
-//! and a ratio is the median of the per-round ratios (each taken within
-//! one round), with their minimum and maximum beside it.
+//! moves their ratio by as much as the load moves in between
+//! (docs/benchmarks.md says by how much). In each round every contender
+//! runs once, the order turning by one each round; a contender's figure
+//! is the median of its rounds, and a ratio is the median of the
+//! per-round ratios (each taken within one round), with their minimum and
+//! maximum beside it.
 //!
 //! Interleaved, each run finds the caches as the other contenders left
 //! them: **cold**. An application redraws its own frame after frame, its

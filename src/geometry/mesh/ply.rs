@@ -19,14 +19,13 @@
 //!
 //! **Why not `ply-rs-bw` alone.** Its general reader makes a `String`, a
 //! token vector and a dynamically typed property in a map per value, per
-//! line; the mesh then has to copy them out. `cargo bench --bench
-//! ply_load` reads the same bytes both ways into the same arrays: on the
-//! full dragon (871,414 triangles, inflated in memory first) `ply-rs-bw`
-//! alone took 1,183 ms and this reader 77 ms on one thread (medians of 5
-//! interleaved rounds, 15x); 13.9 ms against 0.9 ms on the bundled small
-//! dragon, 3.6 ms against 0.3 ms on the bunny. So the crate keeps what it
-//! does well, the header and binary payloads, and the ASCII payload is
-//! read here.
+//! line; the mesh then has to copy them out, which makes it many times
+//! slower than this reader on the same bytes (`cargo bench --bench
+//! ply_load` times both; docs/benchmarks.md and the log's entry
+//! "2026-12-02, `0751882`: loading, the first frame, and `render` on the
+//! fast path" in docs/performance-log.md give the figures). So the crate
+//! keeps what it does well, the header and binary payloads, and the ASCII
+//! payload is read here.
 //!
 //! A malformed file is an [`Error::Parse`] with the file and, for ASCII
 //! files, the 1-based line: bad headers, short payloads, values that are not

@@ -19,13 +19,16 @@
 //! Two kinds of line make up nearly all of a scanned mesh: a face whose one
 //! property is its list of integer indices, and a vertex whose properties
 //! are all floats. They have a plain reading each, without the general
-//! reader's dispatch per value ([`PlainFace`], [`read_plain_vertex`]);
-//! a line the plain reading does not take whole (a sign, a value out of
-//! range, anything wrong) goes to the general reader, which reads it the
-//! same way or names what is wrong with it.
+//! reader's dispatch per value ([`plain`]); a line the plain reading does
+//! not take whole (a sign, a value out of range, anything wrong) goes to
+//! the general reader, which reads it the same way or names what is wrong
+//! with it.
+
+mod plain;
 
 use super::ply_blocks::{self, Outcome, ParseLines, Parsing};
 use super::ply_payload::{Payload, VertexColumn};
+use plain::{read_plain_vertex, PlainFace};
 use ply_rs_bw::ply::{ElementDef, PropertyType, ScalarType};
 use std::io::BufRead;
 
@@ -526,145 +529,6 @@ fn read_error(
         first_line + read,
         format!("reading `{}` {read}: {e}", def.name),
     )
-}
-
-/// The common line of a face element whose one property is its list of
-/// vertex indices, both its length and its indices of integer types:
-/// plain decimal digits, no sign, separated by spaces or tabs, each in
-/// its type's range (and the indices in `u32`'s), and nothing else on the
-/// line. Most of a large mesh's lines are such faces, and this reads them
-/// without the general reader's dispatch per value; any other line (a
-/// sign, a value out of range, anything wrong) is left to the general
-/// reader, which reads it the same way or says what is wrong with it.
-#[derive(Copy, Clone, Debug)]
-struct PlainFace {
-    /// The largest length the length's type holds.
-    most_vertices: u64,
-    /// The largest index both the index type and `u32` hold.
-    largest_index: u64,
-}
-
-impl PlainFace {
-    /// The plain reading of a list of `index` values whose length is a
-    /// `count`; `None` unless both are integer types.
-    fn new(count: &ScalarType, index: &ScalarType) -> Option<PlainFace> {
-        let (_, most_vertices) = integer_range(count)?;
-        let (_, largest_index) = integer_range(index)?;
-        Some(PlainFace {
-            most_vertices: most_vertices as u64,
-            largest_index: (largest_index as u64).min(u64::from(u32::MAX)),
-        })
-    }
-
-    /// Reads the face at the start of `bytes` into `payload` and returns
-    /// the bytes read, its line break included; `None`, with the payload
-    /// as it was, if the line is not plain (or, unless `complete`, not
-    /// whole in `bytes`).
-    #[inline(always)]
-    fn read(&self, bytes: &[u8], complete: bool, payload: &mut Payload) -> Option<usize> {
-        let mut at = 0;
-        let count = plain_integer(bytes, &mut at, self.most_vertices)?;
-        if count == 3 {
-            let mut triangle = [0; 3];
-            for index in &mut triangle {
-                *index = plain_integer(bytes, &mut at, self.largest_index)? as u32;
-            }
-            let end = line_end(bytes, at, complete)?;
-            payload.push_triangle(triangle);
-            return Some(end);
-        }
-        payload.pending.clear();
-        for _ in 0..count {
-            let Some(index) = plain_integer(bytes, &mut at, self.largest_index) else {
-                payload.pending.clear();
-                return None;
-            };
-            payload.pending.push(index as u32);
-        }
-        let Some(end) = line_end(bytes, at, complete) else {
-            payload.pending.clear();
-            return None;
-        };
-        payload.push_pending_face();
-        Some(end)
-    }
-}
-
-/// Reads the vertex at the start of `bytes`, all its properties `float`,
-/// into `vertex` (`columns` says where each goes) and returns the bytes
-/// read, its line break included: the general reader's work without its
-/// dispatch per value. `None` if a value is not a number followed by a
-/// space, a tab or the line's end, if more follows the last (or, unless
-/// `complete`, if the line is not whole in `bytes`): the general reader
-/// then reads the line, or says what is wrong with it.
-#[inline(always)]
-fn read_plain_vertex(
-    columns: &[Option<VertexColumn>],
-    bytes: &[u8],
-    complete: bool,
-    vertex: &mut [f64; VertexColumn::COUNT],
-) -> Option<usize> {
-    let mut at = 0;
-    for &column in columns {
-        while bytes.get(at).copied().is_some_and(is_space) {
-            at += 1;
-        }
-        let (value, n) = fast_float2::parse_partial::<f32, _>(&bytes[at..]).ok()?;
-        at += n;
-        if n == 0 || !value_ends(bytes, at) {
-            return None;
-        }
-        if let Some(column) = column {
-            vertex[column as usize] = f64::from(value);
-        }
-    }
-    line_end(bytes, at, complete)
-}
-
-/// Past the line break at `bytes[at..]`, after spaces or tabs: the end
-/// of a line whose values are all read; `None` if something else is
-/// there, or if the bytes end there and they are not `complete`.
-#[inline(always)]
-fn line_end(bytes: &[u8], mut at: usize, complete: bool) -> Option<usize> {
-    while bytes.get(at).copied().is_some_and(is_space) {
-        at += 1;
-    }
-    match (bytes.get(at), bytes.get(at + 1)) {
-        (Some(b'\n'), _) => Some(at + 1),
-        (Some(b'\r'), Some(b'\n')) => Some(at + 2),
-        (None, _) if complete => Some(at),
-        _ => None,
-    }
-}
-
-/// The value of the plain decimal digits at `bytes[*at..]`, after spaces
-/// or tabs, if there are at most ten, they make at most `most`, and a
-/// space, a tab, a line break or the end of `bytes` follows them; `*at`
-/// moves past them.
-#[inline(always)]
-fn plain_integer(bytes: &[u8], at: &mut usize, most: u64) -> Option<u64> {
-    while bytes.get(*at).copied().is_some_and(is_space) {
-        *at += 1;
-    }
-    let start = *at;
-    let mut value = 0u64;
-    while let Some(&digit) = bytes.get(*at) {
-        if !digit.is_ascii_digit() || *at - start == 10 {
-            break;
-        }
-        value = value * 10 + u64::from(digit - b'0');
-        *at += 1;
-    }
-    (*at > start && value_ends(bytes, *at) && value <= most).then_some(value)
-}
-
-/// Whether a value ending at `bytes[at]` is followed by a space, a tab, a
-/// line break or the end of `bytes`.
-#[inline(always)]
-fn value_ends(bytes: &[u8], at: usize) -> bool {
-    bytes
-        .get(at)
-        .is_none_or(|&b| is_space(b) || b == b'\n' || b == b'\r')
 }
 
 /// Reads the element line by line on this thread.

@@ -20,10 +20,10 @@ const MIN_CHUNK: usize = 4096;
 /// every chunk of triangles in order; the fewer the bands, the fewer
 /// triangles are met by two bands and the more of each walk is a
 /// sequential stream through the set-up data, which is what a dragon
-/// frame is bound by. On the full dragon at 1920x1080 with two threads,
-/// rasterization took 11.2 ms in 16 bands of 72 rows and 10.2 ms in 8
-/// bands of 136 rows (and 24 ms in 16-row bands, when bins were walked
-/// over the whole triangle list).
+/// frame is bound by: on the full dragon with two threads, twice as many
+/// bands, or much shorter ones, rasterized more slowly
+/// (docs/performance-log.md, "2026-12-06, `6745bfd` to `f1ae308`", for
+/// eight bands a thread).
 pub(crate) fn band_rows(height: u32, threads: usize) -> u32 {
     let bands = (threads as u32).saturating_mul(BANDS_PER_THREAD).max(1);
     height.div_ceil(bands).div_ceil(8).max(1) * 8

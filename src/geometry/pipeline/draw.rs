@@ -30,8 +30,9 @@
 //! bands whose colour and depth fit a core's cache (64 rows at 1920
 //! pixels wide), each band walking every triangle: large triangles over
 //! one another are then drawn while the band is in the cache, instead of
-//! each sweeping the whole buffers (four full-screen layers: 8.1 and 7.6
-//! ms a frame triangle by triangle, 5.9 and 5.6 ms band by band).
+//! each sweeping the whole buffers (docs/performance-log.md, "2026-12-02,
+//! `37cc7c9` to `b275a82`", times `fill-4`'s four full-screen layers both
+//! ways).
 //!
 //! The number of threads is rayon's: all cores by default,
 //! `RAYON_NUM_THREADS` or a pool installed by the caller (`--threads N` on
@@ -303,11 +304,10 @@ pub(crate) fn draw_runs_binned<S: FragmentShader + ?Sized>(
     };
     // The bands in order of their triangle counts, most first, each
     // thread taking the next when it is done: the last band drawn is a
-    // small one, so the threads end together. (Taken in row order, as
-    // rayon splits a range, the full dragon's two threads drew 9.3 and
-    // 10.4 ms of bands; in this order its zoomed frame on two threads went
-    // from 47.0 to 43.4 ms.) A band's pixels are its own, so the order
-    // changes no bit.
+    // small one, so the threads end together; taken in row order, as
+    // rayon splits a range, one thread was left drawing alone at the end
+    // (docs/performance-log.md, "2026-12-03, `4dfac5a` to `1669cc6`"). A
+    // band's pixels are its own, so the order changes no bit.
     let triangles_in =
         |b: usize| -> usize { chunks.iter().map(|(_, per_band)| per_band[b].len()).sum() };
     let mut largest_first: Vec<(usize, TargetRows<'_>)> = target

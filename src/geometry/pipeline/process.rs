@@ -175,8 +175,9 @@ fn shade_in_lanes<V, S: VertexShader<V>>(
                 outcode: 0,
             };
             // Element by element: `lanes.rgb.map(..)` would copy all
-            // eight lanes of each component for every vertex (stores
-            // whose loads then stalled; 2.8 ms a dragon frame).
+            // eight lanes of each component for every vertex, stores whose
+            // loads then stalled (docs/performance-log.md, "2026-12-03,
+            // `0acb613` to `4dfac5a`").
             let (rgb, normal) = (&lanes.rgb, &lanes.normal);
             *d = ShadedVertex {
                 depth,
@@ -268,9 +269,9 @@ impl GeometryInParts {
     /// The caller has checked that every index is below `vertices.len()`
     /// ([`MeshRenderer::new`](crate::geometry::render::MeshRenderer::new)
     /// does, once for all its frames): the check is a pass over every
-    /// index, 0.6 to 0.8 ms of a full dragon frame on one thread, and on
-    /// one thread whatever the draw's count. (A bad index would stop the
-    /// draw with a panic, never draw wrong.)
+    /// index, on one thread whatever the draw's count, which a renderer
+    /// need not pay frame after frame. (A bad index would stop the draw
+    /// with a panic, never draw wrong.)
     pub(crate) fn process_into<V: Sync, S: VertexShader<V>>(
         &mut self,
         input: &DrawInput<'_, V, S>,
@@ -450,8 +451,8 @@ fn shade_vertices<V: Sync, S: VertexShader<V>>(
             vector::run(chunk) & REFUSED != 0
         })
         .reduce(|| false, |a, b| a | b);
-    // Only a draw with a refused vertex looks for the first one (a scan of
-    // every vertex costs the dragon 0.5 ms a frame).
+    // Only a draw with a refused vertex looks for the first one: a scan of
+    // every vertex would cost every frame a pass over its vertices.
     if let Some(i) = refused
         .then(|| scratch.screen.iter().position(|s| s.outcode & REFUSED != 0))
         .flatten()
@@ -471,9 +472,9 @@ fn shade_vertices<V: Sync, S: VertexShader<V>>(
 /// were written twice, once by one thread; a buffer too small for `n` is
 /// replaced by a zeroed allocation instead, which the allocator hands out
 /// from fresh pages without writing them, so that the vertex stage's own
-/// writes, on every thread, are the first. Full dragon, one frame, one
-/// thread: sizing the two buffers (35 MB) took 5.8 to 6.2 ms before the
-/// stage's 5.1 to 5.3.
+/// writes, on every thread, are the first: sizing the buffers by filling
+/// them had cost a first frame more than the stage itself
+/// (docs/performance-log.md, "2026-12-06, `f354b8e` to `b4efcdc`").
 fn size_for_overwrite<T: bytemuck::Zeroable + Copy>(buffer: &mut Vec<T>, n: usize) {
     if buffer.capacity() < n {
         *buffer = vector::zeroed_in_huge_pages(n);

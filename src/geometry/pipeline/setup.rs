@@ -232,8 +232,8 @@ pub(super) const MIN_TRIANGLE_CHUNK: usize = 4096;
 
 /// Chunks of triangles per thread. The cost of a triangle varies along a
 /// mesh (culled runs are cheap, kept runs are set up), so a few large
-/// chunks leave one thread waiting: on the full dragon with two threads,
-/// assembly took 14.2 ms in 8 chunks, 10.4 ms in 64 (one thread: 20 ms).
+/// chunks leave one thread waiting while the other assembles its last
+/// one (docs/performance-log.md, "2026-12-06, `f354b8e` to `b4efcdc`").
 pub(super) const TRIANGLE_CHUNKS_PER_THREAD: usize = 32;
 
 /// Chunks of at least this many triangles reserve room for all of them
@@ -243,10 +243,9 @@ pub(super) const TRIANGLE_CHUNKS_PER_THREAD: usize = 32;
 /// they keep; reserved, only the pages written are faulted in. A small
 /// chunk keeps a fraction of its reservation (a fifth of the full
 /// dragon's triangles are rasterized) but faults in a whole 2 MB page for
-/// it. Full dragon, one frame, `--azimuth 30 --shading gouraud`,
-/// 1920x1080, its geometry in four runs: one thread (one chunk) 29 ms
-/// reserved, 39 to 41 ms grown; two threads (64 chunks) 33 to 42 ms
-/// reserved, 23 ms grown.
+/// it: a first frame's geometry was faster reserved on one thread (one
+/// chunk) and faster grown on two (64 chunks; docs/performance-log.md,
+/// "2026-12-06, `f354b8e` to `b4efcdc`").
 const RESERVE_MIN_CHUNK: usize = 1 << 16;
 
 /// The shaded vertices of a draw, shared by the tasks that assemble its
