@@ -1,13 +1,13 @@
 //! A rasterizer started once, answering case after case on its standard
 //! input: the `rasterlab check --persistent` protocol.
 //!
-//! Starting a program costs more than most cases do (a Python interpreter
-//! and its imports take 30 to 500 ms, a case a few milliseconds), so a
-//! check that starts the program once per case spends its time starting
-//! programs. Under this protocol the program is started once, through
-//! `sh -c`, with `{rule}` and `{msaa}` in its command line replaced
-//! (there is no `{input}`, `{width}` or `{height}`: each case says its
-//! own), and then:
+//! Starting a program costs more than most cases do (an interpreter and
+//! the libraries it imports start far more slowly than a case is drawn;
+//! docs/check.md gives the figures), so a check that starts the program
+//! once per case spends its time starting programs. Under this protocol
+//! the program is started once, through `sh -c`, with `{rule}` and
+//! `{msaa}` in its command line replaced (there is no `{input}`,
+//! `{width}` or `{height}`: each case says its own), and then:
 //!
 //! 1. rasterlab writes a case on the program's standard input, exactly as
 //!    the per-case protocol's input file holds it (a first line

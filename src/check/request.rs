@@ -1,5 +1,5 @@
 //! What a check is asked and what it answers: a [`CheckRequest`] in, a
-//! [`CheckReport`] out (the engine between them is `engine.rs`, the
+//! [`CheckReport`] out (the engine between them is `engine/`, the
 //! report's text `text.rs`).
 //!
 //! The request names the subject (an outside program or a built-in
