@@ -225,3 +225,67 @@ fn no_two_modules_use_each_other() {
         cycles.join("\n")
     );
 }
+
+/// Every file of `src/` is named in docs/architecture.md, by its path
+/// within its room's folder in backquotes (`stage/merge.rs` for
+/// `src/raster/stage/merge.rs`, `error.rs` for `src/error.rs`), so that
+/// the map cannot drift from the code; a room's own `mod.rs` is its row.
+#[test]
+fn every_source_file_is_on_the_map() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let map = std::fs::read_to_string(root.join("docs/architecture.md")).unwrap();
+    let src = root.join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut missing = Vec::new();
+    for file in &files {
+        let relative = file.strip_prefix(&src).unwrap();
+        let mut parts: Vec<String> = relative
+            .components()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .collect();
+        if parts.len() > 1 {
+            parts.remove(0); // the room's folder
+        }
+        let within_room = parts.join("/");
+        if within_room == "mod.rs" {
+            continue;
+        }
+        if !map.contains(&format!("`{within_room}`")) {
+            missing.push(relative.display().to_string());
+        }
+    }
+    assert!(files.len() > 100, "only {} files were found", files.len());
+    missing.sort();
+    assert!(
+        missing.is_empty(),
+        "files of src/ docs/architecture.md does not name (as `path/within/room.rs`):\n{}",
+        missing.join("\n")
+    );
+}
+
+/// Every suite of `tests/` is a row of docs/tests.md's table.
+#[test]
+fn every_test_suite_is_described() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let described = std::fs::read_to_string(root.join("docs/tests.md")).unwrap();
+    let mut missing = Vec::new();
+    let mut suites = 0;
+    for entry in std::fs::read_dir(root.join("tests")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "rs") {
+            suites += 1;
+            let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+            if !described.contains(&format!("`{name}`")) {
+                missing.push(name);
+            }
+        }
+    }
+    assert!(suites > 20, "only {suites} suites were found");
+    missing.sort();
+    assert!(
+        missing.is_empty(),
+        "suites docs/tests.md does not describe: {}",
+        missing.join(", ")
+    );
+}
