@@ -79,6 +79,7 @@
 
 #![deny(missing_docs)]
 #![deny(unsafe_code)]
+#![warn(unnameable_types)]
 
 mod names;
 

@@ -65,13 +65,19 @@
 
 mod case;
 pub(crate) mod cause;
+// Some of it only the program calls: unused without the `cli` feature.
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
 mod engine;
 pub(crate) mod generate;
+// Some of it only the program calls: unused without the `cli` feature.
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
 mod grader;
 pub(crate) mod judge;
 mod persistent;
 mod pixel_index;
 mod process;
+// Some of it only the program calls: unused without the `cli` feature.
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
 pub(crate) mod program;
 mod property;
 pub(crate) mod report;
@@ -79,26 +85,27 @@ mod request;
 mod shrink;
 mod text;
 
-pub use case::{Case, Point};
+pub use case::Case;
 pub use cause::{
     catalogue, catalogue_multisampled, Cause, Diagnosis, End, Side, Winding, FAR_OFF_TARGET,
     NEAR_AN_EDGE,
 };
-pub use engine::{
-    run, run_with, run_with_progress, Progress, CONFIRMING_CASES, CONFIRMING_FAILURES,
-};
-pub use generate::{
-    families, family, generate_case, EXACT_FAMILIES, LINE_FAMILIES, MESH_FAMILIES,
-    PIXEL_INDEX_FAMILIES,
-};
-pub use grader::{gradescope, junit, ReportFormat};
-pub use judge::{cover, judge, Cover, FailureKind, Finding, Provenance};
+pub use engine::{run, run_with, Progress, CONFIRMING_CASES};
+pub use generate::{families, family, generate_case};
+pub use grader::{gradescope, junit};
+pub use judge::{judge, FailureKind, Finding, Provenance};
 pub use process::parse_fragments;
-pub use program::{remove_live_input_folders, shell_words, Program};
+pub use program::{shell_words, Program};
 pub use property::{LineConvention, Property};
 pub use request::{
-    timeout_from_seconds, BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice,
-    Counterexample, FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
+    BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice, Counterexample,
+    FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
+};
+// What only the `rasterlab` program uses; absent without the `cli` feature.
+#[cfg(feature = "cli")]
+pub use self::{
+    engine::run_with_progress, grader::ReportFormat, program::remove_live_input_folders,
+    request::timeout_from_seconds,
 };
 
 use crate::geometry::scene::setup_triangles;

@@ -36,6 +36,8 @@
 
 mod frame_times;
 pub(crate) mod input;
+// Some of it only the program calls: unused without the `cli` feature.
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
 pub(crate) mod listing;
 pub(crate) mod mesh;
 pub(crate) mod pipeline;
@@ -46,16 +48,17 @@ pub(crate) mod scene;
 pub use frame_times::FrameTimes;
 pub(crate) use frame_times::{milliseconds, optional_milliseconds};
 pub use input::{parse_shapes, read_shapes, Shapes};
-pub use listing::{list_fragments, list_fragments_in_file, FragmentListing, FragmentsRequest};
-pub use mesh::{load_obj, load_ply, parse_obj, read_ply, triangulate_face, Mesh, MAX_COORDINATE};
+pub use listing::{list_fragments, FragmentListing, FragmentsRequest};
+pub use mesh::{load_obj, load_ply, parse_obj, read_ply, triangulate_face, Mesh};
 pub use pipeline::{
-    assemble, draw, draw_binned, draw_clearing, positions_from_floats, process_lines,
-    process_triangles, process_triangles_into, Camera, ClipResult, ClipVertex, ClipVolume,
-    CullMode, FrontFace, Geometry, GeometryStats, MeshVertex, PipelineOptions, Topology, Transform,
-    VertexShader, Viewport, GUARD_LIMIT_PX, PLANE_NAMES, W_MIN,
+    assemble, draw, draw_binned, draw_clearing, positions_from_floats, process_triangles,
+    process_triangles_into, ClipResult, ClipVertex, ClipVolume, CullMode, FrontFace, Geometry,
+    GeometryStats, MeshVertex, PipelineOptions, Topology, Transform, VertexShader, Viewport,
+    GUARD_LIMIT_PX, PLANE_NAMES, W_MIN,
 };
 pub use polygon::{Polygon, Side};
-pub use render::{
-    unique_edges, Frame, FrameStats, MeshRenderer, RenderSettings, Shading, MAX_ZOOM,
-};
+pub use render::{Frame, FrameStats, MeshRenderer, RenderSettings, Shading};
 pub use scene::{collect_fragments, scene_colour, setup_triangles, Scene2D, BLUE, RED};
+// What only the `rasterlab` program uses; absent without the `cli` feature.
+#[cfg(feature = "cli")]
+pub use self::listing::list_fragments_in_file;

@@ -7,8 +7,9 @@
 //! * one `rasterlab render` as a value ([`RenderRequest`]: input, choices,
 //!   output file), run on the fast path frame after frame into a
 //!   [`RenderReport`] with the time per frame;
-//! * the table, JSON and chart of `rasterlab bench`: [`run`] with
-//!   [`BenchOptions`] into a [`BenchReport`], [`to_json`], [`chart_svg`];
+//! * the timings of `rasterlab bench`: [`run`] with [`BenchOptions`] into
+//!   a [`BenchReport`], which the program writes out as a table, JSON and
+//!   a chart;
 //! * a warm-up, timed runs, their minimum, median and maximum: [`Timing`]
 //!   and [`time_runs`];
 //! * rasterlab and its peers timed in interleaved rounds, and the ratio
@@ -39,6 +40,8 @@
 //! ```
 
 pub(crate) mod antialias;
+// Some of it only the program calls: unused without the `cli` feature.
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
 pub(crate) mod benchmark;
 pub(crate) mod context;
 mod cpu;
@@ -54,15 +57,10 @@ pub use antialias::{
     compare_antialiasing, coverage_error, coverage_of, AntialiasRow, Coverage, ErrorSummary,
     Method, METHODS,
 };
-#[cfg(feature = "png-text")]
-pub use benchmark::chart_png;
-pub use benchmark::{
-    chart_svg, run, to_json, write_outputs, BenchOptions, BenchReport, Measurement, Progress,
-    WorkloadSet, BASELINE,
-};
-pub use context::{load_average, Context, Machine, COMMIT};
-pub use cpu::{CpuUse, ThreadTimes};
-pub use data::{data_dir, find, find_in, Skipped, DATA_ENV, DRAGON_RES2, FULL_DRAGON};
+pub use benchmark::{run, BenchOptions, BenchReport, Measurement, Progress, WorkloadSet, BASELINE};
+pub use context::{Context, Machine, COMMIT};
+pub use cpu::CpuUse;
+pub use data::{data_dir, find, find_in, Skipped, DRAGON_RES2, FULL_DRAGON};
 pub use render_request::{
     DrawingReport, MeshOverrides, MeshReport, RenderInput, RenderReport, RenderRequest, MAX_SCALE,
     RENDER_CULL,
@@ -72,6 +70,7 @@ pub use rounds::{
 };
 pub use table::{significant, Table};
 pub use timing::{time_runs, Spread, Timing};
-pub use workload::{
-    fill, long_lines, short_lines, sized, slivers, LineWorkload, TriangleWorkload, WORKLOAD_COLOR,
-};
+pub use workload::{fill, long_lines, short_lines, sized, slivers, LineWorkload, TriangleWorkload};
+// What only the `rasterlab` program uses; absent without the `cli` feature.
+#[cfg(feature = "cli")]
+pub use self::benchmark::{to_json, write_outputs};

@@ -75,10 +75,7 @@ pub use edge::{
     EdgeFunction, EdgeKind, FillRule, PixelRect, TriangleSetup, OFFSCREEN_POINT,
     SECONDARY_OFFSCREEN_POINT,
 };
-pub use fixed::{
-    first_sample_at_or_after, last_sample_at_or_before, Fixed, FixedPoint, GUARD_BAND, HALF_PIXEL,
-    SUBPIXEL_BITS, SUBPIXEL_SCALE,
-};
+pub use fixed::{Fixed, FixedPoint, GUARD_BAND, SUBPIXEL_SCALE};
 pub use fragment::{
     FragmentList, FragmentSink, LineFragment, TriangleFragment, TriangleSpan, WorkCounters,
 };
@@ -86,15 +83,17 @@ pub use multisample::{masks_of, reference_masks, MaskFragment, SamplePattern, SA
 pub use multisample_stage::{draw_multisampled, MultisampleTarget, MAX_TARGET_SAMPLES};
 pub use primitive::{DepthPlane, ShadedLine, ShadedTriangle, ShadedVertex, TriangleData, Varyings};
 pub use registry::{
-    all_backends, backend, default_line_backend, default_triangle_backend,
-    fallback_triangle_backend, line_backend, line_backends, reference_triangle_backend,
-    reference_triangle_backend_within, triangle_backend, triangle_backends, Backend, BackendInfo,
-    BackendKind,
+    backend, default_triangle_backend, fallback_triangle_backend, line_backend, line_backends,
+    reference_triangle_backend, reference_triangle_backend_within, triangle_backend,
+    triangle_backends, Backend,
 };
 pub use shader::{
-    from_rgba8, to_rgba8, ColorLanes, Constant, Diffuse, DirectionalLight, Filter, Flat,
-    FragmentInput, FragmentLanes, FragmentShader, Gouraud, NormalColors, Texture, Textured, LANES,
+    to_rgba8, ColorLanes, Constant, Diffuse, DirectionalLight, Filter, Flat, FragmentInput,
+    FragmentLanes, FragmentShader, Gouraud, Texture, Textured, LANES,
 };
 pub use stage::{Blend, FragmentStage, Interpolation};
-pub use supersample::{supersample, SampleCount, MAX_SUPERSAMPLING};
+pub use supersample::{supersample, SampleCount};
 pub use target::{Clear, DepthState, DepthTest, RenderTarget, TargetRows, MAX_TARGET_SIDE};
+// What only the `rasterlab` program uses; absent without the `cli` feature.
+#[cfg(feature = "cli")]
+pub use self::registry::{all_backends, BackendInfo, BackendKind};

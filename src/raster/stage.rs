@@ -402,8 +402,8 @@ impl<S: FragmentShader + ?Sized> FragmentSink for FragmentStage<'_, S> {
     }
 
     /// A span: through the uniform span loop when the shader's colour is
-    /// the same over the triangle ([`span_fill`]), through the shaded
-    /// span loop otherwise ([`shaded_span`]).
+    /// the same over the triangle (`span_fill`), through the shaded
+    /// span loop otherwise (`shaded_span`).
     fn triangle_span(&mut self, span: &TriangleSpan) {
         self.prefetch_ahead(span.triangle);
         let Some(t) = self.triangle(span.triangle) else {

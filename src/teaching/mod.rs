@@ -47,17 +47,15 @@ pub use demo::{bundled_assets, run_demo, DemoReport, DemoRow};
 pub use explain::{explain, ExplainRequest, Explanation, DEFAULT_GRID, DEPTH_BUFFER};
 pub use grid_picture::{
     for_people, is_fragment_green, scale_for_people, DepthCells, GridPicture, AS_REFERENCE, GAP,
-    INSIDE, MAX_CELLS, MAX_LABELLED_CELLS, MIN_SHORT_SIDE, OVERDRAWN, OVERDRAWN_MORE,
-    TESTED_OUTSIDE, UNTESTED,
+    INSIDE, MAX_LABELLED_CELLS, MIN_SHORT_SIDE, OVERDRAWN, OVERDRAWN_MORE, TESTED_OUTSIDE,
 };
 pub use palette::{
-    colour_hex, triangle_colour, triangle_mark, triangle_name, Legend, LegendEntry, Mark, Role,
-    MAX_TRIANGLES, TRIANGLE_COLOURS, TRIANGLE_MARKS,
+    colour_hex, triangle_colour, triangle_mark, Legend, LegendEntry, Mark, Role, MAX_TRIANGLES,
 };
 pub use report::{
     Antialiasing, BackendRun, CompareInput, Report, RulePicture, ANTIALIAS_PIXELS,
-    GRID_PICTURE_PIXELS, MAX_REPORT_BYTES, REPORT_BYTES_PER_PIXEL,
+    MAX_REPORT_BYTES, REPORT_BYTES_PER_PIXEL,
 };
 pub use sample_trace::trace_samples;
-pub use trace::{trace_depth_buffer, trace_line, trace_triangle, LineEnds, MAX_TRACE_LINES};
+pub use trace::{trace_depth_buffer, trace_line, trace_triangle, LineEnds};
 pub use trace_table::{Column, Trace, TraceRow};
