@@ -253,7 +253,9 @@ fn uses_only_its_legend(what: &str, svg: &str, entries: &[Entry]) {
 /// A grid picture as `explain --picture` writes it, by the program.
 fn explain_svg(args: &[&str]) -> String {
     let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(format!("{}.svg", args.join("_").replace(' ', "")));
+    let path = dir
+        .path()
+        .join(format!("{}.svg", args.join("_").replace(' ', "")));
     let status = std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
         .arg("explain")
         .args(args)

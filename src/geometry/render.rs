@@ -18,7 +18,7 @@
 
 mod settings;
 
-pub use settings::{RenderSettings, Shading, MAX_ZOOM};
+pub use settings::{RenderSettings, Shading};
 
 use crate::error::{Error, Result};
 use crate::geometry::frame_times::FrameTimes;

@@ -29,9 +29,9 @@
 //! checks both against the `bresenham` back-end through the stage, pixel
 //! for pixel.
 
-use crate::raster::line::{LineSetup, OctantFrame};
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
+use crate::raster::line::{LineSetup, OctantFrame};
 use crate::raster::stage::{merge_pixel, Blend, Source};
 use crate::raster::target::RenderTarget;
 

@@ -16,12 +16,12 @@
 
 use crate::geometry::pipeline::{draw_clearing, Geometry};
 use crate::geometry::scene::setup_triangles;
+use crate::measure::fast_lines::draw_lines;
 use crate::raster::descriptor::{within_budget, WorkBudget};
 use crate::raster::edge::FillRule;
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::FixedPoint;
 use crate::raster::fragment::WorkCounters;
-use crate::measure::fast_lines::draw_lines;
 use crate::raster::line::LineSetup;
 use crate::raster::line::{LineOptions, LineRasterizer};
 use crate::raster::primitive::{ShadedLine, ShadedVertex};

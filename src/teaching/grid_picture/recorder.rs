@@ -59,7 +59,6 @@ impl FragmentSink for Recorder {
         let i = self.index(f.x, f.y);
         self.weight[i] += f.coverage;
     }
-
 }
 
 impl Recorder {
