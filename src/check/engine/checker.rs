@@ -2,7 +2,7 @@
 //! confirmed on more cases, the tallies by family, and the report put
 //! together around the cause found and the shrunk counterexample.
 
-use super::mode::{row_name, table_rows, Mode};
+use super::mode::{row_name, table_rows, Mode, Outcome};
 use super::subjects::Subjects;
 use super::{Progress, CONFIRMING_CASES, CONFIRMING_FAILURES};
 use crate::check::case::Case;
@@ -16,15 +16,6 @@ use crate::check::request::{
 use crate::check::{Broken, Fragment, Subject, SubjectError};
 use crate::error::Result;
 use crate::raster::multisample::SamplePattern;
-
-/// What one case came to.
-pub(super) enum Outcome {
-    /// Under one property: the finding, if it fails.
-    One(Option<Box<Finding>>),
-    /// Under a table mode, per row ([`table_rows`]): `None` where the row
-    /// does not judge the case, else the finding if it fails.
-    Table(Vec<Option<Option<Box<Finding>>>>),
-}
 
 /// One run of the engine: the report, and for [`check`](crate::check::check)
 /// the first failing case as generated and a broken subject.

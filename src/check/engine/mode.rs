@@ -2,14 +2,23 @@
 //! rule under `--rule any`, every line convention under
 //! `--convention any`), and which family each case comes from.
 
-use super::checker::Outcome;
 use crate::check::case::Case;
 use crate::check::generate;
+use crate::check::judge::Finding;
 use crate::check::property::{LineConvention, Property};
 use crate::check::request::{CheckRequest, ConventionChoice, Kind, RuleChoice, RuleRow, RuleTable};
 use crate::check::Fragment;
 use crate::error::{Error, Result};
 use crate::raster::edge::FillRule;
+
+/// What one case came to.
+pub(super) enum Outcome {
+    /// Under one property: the finding, if it fails.
+    One(Option<Box<Finding>>),
+    /// Under a table mode, per row ([`table_rows`]): `None` where the row
+    /// does not judge the case, else the finding if it fails.
+    Table(Vec<Option<Option<Box<Finding>>>>),
+}
 
 /// What the check judges by.
 #[derive(Copy, Clone, Debug, PartialEq)]
