@@ -207,18 +207,32 @@ impl<S: FragmentShader + ?Sized> ShadedSpan<'_, S> {
                 let lanes = self.lanes(start, z, active, self.vertices, inv_area);
                 let colour = to_pixels(self.shader.shade_lanes(&lanes));
                 let source = |k: usize| Source::Rgba8(colour[k].to_le_bytes());
-                let pass = active.map(|a| u32::from(a).wrapping_neg());
-                let passed = if n == LANES && active.iter().all(|&a| a) {
-                    Passed::All
-                } else {
-                    Passed::Where(&pass[..n])
-                };
+                let (blend, write) = (self.blend, self.state.write);
                 let colours = &mut self.rows.color[start..start + n];
                 let depths = &mut self.rows.depth[start..start + n];
-                if self.state.write {
-                    merge::<true>(self.blend, source, passed, &z[..n], colours, depths);
+                if n == LANES && active.iter().all(|&a| a) {
+                    // The whole group passed: plain stores.
+                    if write {
+                        merge::<true>(blend, source, Passed::All, &z, colours, depths);
+                    } else {
+                        merge::<false>(blend, source, Passed::All, &[], colours, depths);
+                    }
                 } else {
-                    merge::<false>(self.blend, source, passed, &[], colours, depths);
+                    // Only the pixels that passed are stored: with shaded
+                    // colours a group is partial mostly at a span's ends,
+                    // where storing every lane back measured slower.
+                    for k in 0..n {
+                        if !active[k] {
+                            continue;
+                        }
+                        let (c, d) = (&mut colours[k..=k], &mut depths[k..=k]);
+                        let one = |_| source(k);
+                        if write {
+                            merge::<true>(blend, one, Passed::All, &z[k..=k], c, d);
+                        } else {
+                            merge::<false>(blend, one, Passed::All, &[], c, d);
+                        }
+                    }
                 }
             }
             start += LANES;
