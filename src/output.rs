@@ -131,24 +131,24 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
-/// Encodes an image as PNG and writes it with [`write_file`].
-pub fn write_png<P, C>(path: &Path, image: &image::ImageBuffer<P, C>) -> Result<()>
-where
-    P: image::PixelWithColorType,
-    [P::Subpixel]: image::EncodableLayout,
-    C: std::ops::Deref<Target = [P::Subpixel]>,
-{
+/// Writes an RGBA8 image as a PNG file (through [`write_file`]), with the
+/// `sRGB` chunk that says its colours are sRGB-encoded, as every colour
+/// rasterlab stores is (see [`MixSpace`](crate::raster::MixSpace)): a
+/// viewer then shows them as they are meant, without guessing.
+pub fn write_png(path: &Path, image: &image::RgbaImage) -> Result<()> {
+    let failed = |e: png::EncodingError| Error::Write {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+        closed: false,
+    };
     let mut bytes = Vec::new();
-    image
-        .write_to(
-            &mut std::io::Cursor::new(&mut bytes),
-            image::ImageFormat::Png,
-        )
-        .map_err(|e| Error::Write {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-            closed: false,
-        })?;
+    let mut encoder = png::Encoder::new(&mut bytes, image.width(), image.height());
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+    let mut writer = encoder.write_header().map_err(failed)?;
+    writer.write_image_data(image.as_raw()).map_err(failed)?;
+    writer.finish().map_err(failed)?;
     write_file(path, &bytes)
 }
 

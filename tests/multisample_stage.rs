@@ -11,9 +11,9 @@ use glam::Vec4;
 use proptest::prelude::*;
 use rasterlab::geometry::{draw, setup_triangles, Geometry};
 use rasterlab::raster::{
-    draw_multisampled, reference_masks, triangle_backends, DepthState, FillRule, FixedPoint, Flat,
-    FragmentShader, Gouraud, Interpolation, MultisampleTarget, RenderTarget, SamplePattern,
-    ShadedVertex, SAMPLE_COUNTS,
+    draw_multisampled, linear_to_srgb8, reference_masks, srgb8_to_linear, triangle_backends, Blend,
+    DepthState, FillRule, FixedPoint, Flat, FragmentShader, Gouraud, Interpolation, MixSpace,
+    MultisampleTarget, RenderTarget, SamplePattern, ShadedVertex, SAMPLE_COUNTS,
 };
 
 const LERP: Interpolation = Interpolation::PerspectiveCorrect;
@@ -58,7 +58,7 @@ fn multisampled(
             data,
             *b,
             shader,
-            DepthState::DEFAULT,
+            (DepthState::DEFAULT, Blend::REPLACE),
             LERP,
             &mut target,
         );
@@ -156,6 +156,7 @@ fn shading_is_once_per_pixel_at_its_centre() {
     let pattern = SamplePattern::standard(8).unwrap();
     let target = multisampled(&geometry, &Gouraud, pattern).unwrap();
     let resolved = target.resolve();
+    let encoded = target.resolve_in(MixSpace::Encoded);
     let masks = reference_masks(&geometry.setups, viewport(), &pattern);
     let mut partial = 0;
     for m in &masks {
@@ -179,11 +180,20 @@ fn shading_is_once_per_pixel_at_its_centre() {
         }
         let covered = m.mask.count_ones();
         partial += usize::from(covered < 8);
+        // The mean of the samples over black: in the encoded values, the
+        // integer mean; in linear light, the light times the share.
         let mean = centre.map(|c| ((u32::from(c) * covered + 4) / 8) as u8);
         assert_eq!(
-            resolved.color[resolved.index(x, y)][..3],
+            encoded.color[encoded.index(x, y)][..3],
             mean[..3],
             "pixel ({x}, {y})"
+        );
+        let share = covered as f32 / 8.0;
+        let light = centre.map(|c| linear_to_srgb8(srgb8_to_linear(c) * share));
+        assert_eq!(
+            resolved.color[resolved.index(x, y)][..3],
+            light[..3],
+            "pixel ({x}, {y}) in linear light"
         );
     }
     assert!(

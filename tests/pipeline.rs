@@ -13,7 +13,7 @@ use rasterlab::geometry::{
     Viewport,
 };
 use rasterlab::raster::{
-    triangle_backend, triangle_backends, Constant, DepthState, FillRule, Filter, Flat,
+    triangle_backend, triangle_backends, Blend, Constant, DepthState, FillRule, Filter, Flat,
     Interpolation, RenderTarget, ShadedVertex, Texture, Textured, Varyings,
 };
 use rasterlab::teaching::{ascii_mark, ascii_rows};
@@ -736,7 +736,7 @@ fn a_frames_parts_add_up_and_the_2d_path_draws_the_same() {
                 let (work, times) = scene.render_frame(
                     b,
                     FillRule::TopLeft,
-                    depth,
+                    (depth, Blend::REPLACE),
                     &Flat,
                     RenderTarget::BLACK,
                     &mut used,

@@ -419,19 +419,22 @@ impl MeshRenderer {
         target.clear(self.settings.background);
         let (setups, data) = (&geometry.setups, &geometry.shaded);
         let (depth, lerp) = (self.settings.depth, self.settings.interpolation);
+        let blend = self.settings.blend;
         let work = match &self.shader {
-            MeshShader::Flat(s) => draw_multisampled(setups, data, backend, s, depth, lerp, target),
+            MeshShader::Flat(s) => {
+                draw_multisampled(setups, data, backend, s, (depth, blend), lerp, target)
+            }
             MeshShader::Gouraud(s) => {
-                draw_multisampled(setups, data, backend, s, depth, lerp, target)
+                draw_multisampled(setups, data, backend, s, (depth, blend), lerp, target)
             }
             MeshShader::Diffuse(s) => {
-                draw_multisampled(setups, data, backend, s, depth, lerp, target)
+                draw_multisampled(setups, data, backend, s, (depth, blend), lerp, target)
             }
             MeshShader::Normals(s) => {
-                draw_multisampled(setups, data, backend, s, depth, lerp, target)
+                draw_multisampled(setups, data, backend, s, (depth, blend), lerp, target)
             }
             MeshShader::Texture(s) => {
-                draw_multisampled(setups, data, backend, s, depth, lerp, target)
+                draw_multisampled(setups, data, backend, s, (depth, blend), lerp, target)
             }
         };
         let raster_time = start.elapsed();
@@ -465,6 +468,7 @@ impl MeshRenderer {
             depth: self.settings.depth,
             interpolation: self.settings.interpolation,
             clear: Clear::all(self.settings.background),
+            blend: self.settings.blend,
         };
         if !self.in_batches() {
             geometry.process_into(&self.draw_input())?;

@@ -32,6 +32,13 @@
 //!   conflation, which this error shows and the per-triangle one does
 //!   not.
 //!
+//! Both errors are in **coverage**, the fraction of a pixel covered: the
+//! linear light of a white triangle on black, the space the stage mixes
+//! and resolves in ([`MixSpace::Linear`](crate::raster::MixSpace)). An
+//! error of 0.1 is a tenth of the light; stored, it is a different number
+//! of sRGB steps at each level (from coverage 0.5, 0.1 more is about 16
+//! steps, 0.1 less about 18).
+//!
 //! [`compare_antialiasing`] runs every method of [`METHODS`] on the same
 //! triangles; `cargo bench --bench antialias` adds each method's cost and
 //! tiny-skia's anti-aliased fill, measured the same way.

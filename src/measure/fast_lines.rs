@@ -152,7 +152,7 @@ fn walk(target: &mut RenderTarget, frame: &OctantFrame, first: i64, last: i64, c
     let (colors, coverage) = (&mut target.color, &mut target.coverage);
     for _ in first..=last {
         merge_pixel(
-            Blend::Replace,
+            Blend::REPLACE,
             Source::Rgba8(color),
             &mut colors[at as usize],
             None,

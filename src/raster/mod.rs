@@ -62,6 +62,7 @@ pub(crate) mod multisample_stage;
 pub(crate) mod primitive;
 pub(crate) mod registry;
 pub(crate) mod shader;
+pub(crate) mod srgb;
 pub(crate) mod stage;
 pub(crate) mod supersample;
 pub(crate) mod target;
@@ -91,7 +92,8 @@ pub use shader::{
     to_rgba8, ColorLanes, Constant, Diffuse, DirectionalLight, Filter, Flat, FragmentInput,
     FragmentLanes, FragmentShader, Gouraud, Texture, Textured, LANES,
 };
-pub use stage::{Blend, FragmentStage, Interpolation};
+pub use srgb::{linear_to_srgb8, srgb8_to_linear, MixSpace};
+pub use stage::{Blend, BlendMode, FragmentStage, Interpolation, WriteMask};
 pub use supersample::{supersample, SampleCount};
 pub use target::{Clear, DepthState, DepthTest, RenderTarget, TargetRows, MAX_TARGET_SIDE};
 // What only the `rasterlab` program uses; absent without the `cli` feature.

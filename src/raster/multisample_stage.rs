@@ -18,11 +18,11 @@
 //!    sample survived: the barycentrics come from the exact edge values
 //!    at the centre, extrapolated when the centre lies outside the
 //!    triangle (the APIs' default, without `centroid`);
-//! 4. **writes**: that one colour, and each sample's own depth, into the
-//!    surviving samples;
+//! 4. **merge**: that one colour blended into each surviving sample by
+//!    the draw's [`Blend`], and each sample's own depth written;
 //! 5. **resolve** ([`MultisampleTarget::resolve`]): each pixel's colour is
-//!    the mean of its samples' colours (a box filter), rounded to the
-//!    nearest 8-bit value.
+//!    the mean of its samples' colours (a box filter) in linear light,
+//!    encoded to the nearest 8-bit sRGB value.
 //!
 //! Triangles are taken in order, so every pixel sees its triangles in
 //! primitive order, as in the one-sample stage; the image does not
@@ -33,7 +33,7 @@
 //!
 //! ```
 //! use glam::Vec4;
-//! use rasterlab::raster::{draw_multisampled, triangle_backend, DepthState, FillRule, FixedPoint};
+//! use rasterlab::raster::{draw_multisampled, triangle_backend, Blend, DepthState, FillRule, FixedPoint, MixSpace};
 //! use rasterlab::raster::{Flat, Interpolation, MultisampleTarget, SamplePattern, ShadedVertex};
 //! use rasterlab::raster::{TriangleData, TriangleSetup};
 //!
@@ -46,9 +46,11 @@
 //! let mut target = MultisampleTarget::new(4, 4, SamplePattern::standard(4).unwrap()).unwrap();
 //! let backend = triangle_backend("bbox").unwrap();
 //! let (depth, lerp) = (DepthState::DEFAULT, Interpolation::PerspectiveCorrect);
-//! draw_multisampled(&setups, &data, backend, &Flat, depth, lerp, &mut target);
+//! draw_multisampled(&setups, &data, backend, &Flat, (depth, Blend::REPLACE), lerp, &mut target);
 //! let image = target.resolve();
-//! assert_eq!(image.color[image.index(2, 1)], [128, 128, 128, 255]);
+//! assert_eq!(image.color[image.index(2, 1)], [188, 188, 188, 255]);
+//! let encoded = target.resolve_in(MixSpace::Encoded);
+//! assert_eq!(encoded.color[encoded.index(2, 1)], [128, 128, 128, 255]);
 //! assert_eq!(image.color[image.index(0, 0)], [255, 255, 255, 255]);
 //! ```
 
@@ -58,9 +60,11 @@ use crate::raster::fragment::{FragmentList, TriangleFragment, WorkCounters};
 use crate::raster::multisample::{moved, SamplePattern, SIXTEENTH};
 use crate::raster::primitive::TriangleData;
 use crate::raster::shader::FragmentShader;
+use crate::raster::srgb::MixSpace;
 use crate::raster::stage::{merge_pixel, shade_triangle_fragment, Blend, Interpolation, Source};
 use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
+use glam::Vec4;
 
 /// The most samples a [`MultisampleTarget`] holds (colour and depth, 8
 /// bytes each): 2^27, 1 GiB of buffers.
@@ -168,9 +172,17 @@ impl MultisampleTarget {
     }
 
     /// The image: each pixel's colour the mean of its samples' (a box
-    /// filter), each channel rounded to nearest; its depth the nearest of
-    /// its samples'; its coverage count as drawn.
+    /// filter) in linear light, encoded to the nearest sRGB value (see
+    /// [`MixSpace`]); its depth the nearest of its samples'; its coverage
+    /// count as drawn.
     pub fn resolve(&self) -> RenderTarget {
+        self.resolve_in(MixSpace::Linear)
+    }
+
+    /// [`resolve`](Self::resolve), the mean taken in `space`: in the
+    /// stored, encoded values with [`MixSpace::Encoded`], each channel's
+    /// sum rounded to nearest in integers.
+    pub fn resolve_in(&self, space: MixSpace) -> RenderTarget {
         let n = self.pattern.count() as usize;
         let mut image = RenderTarget::new(self.width, self.height)
             .expect("the size was checked when the target was made");
@@ -181,13 +193,21 @@ impl MultisampleTarget {
             .zip(self.depth.chunks_exact(n))
             .enumerate()
         {
-            let mut sum = [0u32; 4];
-            for c in colors {
-                for (s, v) in sum.iter_mut().zip(c) {
-                    *s += u32::from(*v);
+            image.color[pixel] = match space {
+                MixSpace::Encoded => {
+                    let mut sum = [0u32; 4];
+                    for c in colors {
+                        for (s, v) in sum.iter_mut().zip(c) {
+                            *s += u32::from(*v);
+                        }
+                    }
+                    sum.map(|s| ((s + n as u32 / 2) / n as u32) as u8)
                 }
-            }
-            image.color[pixel] = sum.map(|s| ((s + n as u32 / 2) / n as u32) as u8);
+                MixSpace::Linear => {
+                    let sum: Vec4 = colors.iter().map(|&c| space.decode(c)).sum();
+                    space.encode(sum / n as f32)
+                }
+            };
             image.depth[pixel] = depths.iter().copied().fold(f32::INFINITY, f32::min);
         }
         image
@@ -197,7 +217,8 @@ impl MultisampleTarget {
 /// Draws `setups` (whose stage data is `data`, indexed by triangle id)
 /// with `backend` into `target` through the multisampled stage: coverage
 /// masks on the target's pattern, depth tested per sample with `depth`,
-/// colour from `shader` once per pixel at its centre. The counters give
+/// colour from `shader` once per pixel at its centre, merged into each
+/// surviving sample by `blend`. The counters give
 /// the back-end's tests and spans over all the passes, the triangles
 /// (`primitives`) and the (pixel, triangle) pairs with a mask
 /// (`fragments`).
@@ -206,7 +227,7 @@ pub fn draw_multisampled<S: FragmentShader + ?Sized>(
     data: &TriangleData,
     backend: &dyn TriangleRasterizer,
     shader: &S,
-    depth: DepthState,
+    (depth, blend): (DepthState, Blend),
     interpolation: Interpolation,
     target: &mut MultisampleTarget,
 ) -> WorkCounters {
@@ -266,7 +287,7 @@ pub fn draw_multisampled<S: FragmentShader + ?Sized>(
                 setup,
                 data,
                 shader,
-                depth,
+                (depth, blend),
                 interpolation,
                 target,
                 x,
@@ -291,7 +312,7 @@ fn shade_pixel<S: FragmentShader + ?Sized>(
     setup: &TriangleSetup,
     data: &TriangleData,
     shader: &S,
-    depth: DepthState,
+    (depth, blend): (DepthState, Blend),
     interpolation: Interpolation,
     target: &mut MultisampleTarget,
     x: u32,
@@ -341,7 +362,7 @@ fn shade_pixel<S: FragmentShader + ?Sized>(
             .write
             .then(|| (&mut target.depth[base + i], depths[i]));
         merge_pixel(
-            Blend::Replace,
+            blend,
             Source::Rgba8(color),
             &mut target.color[base + i],
             slot,

@@ -58,7 +58,7 @@ use crate::raster::vector;
 use glam::Vec4;
 pub(crate) use merge::{merge, merge_pixel, Passed, Source};
 
-pub use merge::Blend;
+pub use merge::{Blend, BlendMode, WriteMask};
 
 mod lines;
 mod merge;
@@ -137,7 +137,7 @@ impl<'a, S: FragmentShader + ?Sized> FragmentStage<'a, S> {
             vertices: &[],
             lines: &[],
             depth: DepthState::DEFAULT,
-            blend: Blend::Replace,
+            blend: Blend::REPLACE,
             interpolation: Interpolation::PerspectiveCorrect,
             line_depth_offset: 0.0,
             span_colour: None,

@@ -47,7 +47,7 @@ use crate::raster::edge::TriangleSetup;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::primitive::TriangleData;
 use crate::raster::shader::FragmentShader;
-use crate::raster::stage::{FragmentStage, Interpolation};
+use crate::raster::stage::{Blend, FragmentStage, Interpolation};
 use crate::raster::target::{Clear, DepthState, RenderTarget, TargetRows};
 use crate::raster::triangle::{TriangleRasterizer, TriangleSelection};
 use rayon::prelude::*;
@@ -118,18 +118,20 @@ pub fn draw_clearing<S: FragmentShader + ?Sized>(
         depth,
         interpolation,
         clear,
+        blend: Blend::REPLACE,
     };
     draw_runs(&runs, backend, pass, target)
 }
 
 /// What a draw does besides rasterizing: shade, test depth, interpolate,
-/// and clear as it goes. The draw, and its stage, are compiled for the
+/// blend, and clear as it goes. The draw, and its stage, are compiled for the
 /// shader's type `S` (see [`FragmentStage`]).
 pub(crate) struct Pass<'a, S: ?Sized> {
     pub shader: &'a S,
     pub depth: DepthState,
     pub interpolation: Interpolation,
     pub clear: Clear,
+    pub blend: Blend,
 }
 
 // Not derived: a derive would ask `S: Copy`, and a shader need not be.
@@ -148,6 +150,7 @@ impl<'a, S: FragmentShader + ?Sized> Pass<'a, S> {
         FragmentStage::on_rows(rows, self.shader)
             .with_triangles(shaded)
             .with_depth(self.depth)
+            .with_blend(self.blend)
             .with_interpolation(self.interpolation)
     }
 }
@@ -226,7 +229,7 @@ fn cache_band_rows(width: u32) -> u32 {
 
 /// [`draw`] of triangles in runs: band by band when they are few
 /// ([`cache_band_rows`]), else triangle by triangle over the target.
-fn draw_runs<S: FragmentShader + ?Sized>(
+pub(crate) fn draw_runs<S: FragmentShader + ?Sized>(
     geometry: &Runs<'_>,
     backend: &dyn TriangleRasterizer,
     pass: Pass<'_, S>,
@@ -271,6 +274,7 @@ pub fn draw_binned<S: FragmentShader + ?Sized>(
         depth,
         interpolation,
         clear: Clear::NOTHING,
+        blend: Blend::REPLACE,
     };
     draw_runs_binned(&geometry.runs(), backend, pass, target)
 }

@@ -53,6 +53,6 @@ pub use setup::GeometryStats;
 pub use vertex::{positions_from_floats, MeshVertex, Transform, VertexShader};
 pub use viewport::Viewport;
 
-pub(crate) use draw::{draw_runs_binned, BatchDraw, Pass};
+pub(crate) use draw::{draw_runs, draw_runs_binned, BatchDraw, Pass};
 pub(crate) use geometry::GeometryInParts;
 pub(crate) use process::DrawInput;

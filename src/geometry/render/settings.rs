@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::geometry::pipeline::PipelineOptions;
 use crate::raster::line::LineRasterizer;
 use crate::raster::shader::{DirectionalLight, Filter};
-use crate::raster::stage::Interpolation;
+use crate::raster::stage::{Blend, Interpolation};
 use crate::raster::target::{DepthState, RenderTarget};
 use glam::Vec4;
 
@@ -60,6 +60,8 @@ pub struct RenderSettings {
     pub pipeline: PipelineOptions,
     /// Depth test and write.
     pub depth: DepthState,
+    /// How fragments are merged with the pixels' colours.
+    pub blend: Blend,
     /// Surface colour where the mesh has none.
     pub color: Vec4,
     /// The light.
@@ -83,6 +85,7 @@ impl Default for RenderSettings {
             interpolation: Interpolation::PerspectiveCorrect,
             pipeline: PipelineOptions::default(),
             depth: DepthState::DEFAULT,
+            blend: Blend::REPLACE,
             color: Vec4::new(0.85, 0.78, 0.62, 1.0),
             light: DirectionalLight::default(),
             wireframe: None,

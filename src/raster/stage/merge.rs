@@ -7,23 +7,192 @@
 //! scalar reference path one pixel at a time, the span loops a group of
 //! eight, the lines, the multisampled stage one sample at a time, and the
 //! straight-to-the-target line loop of the benchmarks. A blend mode is one
-//! variant of [`Blend`] and one arm of [`Blend::merge`]; what comes before
-//! the merge (which pixels pass, at what depth) and after it (the clears
-//! of `target`, the multisample resolve) are separate steps.
+//! variant of [`BlendMode`] and one arm of [`BlendMode::mix`]; what comes
+//! before the merge (which pixels pass, at what depth) and after it (the
+//! clears of `target`, the multisample resolve) are separate steps.
+//!
+//! A fragment's colour reaches the merge as RGBA8, sRGB-encoded like the
+//! pixel's (the span loops store it so, once a triangle or a group of
+//! eight). A fragment that covers its whole pixel under
+//! [`BlendMode::Replace`] is copied; any other is mixed: both colours
+//! decoded to the [`MixSpace`] (linear light by default), mixed by
+//! [`BlendMode::mix`], encoded again, and the channels the write mask
+//! leaves out kept as they were.
 
-use crate::raster::shader::{from_rgba8, to_rgba8};
+use crate::raster::shader::to_rgba8;
+use crate::raster::srgb::MixSpace;
 use glam::Vec4;
 
-/// How a fragment's colour is combined with the colour already in its
-/// pixel (the blend state of the graphics APIs).
+/// How a fragment's colour `s` meets the colour `d` already in its pixel
+/// (the blend equation of the graphics APIs), both as `[0, 1]` values of
+/// the mix space, alpha last. A fragment that covers only `coverage` of
+/// its pixel (an anti-aliased line's) counts as that much less opaque.
+///
+/// The colour buffer holds **premultiplied** colour, as Scotty3D's does:
+/// its colour is already scaled by its alpha. A target cleared to opaque
+/// black (alpha 1) stays opaque under every mode but `add` and `multiply`.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum Blend {
-    /// The fragment's colour replaces the pixel's; a fragment covering
-    /// only part of the pixel (an anti-aliased line's) is mixed in by its
-    /// coverage, `c * coverage + dst * (1 - coverage)`, in the stored
-    /// RGBA8 values.
+pub enum BlendMode {
+    /// `s` replaces `d`; a partial fragment is mixed by coverage,
+    /// `s * coverage + d * (1 - coverage)`.
     #[default]
     Replace,
+    /// The fragment's colour scaled by its opacity is added:
+    /// `rgb = d.rgb + s.rgb * s.a`, `a = d.a + s.a` (Scotty3D's
+    /// `Pipeline_Blend_Add`; OpenGL's `SRC_ALPHA, ONE`), clamped to 1.
+    Add,
+    /// Porter and Duff's (1984) `over` of a premultiplied fragment:
+    /// `s + d * (1 - s.a)` on all four channels (OpenGL's `ONE,
+    /// ONE_MINUS_SRC_ALPHA`).
+    Over,
+    /// `over` of a straight (not premultiplied) fragment into the
+    /// premultiplied buffer: `rgb = s.rgb * s.a + d.rgb * (1 - s.a)`,
+    /// `a = s.a + d.a * (1 - s.a)` (Scotty3D's `Pipeline_Blend_Over`;
+    /// OpenGL's `SRC_ALPHA, ONE_MINUS_SRC_ALPHA` on colour).
+    OverStraight,
+    /// `s * d` on all four channels: a filter that only darkens (OpenGL's
+    /// `DST_COLOR, ZERO`).
+    Multiply,
+}
+
+impl BlendMode {
+    /// Every mode, in the order of [`NAMES`](Self::NAMES).
+    pub const ALL: [BlendMode; 5] = [
+        BlendMode::Replace,
+        BlendMode::Add,
+        BlendMode::Over,
+        BlendMode::OverStraight,
+        BlendMode::Multiply,
+    ];
+
+    /// The names the command line takes.
+    pub const NAMES: [&'static str; 5] = ["replace", "add", "over", "over-straight", "multiply"];
+
+    /// The mode named `name`.
+    pub fn from_name(name: &str) -> Result<BlendMode, String> {
+        Self::NAMES
+            .iter()
+            .position(|n| *n == name)
+            .map(|i| Self::ALL[i])
+            .ok_or_else(|| {
+                format!(
+                    "unknown blend mode `{name}`: expected one of {}",
+                    Self::NAMES.join(", ")
+                )
+            })
+    }
+
+    /// Its name, as [`from_name`](Self::from_name) takes it.
+    pub fn name(self) -> &'static str {
+        Self::NAMES[Self::ALL.iter().position(|m| *m == self).unwrap_or(0)]
+    }
+
+    /// The blend equation: the pixel's new colour when a fragment of
+    /// colour `s` covering `coverage` of it lands on colour `d`. Values
+    /// are not clamped here; the merge clamps when it stores.
+    ///
+    /// ```
+    /// use glam::Vec4;
+    /// use rasterlab::raster::BlendMode;
+    ///
+    /// // Half-opaque red over opaque blue, straight: half of each.
+    /// let red = Vec4::new(1.0, 0.0, 0.0, 0.5);
+    /// let blue = Vec4::new(0.0, 0.0, 1.0, 1.0);
+    /// assert_eq!(BlendMode::OverStraight.mix(red, 1.0, blue), Vec4::new(0.5, 0.0, 0.5, 1.0));
+    /// // The same red premultiplied is (0.5, 0, 0, 0.5): the same result.
+    /// let red_premultiplied = Vec4::new(0.5, 0.0, 0.0, 0.5);
+    /// assert_eq!(BlendMode::Over.mix(red_premultiplied, 1.0, blue), Vec4::new(0.5, 0.0, 0.5, 1.0));
+    /// ```
+    #[inline]
+    pub fn mix(self, s: Vec4, coverage: f32, d: Vec4) -> Vec4 {
+        match self {
+            BlendMode::Replace => s * coverage + d * (1.0 - coverage),
+            BlendMode::Add => {
+                let a = s.w * coverage;
+                d + (s * a).truncate().extend(a)
+            }
+            BlendMode::Over => {
+                let s = s * coverage;
+                s + d * (1.0 - s.w)
+            }
+            BlendMode::OverStraight => {
+                let a = s.w * coverage;
+                (s * a).truncate().extend(a) + d * (1.0 - a)
+            }
+            BlendMode::Multiply => s * d * coverage + d * (1.0 - coverage),
+        }
+    }
+}
+
+/// Which channels of the colour buffer a draw writes (the colour write
+/// mask of the APIs); the others keep their values.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct WriteMask(pub [bool; 4]);
+
+impl WriteMask {
+    /// All four channels.
+    pub const ALL: WriteMask = WriteMask([true; 4]);
+
+    /// The mask named by the channels it writes, in order, from `rgba`
+    /// (`rgb` keeps alpha, `a` writes only alpha, `none` writes nothing).
+    pub fn from_name(name: &str) -> Result<WriteMask, String> {
+        if name == "none" {
+            return Ok(WriteMask([false; 4]));
+        }
+        let mut mask = [false; 4];
+        let mut last = None;
+        for c in name.chars() {
+            let i = "rgba".find(c).filter(|&i| last.is_none_or(|l| i > l));
+            let Some(i) = i else {
+                return Err(format!(
+                    "bad colour write mask `{name}`: give the channels written, in the order \
+                     of `rgba` (say `rgb` or `a`), or `none`"
+                ));
+            };
+            mask[i] = true;
+            last = Some(i);
+        }
+        if last.is_none() {
+            return Err("empty colour write mask: give `none` to write no channel".into());
+        }
+        Ok(WriteMask(mask))
+    }
+
+    /// The mask as the bytes of an RGBA8 pixel, all ones where written.
+    #[inline]
+    fn bytes(self) -> u32 {
+        u32::from_ne_bytes(self.0.map(|w| if w { 0xff } else { 0 }))
+    }
+}
+
+impl Default for WriteMask {
+    fn default() -> Self {
+        WriteMask::ALL
+    }
+}
+
+/// The blend state of a draw: the [`BlendMode`], the space it mixes in,
+/// and the colour write mask.
+///
+/// ```
+/// use rasterlab::raster::{Blend, BlendMode, MixSpace};
+///
+/// // Half-covered white on black: 0.5 of the light, encoded, is 188;
+/// // mixing the encoded numbers gives 128.
+/// let white = [255, 255, 255, 255];
+/// let black = [0, 0, 0, 255];
+/// assert_eq!(Blend::default().mix_rgba8(white, 0.5, black), [188, 188, 188, 255]);
+/// let encoded = Blend { mix_in: MixSpace::Encoded, ..Blend::default() };
+/// assert_eq!(encoded.mix_rgba8(white, 0.5, black), [128, 128, 128, 255]);
+/// ```
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct Blend {
+    /// The blend equation.
+    pub mode: BlendMode,
+    /// Where colours are mixed.
+    pub mix_in: MixSpace,
+    /// The channels written.
+    pub write_mask: WriteMask,
 }
 
 /// A fragment's colour as it reaches the merge.
@@ -43,19 +212,40 @@ pub(crate) enum Source {
 }
 
 impl Blend {
+    /// `replace`, in linear light, writing every channel: the default.
+    pub const REPLACE: Blend = Blend {
+        mode: BlendMode::Replace,
+        mix_in: MixSpace::Linear,
+        write_mask: WriteMask::ALL,
+    };
+
+    /// The pixel's new RGBA8 colour when a fragment of RGBA8 colour `s`
+    /// covering `coverage` of it lands on `d`: decoded, mixed by the
+    /// mode, encoded, masked. A whole fragment under `replace` is `s`
+    /// itself, masked.
+    #[inline]
+    pub fn mix_rgba8(self, s: [u8; 4], coverage: f32, d: [u8; 4]) -> [u8; 4] {
+        let mixed = if self.mode == BlendMode::Replace && coverage >= 1.0 {
+            s
+        } else {
+            let space = self.mix_in;
+            space.encode(self.mode.mix(space.decode(s), coverage, space.decode(d)))
+        };
+        if self.write_mask == WriteMask::ALL {
+            mixed
+        } else {
+            let mask = self.write_mask.bytes();
+            (u32::from_ne_bytes(mixed) & mask | u32::from_ne_bytes(d) & !mask).to_ne_bytes()
+        }
+    }
+
     /// The colour the pixel holds after a fragment of colour `source`
     /// lands on its colour `dst`.
     #[inline(always)]
     pub(crate) fn merge(self, source: Source, dst: [u8; 4]) -> [u8; 4] {
-        match (self, source) {
-            (Blend::Replace, Source::Rgba8(color)) => color,
-            (Blend::Replace, Source::Shaded { color, coverage }) => {
-                if coverage >= 1.0 {
-                    to_rgba8(color)
-                } else {
-                    to_rgba8(color * coverage + from_rgba8(dst) * (1.0 - coverage))
-                }
-            }
+        match source {
+            Source::Rgba8(color) => self.mix_rgba8(color, 1.0, dst),
+            Source::Shaded { color, coverage } => self.mix_rgba8(to_rgba8(color), coverage, dst),
         }
     }
 }
@@ -144,7 +334,7 @@ mod tests {
         let (mut colour, mut depth) = (old, [1.0; 3]);
         let pass = [u32::MAX, 0, u32::MAX];
         merge::<true>(
-            Blend::Replace,
+            Blend::REPLACE,
             source,
             Passed::Where(&pass),
             &z,
@@ -155,7 +345,7 @@ mod tests {
         assert_eq!(depth, [0.25, 1.0, 0.75]);
         let (mut kept_depth, mut all) = ([1.0; 3], old);
         merge::<false>(
-            Blend::Replace,
+            Blend::REPLACE,
             source,
             Passed::Where(&[u32::MAX; 3]),
             &z,
@@ -164,7 +354,7 @@ mod tests {
         );
         let mut plain = old;
         merge::<false>(
-            Blend::Replace,
+            Blend::REPLACE,
             source,
             Passed::All,
             &[],
@@ -177,7 +367,8 @@ mod tests {
 
     /// `replace` writes a whole fragment's colour as RGBA8 whatever was
     /// there, and mixes a partial one by its coverage: a quarter of white
-    /// over black is 64.
+    /// over black is a quarter of the light, 137 encoded (64 mixing the
+    /// encoded values).
     #[test]
     fn replace_mixes_a_partial_fragment_by_its_coverage() {
         let white = Vec4::ONE;
@@ -189,14 +380,55 @@ mod tests {
             color: white,
             coverage: 0.25,
         };
-        assert_eq!(Blend::Replace.merge(whole, [0, 0, 0, 255]), [255; 4]);
+        let black = [0, 0, 0, 255];
+        assert_eq!(Blend::REPLACE.merge(whole, black), [255; 4]);
+        assert_eq!(Blend::REPLACE.merge(quarter, black), [137, 137, 137, 255]);
+        let encoded = Blend {
+            mix_in: MixSpace::Encoded,
+            ..Blend::REPLACE
+        };
+        assert_eq!(encoded.merge(quarter, black), [64, 64, 64, 255]);
         assert_eq!(
-            Blend::Replace.merge(quarter, [0, 0, 0, 255]),
-            [64, 64, 64, 255]
-        );
-        assert_eq!(
-            Blend::Replace.merge(Source::Rgba8([1, 2, 3, 4]), [5; 4]),
+            Blend::REPLACE.merge(Source::Rgba8([1, 2, 3, 4]), [5; 4]),
             [1, 2, 3, 4]
         );
+    }
+
+    /// The write mask keeps the channels it leaves out, under every mode.
+    #[test]
+    fn the_write_mask_keeps_what_it_leaves_out() {
+        let rgb = WriteMask::from_name("rgb").unwrap();
+        for mode in BlendMode::ALL {
+            let blend = Blend {
+                mode,
+                write_mask: rgb,
+                ..Blend::REPLACE
+            };
+            assert_eq!(
+                blend.mix_rgba8([200, 100, 50, 128], 1.0, [1, 2, 3, 77])[3],
+                77
+            );
+        }
+        let none = Blend {
+            write_mask: WriteMask::from_name("none").unwrap(),
+            ..Blend::REPLACE
+        };
+        assert_eq!(none.mix_rgba8([9; 4], 1.0, [1, 2, 3, 4]), [1, 2, 3, 4]);
+        let alpha = WriteMask::from_name("a").unwrap();
+        assert_eq!(alpha, WriteMask([false, false, false, true]));
+        for bad in ["", "ar", "rgbx", "rr"] {
+            assert!(WriteMask::from_name(bad).is_err(), "{bad}");
+        }
+    }
+
+    /// Each mode by its name, and a clear refusal of an unknown one.
+    #[test]
+    fn modes_are_named() {
+        for (mode, name) in BlendMode::ALL.into_iter().zip(BlendMode::NAMES) {
+            assert_eq!(BlendMode::from_name(name), Ok(mode));
+            assert_eq!(mode.name(), name);
+        }
+        let error = BlendMode::from_name("screen").unwrap_err();
+        assert!(error.contains("over-straight"), "{error}");
     }
 }

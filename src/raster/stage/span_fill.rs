@@ -300,7 +300,7 @@ mod tests {
                     let fill = SpanFill {
                         rows,
                         depth,
-                        blend: Blend::Replace,
+                        blend: Blend::REPLACE,
                         plane,
                         y,
                         x0,

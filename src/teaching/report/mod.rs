@@ -58,6 +58,7 @@ use crate::raster::registry::{
     triangle_backends,
 };
 use crate::raster::shader::Flat;
+use crate::raster::stage::Blend;
 use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use crate::teaching::grid_picture::{GridPicture, GAP, OVERDRAWN, OVERDRAWN_MORE};
@@ -404,7 +405,7 @@ impl Report {
                             let (work, _) = scene.render_frame_multisampled(
                                 b,
                                 FillRule::TopLeft,
-                                DepthState::DEFAULT,
+                                (DepthState::DEFAULT, Blend::REPLACE),
                                 &Flat,
                                 RenderTarget::BLACK,
                                 &mut target,
