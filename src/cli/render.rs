@@ -7,7 +7,10 @@ use super::print::progress_bar;
 use clap::Args;
 use rasterlab::geometry::{CullMode, FrontFace, Shading};
 use rasterlab::measure::{MeshOverrides, RenderInput, RenderRequest};
-use rasterlab::raster::{DepthState, FillRule, Filter, Interpolation, SamplePattern};
+use rasterlab::raster::{
+    Blend, BlendMode, DepthState, FillRule, Filter, Interpolation, MixSpace, SamplePattern,
+    WriteMask,
+};
 use rasterlab::{Error, Result};
 use std::path::PathBuf;
 
@@ -32,7 +35,8 @@ pub struct RenderArgs {
     /// buffer: nothing read or written, the fastest colour-only fill).
     #[arg(long, default_value = "less", value_parser = DepthState::from_name)]
     depth_test: DepthState,
-    /// Built-in 2D scene instead of a file: depth-example, split-square, pinwheel, fan.
+    /// Built-in 2D scene instead of a file: depth-example, split-square,
+    /// pinwheel, fan, transparent, cycle.
     #[arg(long, conflicts_with = "input")]
     scene: Option<String>,
     /// Output PNG file.
@@ -56,6 +60,23 @@ pub struct RenderArgs {
     /// averaged into the image.
     #[arg(long, value_name = "N", value_parser = msaa, allow_negative_numbers = true)]
     msaa: Option<SamplePattern>,
+    /// How a fragment meets the pixel's colour: replace (default), add,
+    /// over (premultiplied fragment), over-straight (straight fragment,
+    /// as vertex colours are), multiply.
+    #[arg(long, default_value = "replace", value_parser = BlendMode::from_name)]
+    blend: BlendMode,
+    /// Where colours are mixed (blending, anti-aliased edges, the
+    /// multisample resolve): linear (light, the default) or srgb (the
+    /// encoded values, as most 2D libraries do).
+    #[arg(long, default_value = "linear", value_parser = MixSpace::from_name)]
+    mix_in: MixSpace,
+    /// The colour channels written, in the order of rgba (say rgb), or none.
+    #[arg(long, default_value = "rgba", value_parser = WriteMask::from_name)]
+    write_mask: WriteMask,
+    /// Triangle soups and scenes: draw the triangles back to front (by
+    /// mean depth), as transparent ones need.
+    #[arg(long)]
+    sort: bool,
     #[command(flatten)]
     mesh: MeshArgs,
 }
@@ -110,6 +131,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         size: args.size.map(|s| (s.width, s.height)),
         rule: args.rule,
         depth: args.depth_test,
+        blend: Blend {
+            mode: args.blend,
+            mix_in: args.mix_in,
+            write_mask: args.write_mask,
+        },
+        sort: args.sort,
         mesh: MeshOverrides {
             shading: m.shading,
             filter: m.filter,

@@ -19,6 +19,15 @@
 //! hole 6 4  14 4  10 10
 //! ```
 //!
+//! A triangle or polygon line may end with its look: `rgba R G B A`, its
+//! colour (sRGB-encoded) and opacity, each in `[0, 1]`, and `depth Z`, its
+//! depth in `[0, 1]` (0 nearest; 0 when not given), for transparent
+//! triangles drawn with a blend mode:
+//!
+//! ```text
+//! 4 4  40 4  4 40  rgba 1 0 0 0.5  depth 0.25
+//! ```
+//!
 //! Blank lines and `#` comments are ignored. A file holds either triangles
 //! (triangles and polygons may be mixed) or lines. A polygon's triangles
 //! all carry the polygon line's number. Every coordinate is snapped when read, so NaN, infinities and
@@ -27,6 +36,7 @@
 use crate::error::{Error, Result};
 use crate::geometry::polygon::Polygon;
 use crate::raster::fixed::FixedPoint;
+use glam::Vec4;
 use std::path::Path;
 
 /// Snapped primitives read from a text file, with their source lines.
@@ -38,6 +48,8 @@ pub enum Shapes {
         triangles: Vec<[FixedPoint; 3]>,
         /// The 1-based line each triangle came from.
         lines: Vec<usize>,
+        /// Each triangle's look, as its line gave it.
+        looks: Vec<Look>,
     },
     /// A set of line segments.
     Lines {
@@ -46,6 +58,65 @@ pub enum Shapes {
         /// The 1-based line each segment came from.
         lines: Vec<usize>,
     },
+}
+
+/// The colour and depth a triangle line gives its triangles.
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub struct Look {
+    /// `rgba R G B A`: the colour, sRGB-encoded, and its opacity; `None`:
+    /// the scene's colour for its place in the file.
+    pub color: Option<Vec4>,
+    /// `depth Z`, in `[0, 1]`; 0 when not given.
+    pub depth: f32,
+}
+
+/// Splits a line's content into its numbers and its look (`rgba` and
+/// `depth`, after the numbers).
+fn split_look(content: &str) -> std::result::Result<(&str, Look), String> {
+    // The look starts at the first word `rgba` or `depth`; any other word
+    // stays with the numbers, which say it is not one.
+    let mut offset = 0;
+    let mut start = None;
+    for word in content.split_inclusive(char::is_whitespace) {
+        if matches!(word.trim(), "rgba" | "depth") {
+            start = Some(offset);
+            break;
+        }
+        offset += word.len();
+    }
+    let Some(start) = start else {
+        return Ok((content, Look::default()));
+    };
+    let (numbers, rest) = content.split_at(start);
+    let mut look = Look::default();
+    let mut words = rest.split_whitespace().peekable();
+    while let Some(word) = words.next() {
+        let count = match word {
+            "rgba" => 4,
+            "depth" => 1,
+            other => {
+                return Err(format!(
+                    "`{other}`: after the coordinates a line takes `rgba R G B A` and `depth Z`"
+                ))
+            }
+        };
+        let mut values = Vec::with_capacity(count);
+        for _ in 0..count {
+            let Some(token) = words.next_if(|w| *w != "rgba" && *w != "depth") else {
+                return Err(format!("`{word}` takes {count} number(s) in [0, 1]"));
+            };
+            match token.parse::<f32>() {
+                Ok(v) if (0.0..=1.0).contains(&v) => values.push(v),
+                _ => return Err(format!("`{word}`: `{token}` is not a number in [0, 1]")),
+            }
+        }
+        if word == "rgba" {
+            look.color = Some(Vec4::from_slice(&values));
+        } else {
+            look.depth = values[0];
+        }
+    }
+    Ok((numbers, look))
 }
 
 impl Shapes {
@@ -70,6 +141,8 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
     let mut segments = Vec::new();
     let mut lines = Vec::new();
     let mut polygon: Option<PolygonRings> = None;
+    let mut looks = Vec::new();
+    let mut polygon_look = Look::default();
     // A UTF-8 byte-order mark, as some editors write, is not content.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (index, raw_line) in text.lines().enumerate() {
@@ -87,6 +160,14 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
             Some((k @ ("polygon" | "hole"), rest)) => (Some(k), rest),
             _ => (None, content),
         };
+        let given = numbers_text.len();
+        let (numbers_text, look) = split_look(numbers_text).map_err(at)?;
+        let has_look = numbers_text.len() < given;
+        if has_look && keyword == Some("hole") {
+            return Err(at(
+                "a hole takes its polygon's look: give it on the `polygon` line".into(),
+            ));
+        }
         let numbers = numbers_text
             .split_whitespace()
             .map(|tok| {
@@ -122,14 +203,25 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
                 ("hole", Some(rings)) => rings.push((line_no, points)),
                 _ => {
                     finish_polygon(polygon.take(), path, &mut triangles, &mut lines)?;
+                    looks.resize(triangles.len(), polygon_look);
                     polygon = Some(vec![(line_no, points)]);
+                    polygon_look = look;
                 }
             }
             continue;
         }
         finish_polygon(polygon.take(), path, &mut triangles, &mut lines)?;
+        looks.resize(triangles.len(), polygon_look);
+        if has_look && numbers.len() == 4 {
+            return Err(at(
+                "`rgba` and `depth` are for triangles and polygons".into()
+            ));
+        }
         match numbers.len() {
-            6 if segments.is_empty() => triangles.push([points[0], points[1], points[2]]),
+            6 if segments.is_empty() => {
+                triangles.push([points[0], points[1], points[2]]);
+                looks.push(look);
+            }
             4 if triangles.is_empty() => segments.push([points[0], points[1]]),
             6 | 4 => {
                 return Err(at(
@@ -146,8 +238,13 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
         lines.push(line_no);
     }
     finish_polygon(polygon, path, &mut triangles, &mut lines)?;
+    looks.resize(triangles.len(), polygon_look);
     Ok(if segments.is_empty() {
-        Shapes::Triangles { triangles, lines }
+        Shapes::Triangles {
+            triangles,
+            lines,
+            looks,
+        }
     } else {
         Shapes::Lines { segments, lines }
     })
@@ -222,7 +319,9 @@ mod tests {
     fn comments_and_blank_lines_are_skipped() {
         let s = parse("# header\n\n0 0 5 0 5 5 # first\n  0 5 0 0 5 5\n").unwrap();
         match s {
-            Shapes::Triangles { triangles, lines } => {
+            Shapes::Triangles {
+                triangles, lines, ..
+            } => {
                 assert_eq!(triangles.len(), 2);
                 assert_eq!(lines, vec![3, 4]);
             }
@@ -266,7 +365,9 @@ mod tests {
         let s =
             parse("polygon 0 0 20 0 20 14 0 14\nhole 6 4 14 4 10 10\n0 20 4 20 0 24\n").unwrap();
         match s {
-            Shapes::Triangles { triangles, lines } => {
+            Shapes::Triangles {
+                triangles, lines, ..
+            } => {
                 // A square with a triangular hole: 7 vertices, 7 triangles
                 // (n + 2h - 2 = 7 + 2 - 2), then the loose triangle.
                 assert_eq!(triangles.len(), 8);
@@ -286,6 +387,78 @@ mod tests {
             (
                 "0 0 1 1\npolygon 0 0 1 0 0 1\n",
                 "soup.txt:2: a file holds either",
+            ),
+        ] {
+            let msg = parse(text).unwrap_err().to_string();
+            assert!(
+                msg.starts_with(expected),
+                "{msg:?} should start with {expected:?}"
+            );
+        }
+    }
+
+    /// A line's look: colour and depth, in either order, on triangles and
+    /// on a polygon's every triangle; bad looks named with their line.
+    #[test]
+    fn triangles_carry_their_colour_and_depth() {
+        let text = "0 0 5 0 5 5 rgba 1 0 0 0.5 depth 0.25\n\
+                    0 5 0 0 5 5 depth 1\n\
+                    polygon 0 0 9 0 9 9 0 9 rgba 0 0 1 1\n";
+        let Shapes::Triangles { looks, .. } = parse(text).unwrap() else {
+            panic!("expected triangles");
+        };
+        let red = Some(Vec4::new(1.0, 0.0, 0.0, 0.5));
+        let blue = Some(Vec4::new(0.0, 0.0, 1.0, 1.0));
+        assert_eq!(looks.len(), 4);
+        assert_eq!(
+            looks[0],
+            Look {
+                color: red,
+                depth: 0.25
+            }
+        );
+        assert_eq!(
+            looks[1],
+            Look {
+                color: None,
+                depth: 1.0
+            }
+        );
+        assert_eq!(
+            looks[2..],
+            [Look {
+                color: blue,
+                depth: 0.0
+            }; 2]
+        );
+        for (text, expected) in [
+            (
+                "0 0 5 0 5 5 rgba 1 0 0\n",
+                "soup.txt:1: `rgba` takes 4 number(s)",
+            ),
+            (
+                "0 0 5 0 5 5 depth 2\n",
+                "soup.txt:1: `depth`: `2` is not a number in [0, 1]",
+            ),
+            (
+                "0 0 5 0 5 5 depth NaN\n",
+                "soup.txt:1: `depth`: `NaN` is not",
+            ),
+            (
+                "0 0 5 0 5 5 rgb 1 0 0\n",
+                "soup.txt:1: `rgb` is not a number",
+            ),
+            (
+                "0 0 5 0 5 5 depth 0.5 red\n",
+                "soup.txt:1: `red`: after the coordinates",
+            ),
+            (
+                "0 0 7 3 depth 0.5\n",
+                "soup.txt:1: `rgba` and `depth` are for triangles",
+            ),
+            (
+                "polygon 0 0 9 0 9 9\nhole 1 1 2 1 1 2 depth 0\n",
+                "soup.txt:2: a hole takes",
             ),
         ] {
             let msg = parse(text).unwrap_err().to_string();

@@ -47,7 +47,7 @@ pub(crate) mod scene;
 
 pub use frame_times::FrameTimes;
 pub(crate) use frame_times::{milliseconds, optional_milliseconds};
-pub use input::{parse_shapes, read_shapes, Shapes};
+pub use input::{parse_shapes, read_shapes, Look, Shapes};
 pub use listing::{list_fragments, FragmentListing, FragmentsRequest};
 pub use mesh::{load_obj, load_ply, parse_obj, read_ply, triangulate_face, Mesh};
 pub use pipeline::{

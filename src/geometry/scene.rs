@@ -7,14 +7,15 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::frame_times::FrameTimes;
-use crate::geometry::pipeline::{draw_clearing, Geometry};
+use crate::geometry::input::Look;
+use crate::geometry::pipeline::{draw_runs, Geometry, Pass};
 use crate::raster::edge::{FillRule, PixelRect, TriangleSetup};
 use crate::raster::fixed::FixedPoint;
 use crate::raster::fragment::{FragmentList, WorkCounters};
 use crate::raster::multisample_stage::{draw_multisampled, MultisampleTarget};
 use crate::raster::primitive::{ShadedVertex, TriangleData};
 use crate::raster::shader::FragmentShader;
-use crate::raster::stage::{FragmentStage, Interpolation};
+use crate::raster::stage::{Blend, FragmentStage, Interpolation};
 use crate::raster::target::{Clear, DepthState, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use glam::Vec4;
@@ -70,6 +71,34 @@ impl Scene2D {
             height,
             triangles,
             vertices,
+        }
+    }
+
+    /// The scene with each triangle's colour and depth set by its look
+    /// (a colour left out keeps the triangle's): the looks of a file's
+    /// lines ([`Look`]).
+    pub fn with_looks(mut self, looks: &[Look]) -> Scene2D {
+        for (vertices, look) in self.vertices.iter_mut().zip(looks) {
+            let color = look.color.unwrap_or(vertices[0].varyings.color);
+            *vertices = [ShadedVertex::flat(look.depth, color); 3];
+        }
+        self
+    }
+
+    /// The scene's triangles sorted back to front: by their mean depth,
+    /// the farthest first, those at the same depth in their order. The
+    /// painter's algorithm, which transparent triangles drawn with `over`
+    /// need. It cannot order triangles that pass through each other, nor
+    /// three that overlap in a cycle; no order of whole triangles draws
+    /// those right (see [`Scene2D::built_in`]'s `cycle`).
+    pub fn sorted_back_to_front(&self) -> Scene2D {
+        let mean = |v: &[ShadedVertex; 3]| v.iter().map(|v| v.depth).sum::<f32>() / 3.0;
+        let mut order: Vec<usize> = (0..self.triangles.len()).collect();
+        order.sort_by(|&a, &b| mean(&self.vertices[b]).total_cmp(&mean(&self.vertices[a])));
+        Scene2D {
+            triangles: order.iter().map(|&i| self.triangles[i]).collect(),
+            vertices: order.iter().map(|&i| self.vertices[i]).collect(),
+            ..*self
         }
     }
 
@@ -190,8 +219,86 @@ impl Scene2D {
         Scene2D::from_triangles(32, 32, tris)
     }
 
+    /// Three overlapping half-transparent triangles, red, green and blue,
+    /// listed nearest first (depths 0.2, 0.5, 0.8): the order in which
+    /// `over` draws them wrong. Drawn with the depth test, the nearest
+    /// hides the others as if it were opaque; without it, the farthest
+    /// lands on top. [`sorted_back_to_front`](Self::sorted_back_to_front)
+    /// draws them right.
+    pub fn transparent() -> Scene2D {
+        let half = |c: Vec4| c.truncate().extend(0.5);
+        let triangles = vec![
+            [snap(4.0, 4.0), snap(36.0, 8.0), snap(10.0, 28.0)],
+            [snap(14.0, 6.0), snap(44.0, 12.0), snap(26.0, 30.0)],
+            [snap(8.0, 14.0), snap(40.0, 20.0), snap(20.0, 31.0)],
+        ];
+        let colours = [
+            Vec4::new(0.9, 0.1, 0.1, 1.0),
+            Vec4::new(0.1, 0.75, 0.2, 1.0),
+            BLUE,
+        ];
+        let vertices = [0.2, 0.5, 0.8]
+            .into_iter()
+            .zip(colours)
+            .map(|(z, c)| [ShadedVertex::flat(z, half(c)); 3])
+            .collect();
+        Scene2D {
+            width: 48,
+            height: 32,
+            triangles,
+            vertices,
+        }
+    }
+
+    /// Three half-transparent wedges that overlap in a cycle: each one's
+    /// far tip lies under the next one's near base, so green is over red
+    /// where they meet, blue over green, and red over blue. No order of
+    /// whole triangles composites them right; only a per-pixel order
+    /// (depth peeling, or an A-buffer) can.
+    pub fn cycle() -> Scene2D {
+        let wedges = [
+            // Three wedges 120 degrees apart around (24, 25), each from its
+            // near base to a far tip 12 px past the next one's base.
+            // Red: base on the left, tip at the top right.
+            [(12.0, 33.75), (2.0, 16.25), (43.0, 4.25)],
+            // Green: base at the top, tip at the bottom.
+            [(22.5, 10.25), (42.5, 10.25), (32.5, 51.75)],
+            // Blue: base at the bottom right, tip on the left.
+            [(37.5, 31.0), (27.5, 48.5), (-3.5, 19.0)],
+        ];
+        let colours = [
+            Vec4::new(0.9, 0.1, 0.1, 0.5),
+            Vec4::new(0.1, 0.75, 0.2, 0.5),
+            BLUE.truncate().extend(0.5),
+        ];
+        let triangles = wedges.map(|w| w.map(|(x, y)| snap(x, y))).to_vec();
+        let vertices = colours
+            .into_iter()
+            .map(|c| {
+                [
+                    ShadedVertex::flat(0.1, c),
+                    ShadedVertex::flat(0.1, c),
+                    ShadedVertex::flat(0.9, c),
+                ]
+            })
+            .collect();
+        Scene2D {
+            width: 48,
+            height: 48,
+            triangles,
+            vertices,
+        }
+    }
+
     /// The names of the built-in scenes.
-    pub const BUILT_IN: [&'static str; 4] = ["depth-example", "split-square", "pinwheel", "fan"];
+    pub const BUILT_IN: [&'static str; 6] = [
+        "depth-example",
+        "split-square",
+        "pinwheel",
+        "fan",
+        "transparent",
+        "cycle",
+    ];
 
     /// A built-in scene by name.
     pub fn built_in(name: &str) -> Result<Scene2D> {
@@ -200,6 +307,8 @@ impl Scene2D {
             "split-square" => Ok(Scene2D::split_square()),
             "pinwheel" => Ok(Scene2D::pinwheel()),
             "fan" => Ok(Scene2D::fan()),
+            "transparent" => Ok(Scene2D::transparent()),
+            "cycle" => Ok(Scene2D::cycle()),
             _ => Err(Error::UnknownName {
                 what: "scene",
                 name: name.to_string(),
@@ -224,12 +333,25 @@ impl Scene2D {
         shader: &dyn FragmentShader,
         target: &mut RenderTarget,
     ) -> WorkCounters {
+        self.draw_blended(backend, rule, (depth, Blend::REPLACE), shader, target)
+    }
+
+    /// [`draw`](Self::draw), each fragment merged by `blend`.
+    pub fn draw_blended(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        rule: FillRule,
+        (depth, blend): (DepthState, Blend),
+        shader: &dyn FragmentShader,
+        target: &mut RenderTarget,
+    ) -> WorkCounters {
         let setups = self.setups(rule);
         let viewport = PixelRect::of_target(target.width(), target.height());
         let triangles = TriangleData::of_triangles(&setups, &self.vertices);
         let mut stage = FragmentStage::new(target, shader)
             .with_triangles(&triangles)
-            .with_depth(depth);
+            .with_depth(depth)
+            .with_blend(blend);
         backend.rasterize(&setups, viewport, &mut stage)
     }
 
@@ -245,7 +367,7 @@ impl Scene2D {
     ///
     /// ```
     /// use rasterlab::geometry::Scene2D;
-    /// use rasterlab::raster::{DepthState, FillRule, Flat, RenderTarget};
+    /// use rasterlab::raster::{Blend, DepthState, FillRule, Flat, RenderTarget};
     ///
     /// let scene = Scene2D::depth_example(false);
     /// let scanline = rasterlab::raster::triangle_backend("scanline").unwrap();
@@ -255,7 +377,7 @@ impl Scene2D {
     /// let mut folded = RenderTarget::new(scene.width, scene.height).unwrap();
     /// folded.color.fill([9, 9, 9, 9]);
     /// let (_, times) =
-    ///     scene.render_frame(scanline, rule, depth, &Flat, RenderTarget::BLACK, &mut folded);
+    ///     scene.render_frame(scanline, rule, (depth, Blend::REPLACE), &Flat, RenderTarget::BLACK, &mut folded);
     /// assert_eq!(folded, eager);
     /// assert!(times.clear_folded);
     /// ```
@@ -263,21 +385,20 @@ impl Scene2D {
         &self,
         backend: &dyn TriangleRasterizer,
         rule: FillRule,
-        depth: DepthState,
+        (depth, blend): (DepthState, Blend),
         shader: &dyn FragmentShader,
         background: [u8; 4],
         target: &mut RenderTarget,
     ) -> (WorkCounters, FrameTimes) {
         self.timed_frame(rule, |geometry| {
-            draw_clearing(
-                geometry,
-                backend,
+            let pass = Pass {
                 shader,
                 depth,
-                Interpolation::PerspectiveCorrect,
-                Clear::all(background),
-                target,
-            )
+                interpolation: Interpolation::PerspectiveCorrect,
+                clear: Clear::all(background),
+                blend,
+            };
+            draw_runs(&geometry.runs(), backend, pass, target)
         })
     }
 
@@ -307,7 +428,7 @@ impl Scene2D {
         &self,
         backend: &dyn TriangleRasterizer,
         rule: FillRule,
-        depth: DepthState,
+        (depth, blend): (DepthState, Blend),
         shader: &dyn FragmentShader,
         background: [u8; 4],
         target: &mut MultisampleTarget,
@@ -316,7 +437,7 @@ impl Scene2D {
             target.clear(background);
             let (setups, data) = (&geometry.setups, &geometry.shaded);
             let lerp = Interpolation::PerspectiveCorrect;
-            draw_multisampled(setups, data, backend, shader, depth, lerp, target)
+            draw_multisampled(setups, data, backend, shader, (depth, blend), lerp, target)
         })
     }
 

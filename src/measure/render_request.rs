@@ -40,7 +40,7 @@ use crate::raster::registry::{
     backend, default_line_backend, default_triangle_backend, line_backend, Backend,
 };
 use crate::raster::shader::{Filter, Flat};
-use crate::raster::stage::Interpolation;
+use crate::raster::stage::{Blend, Interpolation};
 use crate::raster::target::{DepthState, RenderTarget, MAX_TARGET_SIDE};
 use serde::Serialize;
 use std::fmt;
@@ -147,6 +147,12 @@ pub struct RenderRequest {
     pub rule: FillRule,
     /// The depth test and write ([`DepthState::OFF`]: colour only).
     pub depth: DepthState,
+    /// How fragments are merged with the pixels' colours, and the space
+    /// colours are mixed in (the multisample resolve's too).
+    pub blend: Blend,
+    /// Triangles sorted back to front before they are drawn (2D inputs:
+    /// by their mean depth), as transparent surfaces must be for `over`.
+    pub sort: bool,
     /// Options for meshes only.
     pub mesh: MeshOverrides,
     /// Frames drawn (the input is loaded once); the report gives the
@@ -176,6 +182,8 @@ impl RenderRequest {
             size: None,
             rule: FillRule::TopLeft,
             depth: DepthState::DEFAULT,
+            blend: Blend::REPLACE,
+            sort: false,
             mesh: MeshOverrides::default(),
             frames: 1,
             scale: 1,
@@ -212,6 +220,13 @@ impl RenderRequest {
     }
 
     fn render_mesh(&self, path: &Path, frame_done: &mut dyn FnMut()) -> Result<MeshReport> {
+        if self.sort {
+            return Err(Error::InvalidArgument(format!(
+                "{}: --sort orders the triangles of 2D inputs (triangle soups and scenes); \
+                 a mesh is drawn in its own order",
+                path.display()
+            )));
+        }
         if self.scale != 1 {
             return Err(Error::InvalidArgument(
                 "--scale is for triangle soups, line sets and scenes; a mesh is drawn at --size"
@@ -234,6 +249,7 @@ impl RenderRequest {
             width,
             height,
             depth: self.depth,
+            blend: self.blend,
             pipeline: PipelineOptions {
                 rule: self.rule,
                 cull: RENDER_CULL,
@@ -351,9 +367,11 @@ impl RenderRequest {
                 })
             }
             RenderInput::File(path) => match read_shapes(path)? {
-                Shapes::Triangles { triangles, .. } => {
+                Shapes::Triangles {
+                    triangles, looks, ..
+                } => {
                     let (w, h) = size(None)?;
-                    Drawing::Triangles(Scene2D::from_triangles(w, h, triangles))
+                    Drawing::Triangles(Scene2D::from_triangles(w, h, triangles).with_looks(&looks))
                 }
                 Shapes::Lines { segments, .. } => {
                     let (w, h) = size(None)?;
@@ -364,6 +382,17 @@ impl RenderRequest {
                     )
                 }
             },
+        };
+        let drawing = match drawing {
+            Drawing::Triangles(scene) if self.sort => {
+                Drawing::Triangles(scene.sorted_back_to_front())
+            }
+            Drawing::Lines(..) if self.sort => {
+                return Err(Error::InvalidArgument(
+                    "--sort orders triangles; a line set has none".into(),
+                ))
+            }
+            drawing => drawing,
         };
         let (width, height) = match &drawing {
             Drawing::Triangles(scene) => (scene.width, scene.height),
@@ -397,7 +426,8 @@ impl RenderRequest {
                 // coverage count (nothing here reads it).
                 let mut target = RenderTarget::without_coverage(width, height)?;
                 for _ in 0..self.frames {
-                    let (w, t) = drawing.frame(chosen, self.rule, self.depth, &mut target)?;
+                    let state = (self.depth, self.blend);
+                    let (w, t) = drawing.frame(chosen, self.rule, state, &mut target)?;
                     work = w;
                     times.push(t);
                     frame_done();
@@ -410,7 +440,7 @@ impl RenderRequest {
                     let (w, t) = scene.render_frame_multisampled(
                         b,
                         self.rule,
-                        self.depth,
+                        (self.depth, self.blend),
                         &Flat,
                         RenderTarget::BLACK,
                         &mut target,
@@ -419,7 +449,7 @@ impl RenderRequest {
                     times.push(t);
                     frame_done();
                 }
-                target.resolve()
+                target.resolve_in(self.blend.mix_in)
             }
             (Some(_), Drawing::Lines(..), _) => {
                 let file = match &self.input {
@@ -462,19 +492,19 @@ impl Drawing {
         &self,
         chosen: Backend,
         rule: FillRule,
-        depth: DepthState,
+        state: (DepthState, Blend),
         target: &mut RenderTarget,
     ) -> Result<(WorkCounters, FrameTimes)> {
         match (self, chosen) {
             (Drawing::Triangles(scene), Backend::Triangle(b)) => {
-                Ok(scene.render_frame(b, rule, depth, &Flat, RenderTarget::BLACK, target))
+                Ok(scene.render_frame(b, rule, state, &Flat, RenderTarget::BLACK, target))
             }
             (Drawing::Lines(_, _, lines), Backend::Line(b)) => {
                 let start = Instant::now();
                 target.clear();
                 let clear = start.elapsed();
                 let raster_start = Instant::now();
-                let work = lines.run(b, target);
+                let work = lines.run_blended(b, state.1, target);
                 let raster = raster_start.elapsed();
                 let times = FrameTimes::new(start.elapsed(), Some(clear), Duration::ZERO, raster);
                 Ok((work, times))

@@ -14,7 +14,7 @@
 //! | `lines-short` | short segments, 2 to 16 px |
 //! | `lines-long` | 1000 px segments |
 
-use crate::geometry::pipeline::{draw_clearing, Geometry};
+use crate::geometry::pipeline::{draw_clearing, draw_runs, Geometry, Pass};
 use crate::geometry::scene::setup_triangles;
 use crate::measure::fast_lines::draw_lines;
 use crate::raster::descriptor::{within_budget, WorkBudget};
@@ -27,13 +27,17 @@ use crate::raster::line::{LineOptions, LineRasterizer};
 use crate::raster::primitive::{ShadedLine, ShadedVertex};
 use crate::raster::shader::to_rgba8;
 use crate::raster::shader::Constant;
-use crate::raster::stage::{FragmentStage, Interpolation};
+use crate::raster::srgb::MixSpace;
+use crate::raster::stage::{Blend, BlendMode, FragmentStage, Interpolation};
 use crate::raster::target::{Clear, DepthState, DepthTest, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use glam::Vec4;
 
 /// The colour every workload writes.
 pub const WORKLOAD_COLOR: Vec4 = Vec4::new(0.2, 0.5, 0.9, 1.0);
+
+/// The colour of the blended fills: `WORKLOAD_COLOR` at opacity 1/2.
+pub const BLENDED_COLOR: Vec4 = Vec4::new(0.2, 0.5, 0.9, 0.5);
 
 fn p(x: f32, y: f32) -> FixedPoint {
     FixedPoint::snap(x, y).expect("workload coordinates lie inside the guard band")
@@ -120,6 +124,30 @@ impl TriangleWorkload {
         )
         .fragments
     }
+
+    /// [`run_colour_only`](Self::run_colour_only) with
+    /// the workload colour at opacity 1/2, composited by `over` of a
+    /// straight fragment mixed in `mix_in`: the alpha-blended fill of a
+    /// 2D library. Returns the fragments drawn.
+    pub fn run_blended(
+        &self,
+        backend: &dyn TriangleRasterizer,
+        mix_in: MixSpace,
+        target: &mut RenderTarget,
+    ) -> u64 {
+        let pass = Pass {
+            shader: &Constant(BLENDED_COLOR),
+            depth: DepthState::OFF,
+            interpolation: Interpolation::PerspectiveCorrect,
+            clear: Clear::color(RenderTarget::BLACK),
+            blend: Blend {
+                mode: BlendMode::OverStraight,
+                mix_in,
+                ..Blend::REPLACE
+            },
+        };
+        draw_runs(&self.geometry.runs(), backend, pass, target).fragments
+    }
 }
 
 /// Line segments ready to draw: set-up and stage data.
@@ -155,11 +183,23 @@ impl LineWorkload {
     /// `backend` (default options) through the stage, depth test off;
     /// returns the back-end's work.
     pub fn run(&self, backend: &dyn LineRasterizer, target: &mut RenderTarget) -> WorkCounters {
+        self.run_blended(backend, Blend::REPLACE, target)
+    }
+
+    /// [`run`](Self::run), each fragment merged by `blend` (an
+    /// anti-aliased line's coverage mixed in its space).
+    pub fn run_blended(
+        &self,
+        backend: &dyn LineRasterizer,
+        blend: Blend,
+        target: &mut RenderTarget,
+    ) -> WorkCounters {
         target.clear_depth_and_coverage();
         let shader = Constant(WORKLOAD_COLOR);
         let viewport = PixelRect::of_target(target.width(), target.height());
         let mut stage = FragmentStage::new(target, &shader)
             .with_lines(&self.shaded)
+            .with_blend(blend)
             .with_depth(DepthState {
                 test: DepthTest::Always,
                 write: false,
