@@ -569,3 +569,68 @@ fn every_row_carries_the_pixels_it_is_about() {
     assert_eq!(json["rows"][3]["about"], serde_json::json!([[3, 1, 3, 1]]));
     assert_eq!(json["columns"][4]["name"], "choice");
 }
+
+/// The blend trace of one pixel of the `transparent` scene: drawn as
+/// listed with the depth test, the two farther triangles fail it there
+/// and the pixel keeps the nearest alone; sorted, all three pass. Either
+/// way the trace ends at the colour `render` writes there.
+#[test]
+fn the_blend_trace_follows_one_pixel_through_every_fragment() {
+    use rasterlab::geometry::Scene2D;
+    use rasterlab::raster::{Blend, BlendMode, DepthState, Flat, RenderTarget};
+    let over = Blend {
+        mode: BlendMode::OverStraight,
+        ..Blend::default()
+    };
+    let bbox = rasterlab::raster::triangle_backend("bbox").unwrap();
+    for (scene, verdicts) in [
+        (Scene2D::transparent(), ["passes", "fails", "fails"]),
+        (
+            Scene2D::transparent().sorted_back_to_front(),
+            ["passes", "passes", "passes"],
+        ),
+    ] {
+        let trace = rasterlab::teaching::trace_blend(
+            &scene,
+            (20, 18),
+            bbox,
+            FillRule::TopLeft,
+            DepthState::DEFAULT,
+            over,
+        )
+        .unwrap();
+        let rows: Vec<_> = trace.rows.iter().filter(|r| !r.note).collect();
+        assert_eq!(rows.len(), 3);
+        for (row, verdict) in rows.iter().zip(verdicts) {
+            assert!(row.cells[1].ends_with(verdict), "{:?}", row.cells);
+        }
+        let mut target = RenderTarget::new(scene.width, scene.height).unwrap();
+        scene.draw_blended(
+            bbox,
+            FillRule::TopLeft,
+            (DepthState::DEFAULT, over),
+            &Flat,
+            &mut target,
+        );
+        let [r, g, b, a] = target.color[target.index(20, 18)];
+        assert_eq!(
+            rows[2].cells.last().unwrap(),
+            &format!("({r}, {g}, {b}, {a})")
+        );
+        assert!(trace.footer[0].ends_with(&format!("({r}, {g}, {b}, {a})")));
+    }
+    // A pixel outside the scene is refused.
+    let scene = Scene2D::transparent();
+    let outside = rasterlab::teaching::trace_blend(
+        &scene,
+        (48, 0),
+        bbox,
+        FillRule::TopLeft,
+        DepthState::DEFAULT,
+        over,
+    );
+    assert!(outside
+        .unwrap_err()
+        .to_string()
+        .contains("outside the 48 x 32 scene"));
+}

@@ -2,8 +2,8 @@
 
 use super::args::{msaa, Size};
 use clap::Args;
-use rasterlab::raster::{FillRule, SamplePattern};
-use rasterlab::teaching::{explain, ExplainRequest, GridPicture};
+use rasterlab::raster::{Blend, BlendMode, DepthState, FillRule, MixSpace, SamplePattern};
+use rasterlab::teaching::{explain, Blending, ExplainRequest, GridPicture};
 use rasterlab::Result;
 use std::path::PathBuf;
 
@@ -14,9 +14,27 @@ pub struct ExplainArgs {
     /// incremental, tiled (a triangle: x0 y0 x1 y1 x2 y2, in screen
     /// coordinates); depth-buffer (triangles of 7
     /// numbers each, x0 y0 x1 y1 x2 y2 z, or none for the course's
-    /// depth-buffer example). Any other back-end: --picture only.
+    /// depth-buffer example); blend (one pixel's fragments and blends:
+    /// x y, a pixel of --scene). Any other back-end: --picture only.
     #[arg(long)]
     backend: String,
+    /// The blend trace's built-in scene (default transparent; see
+    /// `render --help`).
+    #[arg(long)]
+    scene: Option<String>,
+    /// The blend trace's blend mode: replace, add, over, over-straight
+    /// (default), multiply.
+    #[arg(long, default_value = "over-straight", value_parser = BlendMode::from_name)]
+    blend: BlendMode,
+    /// The blend trace's mixing space: linear (default) or srgb.
+    #[arg(long, default_value = "linear", value_parser = MixSpace::from_name)]
+    mix_in: MixSpace,
+    /// The blend trace's depth test (as `render --depth-test`).
+    #[arg(long, default_value = "less", value_parser = DepthState::from_name)]
+    depth_test: DepthState,
+    /// The blend trace: sort the scene's triangles back to front first.
+    #[arg(long)]
+    sort: bool,
     /// Fill rule for triangles.
     #[arg(long, default_value = "top-left")]
     rule: FillRule,
@@ -55,6 +73,16 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
         coordinates: args.coordinates.clone(),
         picture: args.picture.is_some(),
         msaa: args.msaa,
+        blending: Blending {
+            scene: args.scene.clone(),
+            blend: Blend {
+                mode: args.blend,
+                mix_in: args.mix_in,
+                ..Blend::default()
+            },
+            depth: args.depth_test,
+            sort: args.sort,
+        },
     })?;
     if let (Some(path), Some(picture)) = (&args.picture, &explanation.picture) {
         picture.save(path)?;

@@ -20,12 +20,20 @@ use crate::raster::fixed::FixedPoint;
 use crate::raster::line::LineOptions;
 use crate::raster::multisample::SamplePattern;
 use crate::raster::registry::{all_backends, backend, triangle_backend, Backend};
-use crate::raster::target::RenderTarget;
+use crate::raster::stage::{Blend, BlendMode};
+use crate::raster::target::{DepthState, RenderTarget};
 use crate::teaching::grid_picture::GridPicture;
 use crate::teaching::trace::{self, LineEnds};
 
 /// The name that asks for the depth buffer's trace instead of a back-end's.
 pub const DEPTH_BUFFER: &str = "depth-buffer";
+
+/// The name that asks for one pixel's blends ([`trace_blend`](super::trace_blend))
+/// instead of a back-end's trace.
+pub const BLEND: &str = "blend";
+
+/// The scene the blend trace draws unless told otherwise.
+pub const BLEND_SCENE: &str = "transparent";
 
 /// The grid `explain` draws on unless told otherwise.
 pub const DEFAULT_GRID: (u32, u32) = (16, 16);
@@ -50,6 +58,37 @@ pub struct ExplainRequest {
     /// Triangles: also trace their samples on this multisample pattern
     /// ([`trace_samples`](super::trace_samples)).
     pub msaa: Option<SamplePattern>,
+    /// The blend trace: the built-in scene drawn ([`BLEND_SCENE`] when
+    /// `None`), its blend state and depth state, and whether its
+    /// triangles are sorted back to front first.
+    pub blending: Blending,
+}
+
+/// What the blend trace draws, and how.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Blending {
+    /// A built-in scene's name; [`BLEND_SCENE`] when `None`.
+    pub scene: Option<String>,
+    /// How fragments are merged.
+    pub blend: Blend,
+    /// The depth test.
+    pub depth: DepthState,
+    /// Sort the triangles back to front first.
+    pub sort: bool,
+}
+
+impl Default for Blending {
+    fn default() -> Self {
+        Blending {
+            scene: None,
+            blend: Blend {
+                mode: BlendMode::OverStraight,
+                ..Blend::default()
+            },
+            depth: DepthState::DEFAULT,
+            sort: false,
+        }
+    }
 }
 
 impl ExplainRequest {
@@ -64,6 +103,7 @@ impl ExplainRequest {
             coordinates,
             picture: false,
             msaa: None,
+            blending: Blending::default(),
         }
     }
 
@@ -140,6 +180,15 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
             .transpose()?;
         return Ok(Explanation { text, picture });
     }
+    if request.backend == BLEND {
+        return explain_blend(request);
+    }
+    if request.blending != Blending::default() {
+        return Err(Error::InvalidArgument(
+            "--scene, --blend, --mix-in, --depth-test and --sort are for the blend trace (--backend blend)"
+                .into(),
+        ));
+    }
     let chosen = backend(&request.backend).map_err(|_| Error::UnknownName {
         what: "rasterizer back-end",
         name: request.backend.clone(),
@@ -148,7 +197,7 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
             .map(|b| b.name)
             .collect::<Vec<_>>()
             .join(", ")
-            + "; or depth-buffer, the depth buffer's trace",
+            + "; or depth-buffer, the depth buffer's trace; or blend, one pixel's blends",
     })?;
     let (width, height) = request.size(DEFAULT_GRID)?;
     let (text, picture) = match chosen {
@@ -192,4 +241,45 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
         }
     };
     Ok(Explanation { text, picture })
+}
+
+/// The blend trace of the request's pixel (`x y`) in its scene.
+fn explain_blend(request: &ExplainRequest) -> Result<Explanation> {
+    if request.msaa.is_some() || request.picture {
+        return Err(Error::InvalidArgument(
+            "the blend trace prints one pixel's fragments; --msaa and --picture are for the back-ends' traces"
+                .into(),
+        ));
+    }
+    let blending = &request.blending;
+    let mut scene = Scene2D::built_in(blending.scene.as_deref().unwrap_or(BLEND_SCENE))?;
+    if let Some((w, h)) = request.size {
+        RenderTarget::check_size(w, h)?;
+        (scene.width, scene.height) = (w, h);
+    }
+    if blending.sort {
+        scene = scene.sorted_back_to_front();
+    }
+    request.want(2, "one pixel's blends (x y, a pixel index)")?;
+    let [x, y] = [request.coordinates[0], request.coordinates[1]];
+    let index = |v: f64| {
+        (v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&v))
+            .then_some(v as u32)
+            .ok_or_else(|| {
+                Error::InvalidArgument(format!("a pixel index is a whole number from 0, not {v}"))
+            })
+    };
+    let text = super::trace_blend(
+        &scene,
+        (index(x)?, index(y)?),
+        triangle_backend("bbox")?,
+        request.rule,
+        blending.depth,
+        blending.blend,
+    )?
+    .to_text();
+    Ok(Explanation {
+        text,
+        picture: None,
+    })
 }

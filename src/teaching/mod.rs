@@ -44,7 +44,9 @@ pub use antialias_chart::{antialias_chart_svg, ChartPoint};
 pub use ascii::{ascii_count, ascii_framed, ascii_mark, ascii_rows};
 pub use compare::{compare, default_compare_size, CompareRequest, CompareSummary};
 pub use demo::{bundled_assets, run_demo, DemoReport, DemoRow};
-pub use explain::{explain, ExplainRequest, Explanation, DEFAULT_GRID, DEPTH_BUFFER};
+pub use explain::{
+    explain, Blending, ExplainRequest, Explanation, BLEND, BLEND_SCENE, DEFAULT_GRID, DEPTH_BUFFER,
+};
 pub use grid_picture::{
     for_people, is_fragment_green, scale_for_people, DepthCells, GridPicture, AS_REFERENCE, GAP,
     INSIDE, MAX_LABELLED_CELLS, MIN_SHORT_SIDE, OVERDRAWN, OVERDRAWN_MORE, TESTED_OUTSIDE,
@@ -57,5 +59,5 @@ pub use report::{
     MAX_REPORT_BYTES, REPORT_BYTES_PER_PIXEL,
 };
 pub use sample_trace::trace_samples;
-pub use trace::{trace_depth_buffer, trace_line, trace_triangle, LineEnds};
+pub use trace::{trace_blend, trace_depth_buffer, trace_line, trace_triangle, LineEnds};
 pub use trace_table::{Column, Trace, TraceRow};

@@ -21,7 +21,9 @@
 //!   every 8 x 8 block of the box and its class from the corner test
 //!   (trivial reject, trivial accept, partial);
 //! * [`trace_depth_buffer`]: the rasterization slides' depth buffer, printed as the
-//!   slides' matrix after each triangle.
+//!   slides' matrix after each triangle;
+//! * [`trace_blend`]: one pixel's fragments in order, each one's depth
+//!   test and the pixel's colour after each blend.
 //!
 //! Line endpoints are given as [`LineEnds`]: pixel indices, as in the
 //! course's hand-worked tables (`0 0 7 3` means from the centre of pixel
@@ -40,10 +42,12 @@
 //! assert_eq!(ends, LineEnds::screen([0.5, 0.5, 7.5, 3.5]).unwrap().snapped_only());
 //! ```
 
+mod blend;
 mod depth_buffer;
 mod line;
 mod triangle;
 
+pub use blend::trace_blend;
 pub use depth_buffer::trace_depth_buffer;
 pub use line::{trace_line, LineEnds};
 pub use triangle::trace_triangle;
