@@ -703,3 +703,60 @@ fn the_msaa_control_shows_samples_and_the_resolve() {
         "{keys:?}"
     );
 }
+
+/// The compositing controls: the transparent preset composites its three
+/// triangles through the stage, the page paints exactly the library's
+/// pixels, and sorting back to front changes the pixel all three cover.
+#[test]
+fn the_compositing_controls_show_the_blended_triangles() {
+    let Some(mut browser) = Browser::start("the lab's compositing browser test") else {
+        return;
+    };
+    let lab = Lab::start();
+    let dev = &mut browser.dev;
+    dev.open(&format!("http://{}/", lab.address));
+    let before = updates(dev);
+    dev.eval("(() => { const p = document.getElementById('preset'); p.value = 'transparent'; p.onchange(); })()");
+    settle(dev, before);
+    dev.wait_for("document.getElementById('composited') !== null");
+    let painted = |dev: &mut DevTools| -> Vec<String> {
+        let v = dev.eval("[...document.querySelectorAll('#composited rect.composited')].map((r) => r.getAttribute('fill'))");
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f.as_str().unwrap().to_string())
+            .collect()
+    };
+    let expected = |dev: &mut DevTools| -> Vec<String> {
+        let request = dev.eval("JSON.stringify(request())");
+        let request = rasterlab::lab::LabRequest::parse(request.as_str().unwrap()).unwrap();
+        let composite = rasterlab::lab::answer(&request, None)
+            .unwrap()
+            .composite
+            .unwrap();
+        composite
+            .pixels
+            .iter()
+            .map(|[r, g, b, _]| format!("rgb({r},{g},{b})"))
+            .collect()
+    };
+    let listed = painted(dev);
+    assert_eq!(listed, expected(dev));
+    let before = updates(dev);
+    dev.eval(
+        "(() => { const s = document.getElementById('sort'); s.checked = true; s.onchange(); })()",
+    );
+    settle(dev, before);
+    let sorted = painted(dev);
+    assert_eq!(sorted, expected(dev));
+    assert_ne!(listed, sorted, "sorting back to front changes the overlap");
+    let before = updates(dev);
+    dev.eval(
+        "(() => { const b = document.getElementById('blend'); b.value = ''; b.onchange(); })()",
+    );
+    settle(dev, before);
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#composited').length"),
+        json!(0)
+    );
+}

@@ -9,8 +9,9 @@
 //! pixels it is about, so the page highlights a row by its pixels), the
 //! fill rule's heat map (gaps,
 //! double draws) when there are several triangles, with `msaa` every
-//! sample and the resolve ([`SamplesView`]), and, with `--exec`, the
-//! student's own rasterizer against the exact answer.
+//! sample and the resolve ([`SamplesView`]), with `blend` the triangles
+//! composited through the stage at one opacity ([`CompositeView`]), and,
+//! with `--exec`, the student's own rasterizer against the exact answer.
 //!
 //! Triangles that carry a depth are the course's depth-buffer example:
 //! overlap is what the depth test resolves, not a fill-rule error, so
@@ -81,8 +82,11 @@ pub fn page() -> String {
         )
 }
 
+mod composite;
 #[cfg(feature = "lab")]
 mod server;
+
+pub use composite::CompositeView;
 #[cfg(feature = "lab")]
 pub use server::LabServer;
 
@@ -132,6 +136,19 @@ pub struct LabRequest {
     /// samples (2, 4, 8 or 16; 1 or none: one sample at the centre).
     #[serde(default)]
     pub msaa: Option<u32>,
+    /// Triangles: composite them with this blend mode (`replace`, `add`,
+    /// `over`, `over-straight`, `multiply`) into [`LabResponse::composite`].
+    #[serde(default)]
+    pub blend: Option<String>,
+    /// The triangles' opacity for the compositing view (default 1/2).
+    #[serde(default)]
+    pub opacity: Option<f64>,
+    /// Where the compositing view mixes: `linear` (default) or `srgb`.
+    #[serde(default)]
+    pub mix_in: Option<String>,
+    /// Sort the triangles back to front by depth before compositing.
+    #[serde(default)]
+    pub sort: bool,
 }
 
 impl LabRequest {
@@ -201,7 +218,7 @@ impl LabRequest {
         if let Some(n) = self.msaa {
             SamplePattern::standard(n)?;
         }
-        Ok(())
+        composite::check(self)
     }
 
     fn rule(&self) -> FillRule {
@@ -336,6 +353,8 @@ pub struct LabResponse {
     /// Under `msaa`: every sample and whether a triangle covers it, and
     /// each pixel's resolved coverage.
     pub samples: Option<SamplesView>,
+    /// With `blend`: the triangles composited through the stage.
+    pub composite: Option<CompositeView>,
     /// What the answer draws: every (colour, mark) pair with its meaning
     /// (the page leaves out the entries of layers it hides: the heat map
     /// when switched off, pixel centres on cells too small to dot).
@@ -443,6 +462,7 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         depth,
         student,
         samples,
+        composite: CompositeView::of(request, rule)?,
         legend_html: legend.to_html(),
         legend,
     })
