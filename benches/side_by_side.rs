@@ -14,7 +14,10 @@
 //!   anti-aliasing (colour only, no depth buffer); `fill-L-colour-only` is
 //!   the fill with colour cleared and no depth (`DepthState::OFF`), the
 //!   very work tiny-skia does, and llvmpipe without depth test; the
-//!   fills are also drawn by `tiled` on two threads;
+//!   fills are also drawn by `tiled` on two threads; `fill-L-over` is the
+//!   fill half transparent, composited by `over` without depth, in linear
+//!   light (`scanline`) and in encoded values (`scanline-srgb`, tiny-skia's
+//!   work), beside tiny-skia's `source-over` of the same colour;
 //! * `lines-short-1M`, `lines-long-10k`: every line back-end through the
 //!   stage and the fast path, against the `line_drawing` crate's Bresenham
 //!   writing into a colour buffer.
@@ -67,8 +70,8 @@ use rasterlab::measure::{
 use rasterlab::raster::line::pixel_containing;
 use rasterlab::raster::triangle::TriangleRasterizer;
 use rasterlab::raster::{
-    line_backends, triangle_backend, triangle_backends, within_budget, FixedPoint, RenderTarget,
-    WorkBudget,
+    line_backends, triangle_backend, triangle_backends, within_budget, FixedPoint, MixSpace,
+    RenderTarget, WorkBudget,
 };
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -355,10 +358,12 @@ fn dragon(name: &str, mesh: &Mesh, zoom: f32, rounds: usize, gls: &Gl) -> Worklo
     result
 }
 
-/// The workload's triangles filled by tiny-skia, aliased, in one colour.
-fn tiny_skia_fill(work: &TriangleWorkload, pixmap: &mut tiny_skia::Pixmap) {
+/// The workload's triangles filled by tiny-skia, aliased, in one colour
+/// of opacity `alpha` (255: opaque), composited by its default blend,
+/// `source-over`.
+fn tiny_skia_fill(work: &TriangleWorkload, alpha: u8, pixmap: &mut tiny_skia::Pixmap) {
     let mut paint = tiny_skia::Paint::default();
-    paint.set_color_rgba8(51, 128, 230, 255);
+    paint.set_color_rgba8(51, 128, 230, alpha);
     paint.anti_alias = false;
     pixmap.fill(tiny_skia::Color::BLACK);
     for t in &work.geometry.setups {
@@ -463,7 +468,7 @@ fn triangles(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
             }
             contest.add(Contender::new("peer-tiny-skia", Side::Peer, 1, || {
                 let pixmap = &mut pixmap.borrow_mut();
-                tiny_skia_fill(work, pixmap);
+                tiny_skia_fill(work, 255, pixmap);
                 pixmap.data()[0]
             }));
             let state = gl::DrawState {
@@ -488,8 +493,53 @@ fn triangles(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
             print!("{}", result.figure_table());
             results.push(result);
         }
+        let over = format!("{}-over", work.name);
+        if work.name.starts_with("fill") && options.wants(&over) {
+            results.push(blended_fill(
+                work,
+                &over,
+                options.rounds,
+                &target,
+                &pixmap,
+                &one,
+            ));
+        }
     }
     results
+}
+
+/// The fill composited half transparent by `over`, colour only: rasterlab
+/// mixing in linear light (its default, the cost of being right) and in
+/// the encoded values (tiny-skia's work), beside tiny-skia's
+/// `source-over` fill, which mixes encoded values.
+fn blended_fill(
+    work: &TriangleWorkload,
+    name: &str,
+    rounds: usize,
+    target: &RefCell<RenderTarget>,
+    pixmap: &RefCell<tiny_skia::Pixmap>,
+    one: &rayon::ThreadPool,
+) -> WorkloadResult {
+    let scanline = triangle_backend("scanline").unwrap();
+    let mut contest = Workload::new(name);
+    contest.also_warm();
+    for (label, space) in [
+        ("scanline", MixSpace::Linear),
+        ("scanline-srgb", MixSpace::Encoded),
+    ] {
+        contest.add(Contender::new(label, Side::Rasterlab, 1, move || {
+            let target = &mut *target.borrow_mut();
+            one.install(|| work.run_blended(scanline, space, target))
+        }));
+    }
+    contest.add(Contender::new("peer-tiny-skia", Side::Peer, 1, || {
+        let pixmap = &mut pixmap.borrow_mut();
+        tiny_skia_fill(work, 128, pixmap);
+        pixmap.data()[0]
+    }));
+    let result = contest.run(rounds);
+    print!("{}", result.figure_table());
+    result
 }
 
 /// line_drawing's Bresenham on the pixels containing the endpoints,
