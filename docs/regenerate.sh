@@ -59,6 +59,16 @@ backends='["naive","bbox","scanline","incremental","tiled"]'
 "$bin" render --scene fan --scale 10 --msaa 16 --out docs/fan-msaa16.png >/dev/null
 "$bin" render assets/lines.txt --size 32x32 --backend bresenham --scale 10 --out docs/lines-bresenham.png >/dev/null
 "$bin" render assets/lines.txt --size 32x32 --backend wu --scale 10 --out docs/lines-wu.png >/dev/null
+# The compositing pictures of docs/teaching.md: mixing in encoded values,
+# the order of transparent triangles, the cycle, the straight-alpha fringe.
+"$bin" render --scene fan --scale 10 --msaa 4 --mix-in srgb --out docs/fan-msaa4-srgb.png >/dev/null
+"$bin" render assets/lines.txt --size 32x32 --backend wu --scale 10 --mix-in srgb --out docs/lines-wu-srgb.png >/dev/null
+"$bin" render --scene transparent --blend over-straight --scale 8 --out docs/transparent-listed.png >/dev/null
+"$bin" render --scene transparent --blend over-straight --depth-test off --scale 8 --out docs/transparent-listed-no-depth.png >/dev/null
+"$bin" render --scene transparent --blend over-straight --sort --scale 8 --out docs/transparent-sorted.png >/dev/null
+"$bin" render --scene cycle --blend over-straight --depth-test off --sort --scale 6 --out docs/cycle-sorted.png >/dev/null
+"$bin" render --scene cycle --scale 6 --out docs/cycle-opaque.png >/dev/null
+cargo run --release --quiet --example alpha_fringe -- docs/alpha-fringe.png >/dev/null
 
 # The screenshots, by headless Chromium.
 if command -v chromium >/dev/null 2>&1; then
