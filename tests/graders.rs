@@ -5,14 +5,16 @@
 //! read it (`testsuites` > `testsuite` with `tests`, `failures`, `errors`
 //! and `skipped` > `testcase` with `classname` and `name`, holding a
 //! `failure` or an `error` with `message` and `type`). Each is checked on
-//! a passing subject, a failing one and a broken one.
+//! a passing subject, a failing one, one that crashes on some cases
+//! (partial credit: the crash costs those cases only) and one broken on
+//! every input.
 
 mod common;
 
 use common::rasterlab;
 use rasterlab::check::{
-    gradescope, junit, run_with, Builtin, Case, CheckReport, CheckRequest, Fragment, Subject,
-    SubjectError, SubjectSpec,
+    generate_case, gradescope, junit, run_with, Builtin, Case, CheckReport, CheckRequest,
+    FailureKind, Fragment, Property, Subject, SubjectError, SubjectSpec, VerdictWord,
 };
 use rasterlab::raster::{triangle_backend, FillRule};
 
@@ -67,18 +69,157 @@ fn failing() -> CheckReport {
     report(&move || Box::new(Builtin::triangles(bbox, FillRule::Inclusive)))
 }
 
+/// Broken on every input: it fails whatever it is given.
 fn broken() -> CheckReport {
     report(&|| {
-        Box::new(|c: &Case| -> Result<Vec<Fragment>, SubjectError> {
-            if c.len() > 3 {
-                return Err(SubjectError::Failed {
-                    status: "exit status: 1".into(),
-                    stderr: "IndexError: <list> & \u{7} index out of range".into(),
-                });
-            }
-            Ok(Vec::new())
+        Box::new(|_: &Case| -> Result<Vec<Fragment>, SubjectError> {
+            Err(SubjectError::Failed {
+                status: "exit status: 1".into(),
+                stderr: "IndexError: <list> & \u{7} index out of range".into(),
+            })
         })
     })
+}
+
+/// True when some triangle of the case has zero area once snapped.
+fn has_zero_snapped_area(case: &Case) -> bool {
+    case.snapped_triangles().iter().any(|[a, b, c]| {
+        let (ax, ay) = (i128::from(a.x.raw()), i128::from(a.y.raw()));
+        let (bx, by) = (i128::from(b.x.raw()), i128::from(b.y.raw()));
+        let (cx, cy) = (i128::from(c.x.raw()), i128::from(c.y.raw()));
+        (bx - ax) * (cy - ay) - (by - ay) * (cx - ax) == 0
+    })
+}
+
+/// The student of the issue: correct (the top-left rule, exactly), but it
+/// divides by the snapped area, so it crashes on every case holding a
+/// triangle of zero snapped area.
+fn divides_by_the_area() -> Box<dyn Subject + Send> {
+    let bbox = triangle_backend("bbox").unwrap();
+    Box::new(move |c: &Case| -> Result<Vec<Fragment>, SubjectError> {
+        if has_zero_snapped_area(c) {
+            return Err(SubjectError::Failed {
+                status: "exit status: 1".into(),
+                stderr: "ZeroDivisionError: float division by zero".into(),
+            });
+        }
+        Builtin::triangles(bbox, FillRule::TopLeft).draw(c)
+    })
+}
+
+/// The cases of the 60 that hold a triangle of zero snapped area.
+fn zero_area_cases() -> Vec<u32> {
+    let property = Property::Exact(FillRule::TopLeft);
+    let mut rng = fastrand::Rng::with_seed(0);
+    (0..60)
+        .filter(|&i| has_zero_snapped_area(&generate_case(property, i, &mut rng)))
+        .collect()
+}
+
+#[test]
+fn a_crash_costs_its_case_only_in_every_format() {
+    let crashing = zero_area_cases();
+    assert!(!crashing.is_empty() && crashing.len() < 30, "{crashing:?}");
+    let report = report(&divides_by_the_area);
+    let held = 60 - crashing.len() as u32;
+    // The report: every other case scored, each crash a failed case.
+    assert_eq!(report.verdict, VerdictWord::Fail);
+    assert_eq!(report.exit_code(), 1);
+    assert!(report.error.is_none());
+    assert_eq!(report.passed, held);
+    let failed: Vec<u32> = report.failing_cases.iter().map(|f| f.case_index).collect();
+    assert_eq!(failed, crashing);
+    for f in &report.failing_cases {
+        assert_eq!(f.kind, FailureKind::NoAnswer);
+        assert!(f.problem.contains("ZeroDivisionError"), "{}", f.problem);
+        // Shown with its input, which crashes it again.
+        let input = Case::from_text(f.input.as_deref().unwrap()).unwrap();
+        assert!(has_zero_snapped_area(&input));
+    }
+    // Each failing family has its shrunk input: one triangle of zero area.
+    let families: Vec<&str> = report
+        .families
+        .iter()
+        .filter(|t| t.passed < t.total)
+        .map(|t| t.family.as_str())
+        .collect();
+    assert!(!families.is_empty());
+    assert_eq!(report.counterexamples.len(), families.len());
+    for (c, family) in report.counterexamples.iter().zip(&families) {
+        assert_eq!(c.family, *family);
+        assert_eq!(c.kind, FailureKind::NoAnswer);
+        assert_eq!(c.primitives, 1, "{}", c.input);
+        assert!(has_zero_snapped_area(&Case::from_text(&c.input).unwrap()));
+    }
+    // Text, JSON, Gradescope and JUnit agree on the score.
+    let text = report.to_string();
+    assert!(text.contains(&format!("score: {held}/60 cases")), "{text}");
+    assert!(
+        text.contains(&format!("no answer on {} case(s)", crashing.len())),
+        "{text}"
+    );
+    let json: serde_json::Value = serde_json::to_value(&report).unwrap();
+    assert_eq!(json["passed"], held);
+    let results = gradescope(&report);
+    assert_eq!(results["score"].as_f64().unwrap(), f64::from(held));
+    let tests = results["tests"].as_array().unwrap();
+    assert_eq!(tests.len(), report.families.len());
+    for t in tests {
+        let out = t["output"].as_str().unwrap();
+        let family = t["name"].as_str().unwrap().trim_start_matches("family ");
+        if families.contains(&family) {
+            assert_eq!(t["status"], "failed");
+            assert!(out.contains("ZeroDivisionError"), "{out}");
+            assert!(out.contains("shrunk counterexample"), "{out}");
+        } else {
+            assert_eq!(t["status"], "passed", "{out}");
+        }
+    }
+    let xml = junit(&report);
+    let doc = roxmltree::Document::parse(&xml).unwrap();
+    let failures = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("failure"))
+        .count();
+    assert_eq!(failures, families.len(), "{xml}");
+    assert_eq!(
+        doc.descendants()
+            .filter(|n| n.has_tag_name("error"))
+            .count(),
+        0
+    );
+}
+
+#[test]
+fn every_failing_family_shows_its_own_shrunk_counterexample() {
+    // The inclusive rule under top-left fails in several families.
+    let report = failing();
+    let families: Vec<&str> = report
+        .families
+        .iter()
+        .filter(|t| t.passed < t.total)
+        .map(|t| t.family.as_str())
+        .collect();
+    assert!(families.len() >= 2, "{families:?}");
+    let shown: Vec<&str> = report
+        .counterexamples
+        .iter()
+        .map(|c| c.family.as_str())
+        .collect();
+    assert_eq!(shown, families);
+    let results = gradescope(&report);
+    for t in results["tests"].as_array().unwrap() {
+        if t["status"] == "failed" {
+            let out = t["output"].as_str().unwrap();
+            assert!(out.contains("shrunk counterexample (case "), "{out}");
+            assert!(out.contains("# size "), "{out}");
+        }
+    }
+    // The text lists the other families' counterexamples too.
+    let text = report.to_string();
+    for family in &families[1..] {
+        assert!(text.contains(&format!("family {family}: case ")), "{text}");
+    }
 }
 
 #[test]

@@ -5,10 +5,13 @@
 //! needles, ...), scored by the cases of the family that hold, so that a
 //! student sees which kind of input breaks their rasterizer; a failing
 //! family's output carries its first problem, the named cause where it
-//! explains that family's failures, the shrunk counterexample and the
-//! command that reruns it. A subject that could not be judged (it did not
-//! start, crashed, hung or printed nonsense) is one failed test (JUnit: an
-//! `error`) with what went wrong and the input that triggers it.
+//! explains that family's failures, its own shrunk counterexample (every
+//! failing family has one) and the command that reruns it. A case the
+//! program gave no answer to (it crashed, hung, answered `error` or
+//! printed nonsense there) is one failed case of its family, shown with
+//! the input that triggers it, shrunk; only a program that breaks so on
+//! every input, the simplest included, is one failed test (JUnit: an
+//! `error`) with what went wrong.
 //!
 //! - Gradescope (`results.json`, as its autograder documentation
 //!   describes it): a top-level `score`, `output` and `tests`, each test
@@ -32,6 +35,7 @@
 //! assert!(junit(&report).contains(r#"failures="0""#));
 //! ```
 
+use super::judge::FailureKind;
 use super::request::{CheckReport, VerdictWord};
 use crate::markup::escape;
 use serde_json::{json, Value};
@@ -123,10 +127,22 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
                 .collect();
             let mut output = format!("{} of {} cases hold\n", t.passed, t.total);
             let (mut message, mut kind) = (String::new(), String::new());
+            let unanswered = failing
+                .iter()
+                .filter(|f| f.kind == FailureKind::NoAnswer)
+                .count();
+            let own = report.counterexamples.iter().find(|c| c.family == t.family);
             if let Some(first) = failing.first() {
                 message = format!("case {}: {}", first.case_index, first.problem);
                 kind = first.kind.name().to_string();
                 let _ = writeln!(output, "first failing case: {message}");
+                if unanswered > 0 {
+                    let _ = writeln!(
+                        output,
+                        "the program gave no answer on {unanswered} of this family's {} failing case(s); each costs only itself",
+                        failing.len()
+                    );
+                }
                 match (cause, t.explained_by_cause) {
                     (Some(c), Some(n)) if n > 0 => {
                         let _ = writeln!(
@@ -136,6 +152,8 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
                             failing.len()
                         );
                     }
+                    _ if unanswered == failing.len() => {}
+                    _ if own.and_then(|c| c.cause.as_ref()).is_some() => {}
                     _ => {
                         let _ = writeln!(
                             output,
@@ -144,14 +162,24 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
                     }
                 }
             }
-            if let Some(c) = &report.counterexample {
-                if c.family == t.family {
-                    let _ = writeln!(
-                        output,
-                        "shrunk counterexample ({} primitive(s) on {}x{}):\n{}",
-                        c.primitives, c.width, c.height, c.input
-                    );
+            let own = own.or(report
+                .counterexample
+                .as_ref()
+                .filter(|c| c.family == t.family));
+            if let Some(c) = own {
+                if let Some(d) = &c.diagnosis {
+                    let _ = writeln!(output, "diagnosis of its shrunk counterexample: {d}");
                 }
+                let _ = writeln!(
+                    output,
+                    "shrunk counterexample (case {}, {}; {} primitive(s) on {}x{}):\n{}",
+                    c.case_index,
+                    c.problems.first().map_or("", String::as_str),
+                    c.primitives,
+                    c.width,
+                    c.height,
+                    c.input
+                );
             }
             if !failing.is_empty() {
                 let _ = writeln!(output, "rerun: {}", rerun_command(report));

@@ -241,8 +241,13 @@ pub struct CaseFailure {
     pub family: String,
     /// The kind of its first problem.
     pub kind: FailureKind,
-    /// Its first problem.
+    /// Its first problem (for a case without an answer, what went
+    /// wrong).
     pub problem: String,
+    /// For a case the program gave no answer to
+    /// ([`FailureKind::NoAnswer`]), the case as generated, which the
+    /// program can be rerun on; `None` for the others.
+    pub input: Option<String>,
 }
 
 /// The shrunk counterexample of a failure.
@@ -385,6 +390,11 @@ pub struct CheckReport {
     pub failing_cases: Vec<CaseFailure>,
     /// The shrunk counterexample of the first failure.
     pub counterexample: Option<Counterexample>,
+    /// Under `keep_going`: the first failure of each failing family,
+    /// shrunk, in the order of the families (the first failure's own is
+    /// also `counterexample`), so that a grader's test per family shows
+    /// its own; empty otherwise.
+    pub counterexamples: Vec<Counterexample>,
     /// Why the subject could not be judged.
     pub error: Option<BrokenReport>,
     /// Under `--rule any` or `--convention any`: the table.
