@@ -391,7 +391,7 @@ fn the_command_line_prints_each_format_and_runs_every_case() {
     let out = rasterlab(&[
         "check",
         "--exec",
-        "true",
+        "true {input}",
         "--cases",
         "30",
         "--format",
@@ -409,6 +409,24 @@ fn the_command_line_prints_each_format_and_runs_every_case() {
         .sum();
     assert_eq!(max, 30.0);
     assert!(v["score"].as_f64().unwrap() < 30.0);
+    // Without {input} or --persistent the program is not given the case:
+    // said so, exit 2, not a diagnosis of what it drew.
+    let out = rasterlab(&[
+        "check",
+        "--exec",
+        "cat",
+        "--cases",
+        "10",
+        "--out",
+        tempfile::tempdir().unwrap().path().to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("not given the case") && err.contains("--persistent"),
+        "{err}"
+    );
+    assert!(!err.contains("cause:"), "{err}");
     let bad = rasterlab(&["check", "--backend", "bbox", "--format", "xml"]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("gradescope"));

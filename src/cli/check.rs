@@ -108,14 +108,6 @@ pub fn run(args: &CheckArgs) -> Result<()> {
             "--persistent starts an --exec program once; a --backend runs in rasterlab".into(),
         ));
     }
-    if let (Some(command), false) = (&args.exec, args.persistent) {
-        if !command.contains("{input}") {
-            eprintln!(
-                "note: the command has no {{input}}, so the program is not given the case; \
-                 a program that reads cases on its standard input runs with --persistent"
-            );
-        }
-    }
     let subject = match (&args.exec, &args.backend) {
         (Some(command), _) if args.persistent => SubjectSpec::Persistent(command.clone()),
         (Some(command), _) => SubjectSpec::Exec(command.clone()),
