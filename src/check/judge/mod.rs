@@ -324,7 +324,7 @@ fn exact(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
             FailureKind::Extra,
             Some(f),
             format!(
-                "{} fragment(s) not in the answer, first ({}, {}) of primitive {}",
+                "{} fragment(s) drawn by the program but not by the reference (extra), first ({}, {}) of primitive {}",
                 plain_extra.len(),
                 f.x,
                 f.y,
@@ -351,7 +351,7 @@ fn exact(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
             FailureKind::Missing,
             Some(f),
             format!(
-                "{} fragment(s) missing, first ({}, {}) of primitive {}",
+                "{} fragment(s) drawn by the reference but not by the program (missing), first ({}, {}) of primitive {}",
                 plain_missing.len(),
                 f.x,
                 f.y,
