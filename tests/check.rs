@@ -369,11 +369,12 @@ fn a_broken_program_exits_2_with_the_input_that_breaks_it() {
         &out_dir(tmp.path(), "yes"),
     ]);
     assert_eq!(out.status.code(), Some(2));
-    // Huge and negative numbers are defects of the program, reported.
+    // Huge and negative numbers are defects of the program, reported (the
+    // program is given its case, which it ignores).
     let out = rasterlab(&[
         "check",
         "--exec",
-        "echo 99999999999999999999999 -5 0",
+        "echo 99999999999999999999999 -5 0; : {input}",
         "--cases",
         "1",
         "--out",
