@@ -82,7 +82,7 @@ impl Checker<'_> {
             self.confirm_in_family(at, subjects, &mut judged.confirming, progress);
         }
         let subject = subjects.first();
-        let mut report = self.empty_report(judged.outcomes.len() as u32);
+        let mut report = self.empty_report((judged.outcomes.len() + judged.errored.len()) as u32);
         let broken = match judged.broken_at.take() {
             Some((index, case, error)) => {
                 Some(self.report_broken(&mut report, index, &case, error, from_file, subject)?)
@@ -374,7 +374,13 @@ impl Checker<'_> {
             report.verdict = VerdictWord::Fail;
         }
         let diagnosis = self.find_cause(first.property, evidence, subject);
-        let shrunk = self.shrink(first.clone(), diagnosis, subject, progress);
+        let shrunk = self.shrink(
+            first.clone(),
+            diagnosis,
+            self.request.shrink_runs,
+            subject,
+            progress,
+        );
         if let Some(cause) = &shrunk.cause {
             self.count_explained(&mut report.families, cause, &evidence.failures, from_file);
         }

@@ -6,11 +6,16 @@
 use super::checker::{Checker, Evidence};
 use super::Progress;
 use crate::check::case::Case;
-use crate::check::cause::Diagnosis;
+use crate::check::cause::{self, Diagnosis};
 use crate::check::judge::{FailureKind, Finding, Provenance};
 use crate::check::request::{BrokenReport, CheckReport, Counterexample, VerdictWord};
 use crate::check::{broken, shrink, Broken, Fragment, Subject, SubjectError};
 use crate::error::Result;
+
+/// The other failing families' counterexamples are shrunk with this
+/// share of the first one's runs each: a program started once per case
+/// pays its start on every run, and a check may fail in every family.
+const FAMILY_SHRINK_SHARE: u32 = 4;
 
 impl Checker<'_> {
     /// Shrinks the case that broke the subject, writes it out and puts it
@@ -53,10 +58,10 @@ impl Checker<'_> {
         &self,
         first: Finding,
         diagnosis: Option<Diagnosis>,
+        budget: u32,
         subject: &mut dyn Subject,
         progress: &mut dyn FnMut(Progress),
     ) -> Finding {
-        let budget = self.request.shrink_runs;
         let property = first.property;
         let keep = |f: &Finding| {
             diagnosis
@@ -128,9 +133,11 @@ impl Checker<'_> {
     /// Under `keep_going`, puts in the report the first failure of each
     /// failing family, shrunk (the run's first failure is already shrunk
     /// and is reused): a failure whose cause is looked for among that
-    /// family's failures alone, or a case the program gave no answer to,
-    /// shrunk as far as it still gives none. Nothing is written: the
-    /// files are the first failure's.
+    /// family's failures alone (not probed further), or a case the
+    /// program gave no answer to, shrunk as far as it still gives none,
+    /// each with a share of the shrinking runs
+    /// ([`FAMILY_SHRINK_SHARE`]). Nothing is written: the files are the
+    /// first failure's.
     pub(super) fn report_each_family(
         &self,
         report: &mut CheckReport,
@@ -155,19 +162,21 @@ impl Checker<'_> {
                     match &report.counterexample {
                         Some(c) if c.case_index == index => Some(c.clone()),
                         _ => {
-                            let alone = Evidence {
-                                failures: evidence
-                                    .failures
-                                    .iter()
-                                    .filter(|(i, _, _)| of_family(i))
-                                    .copied()
-                                    .collect(),
-                                confirming: &[],
-                                passing: evidence.passing.clone(),
-                            };
-                            let diagnosis = self.find_cause(finding.property, &alone, subject);
-                            let mut shrunk =
-                                self.shrink(finding.clone(), diagnosis, subject, progress);
+                            let failing: Vec<(&Case, &[Fragment])> = evidence
+                                .failures
+                                .iter()
+                                .filter(|(i, _, _)| of_family(i))
+                                .map(|(_, c, f)| (*c, f.drawn.as_slice()))
+                                .collect();
+                            let diagnosis =
+                                cause::diagnose(finding.property, &failing, &evidence.passing);
+                            let mut shrunk = self.shrink(
+                                finding.clone(),
+                                diagnosis,
+                                self.request.shrink_runs / FAMILY_SHRINK_SHARE,
+                                subject,
+                                progress,
+                            );
                             self.record_provenance(&mut shrunk, index);
                             Some(counterexample_of(&shrunk, case.len(), Vec::new()))
                         }
