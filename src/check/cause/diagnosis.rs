@@ -161,6 +161,41 @@ pub(crate) fn diagnose(
         }
     }
     let best = fits.iter().map(|f| f.1).max()?;
+    // A condition every difference on an edge meets (floating point)
+    // explains little alone: a model that draws most of what the subject
+    // drew, with the condition for the rest, explaining as many failing
+    // cases, is named before it ("the inclusive rule, evaluated in
+    // floating point").
+    if let Some((condition, _)) = fits
+        .iter()
+        .find(|f| f.1 == best)
+        .filter(|f| f.0.len() == 1 && f.0[0].role() == Role::Condition)
+    {
+        let condition = condition[0];
+        let single = |m: Cause| {
+            failing
+                .iter()
+                .filter(|(c, d)| explains(&[m], property, c, d).is_some())
+                .count()
+        };
+        let models: Vec<(Cause, usize)> = catalogue
+            .iter()
+            .filter(|m| m.role() == Role::Model)
+            .map(|&m| (m, single(m)))
+            .filter(|&(_, n)| n > 0)
+            .collect();
+        let most = models.iter().map(|m| m.1).max().unwrap_or(0);
+        let pairs: Vec<Vec<Cause>> = models
+            .iter()
+            .filter(|m| m.1 == most)
+            .map(|m| vec![m.0, condition])
+            .collect();
+        let mut pair_fits = explaining_first(pairs);
+        pair_fits.retain(|f| f.1 == best);
+        if !pair_fits.is_empty() {
+            fits = pair_fits;
+        }
+    }
     let mut best_fits = fits.into_iter().filter(|f| f.1 == best);
     let (found, confirmed_on) = best_fits.next()?;
     let also_fits = best_fits
