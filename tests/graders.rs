@@ -12,6 +12,7 @@
 mod common;
 
 use common::rasterlab;
+use std::process::Command;
 use rasterlab::check::{
     generate_case, gradescope, junit, run_with, Builtin, Case, CheckReport, CheckRequest,
     FailureKind, Fragment, Property, Subject, SubjectError, SubjectSpec, VerdictWord,
@@ -427,6 +428,34 @@ fn the_command_line_prints_each_format_and_runs_every_case() {
         "{err}"
     );
     assert!(!err.contains("cause:"), "{err}");
+    // The lab says the same, before it serves anything, and takes
+    // --persistent (only with --exec).
+    let lab = rasterlab(&["lab", "--port", "0", "--exec", "cat"]);
+    assert_eq!(lab.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&lab.stderr);
+    assert!(
+        err.contains("{input}") && err.contains("--persistent"),
+        "{err}"
+    );
+    let lab = rasterlab(&["lab", "--port", "0", "--persistent"]);
+    assert_eq!(lab.status.code(), Some(2));
+    let mut served = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(["lab", "--port", "0", "--persistent", "--exec", "cat"])
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    std::io::BufRead::read_line(
+        &mut std::io::BufReader::new(served.stdout.take().unwrap()),
+        &mut first,
+    )
+    .unwrap();
+    served.kill().unwrap();
+    served.wait().unwrap();
+    assert!(
+        first.starts_with("rasterlab lab: http://127.0.0.1:"),
+        "{first}"
+    );
     let bad = rasterlab(&["check", "--backend", "bbox", "--format", "xml"]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("gradescope"));
