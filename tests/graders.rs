@@ -11,13 +11,13 @@
 
 mod common;
 
-use common::rasterlab;
-use std::process::Command;
+use common::{part_missing, rasterlab};
 use rasterlab::check::{
     generate_case, gradescope, junit, run_with, Builtin, Case, CheckReport, CheckRequest,
     FailureKind, Fragment, Property, Subject, SubjectError, SubjectSpec, VerdictWord,
 };
 use rasterlab::raster::{triangle_backend, FillRule};
+use std::process::Command;
 
 /// Gradescope's `results.json` fields as its autograder documentation
 /// lists them (those this report uses; no other key allowed).
@@ -461,4 +461,139 @@ fn the_command_line_prints_each_format_and_runs_every_case() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("gradescope"));
     let both = rasterlab(&["check", "--backend", "bbox", "--format", "junit", "--json"]);
     assert_eq!(both.status.code(), Some(2));
+}
+
+/// The Python starter as shipped, checked through the command line with
+/// a configuration of `examples/graders/configs/`; its Gradescope
+/// results.
+fn starter_under(config: &str) -> serde_json::Value {
+    let out = rasterlab(&[
+        "check",
+        "--config",
+        &format!(
+            "{}/examples/graders/configs/{config}",
+            env!("CARGO_MANIFEST_DIR")
+        ),
+        "--persistent",
+        "--exec",
+        &format!(
+            "python3 {}/examples/starters/python/rasterizer.py",
+            env!("CARGO_MANIFEST_DIR")
+        ),
+        "--format",
+        "gradescope",
+        "--out",
+        tempfile::tempdir().unwrap().path().to_str().unwrap(),
+    ]);
+    assert!(
+        matches!(out.status.code(), Some(0 | 1)),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn the_example_configurations_weigh_the_families_and_score_the_starter() {
+    let python = Command::new("python3")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !python {
+        part_missing(
+            "the example configurations against the Python starter",
+            "python3",
+            "RASTERLAB_REQUIRE_STARTERS",
+        );
+        return;
+    }
+    // The scores docs/check.md states.
+    for (config, max, score) in [
+        ("top-left.json", 100.0, 81.0),
+        ("inclusive.json", 100.0, 100.0),
+    ] {
+        let results = starter_under(config);
+        let tests = results["tests"].as_array().unwrap();
+        let total: f64 = tests.iter().map(|t| t["max_score"].as_f64().unwrap()).sum();
+        assert!((total - max).abs() < 1e-9, "{config}: {results:#}");
+        let got = results["score"].as_f64().unwrap();
+        assert!((got - score).abs() < 0.01, "{config}: {got}\n{results:#}");
+    }
+}
+
+#[test]
+fn a_configuration_sets_the_rule_cases_and_weights() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("course.json");
+    std::fs::write(
+        &path,
+        r#"{ "rule": "inclusive", "cases": 40, "seed": 2, "weights": { "fan": 30, "ties": 0 } }"#,
+    )
+    .unwrap();
+    let out = rasterlab(&[
+        "check",
+        "--config",
+        path.to_str().unwrap(),
+        "--backend",
+        "bbox",
+        "--format",
+        "gradescope",
+        "--out",
+        dir.path().join("out").to_str().unwrap(),
+    ]);
+    // A back-end draws under the rule checked: the configuration's.
+    assert_eq!(out.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let tests = v["tests"].as_array().unwrap();
+    let test = |name: &str| tests.iter().find(|t| t["name"] == name).unwrap();
+    assert_eq!(test("family fan")["max_score"], 30.0);
+    assert_eq!(test("family ties")["max_score"], 0.0);
+    assert_eq!(test("family ties")["score"], 0.0);
+    // A family left out: one point a case (40 cases over 10 families).
+    assert_eq!(test("family soup")["max_score"], 4.0);
+    assert!(v["output"]
+        .as_str()
+        .unwrap()
+        .contains("of 40 cases of seed 2"));
+    // The command line wins over the file.
+    let out = rasterlab(&[
+        "check",
+        "--config",
+        path.to_str().unwrap(),
+        "--rule",
+        "top-left",
+        "--cases",
+        "20",
+        "--backend",
+        "bbox",
+        "--out",
+        dir.path().join("out").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("PASS: 20 cases"));
+    // Mistakes are refused with what was expected, exit 2.
+    for (text, expected) in [
+        (r#"{ "rules": "top-left" }"#, "unknown field"),
+        (r#"{ "weights": { "soups": 3 } }"#, "soup"),
+        (r#"{ "weights": { "fan": -1 } }"#, "from 0 to"),
+        (r#"{ "rule": "sideways" }"#, "top-left"),
+        (r#"{ "timeout": 0 }"#, "--timeout"),
+        (r#"{ "cases": "many" }"#, "u32"),
+        ("{", "EOF"),
+    ] {
+        std::fs::write(&path, text).unwrap();
+        let out = rasterlab(&[
+            "check",
+            "--config",
+            path.to_str().unwrap(),
+            "--backend",
+            "bbox",
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{text}: {err}");
+        assert!(err.contains(expected), "{text}: {err}");
+        assert!(!err.contains("panicked"), "{text}: {err}");
+    }
+    let out = rasterlab(&["check", "--config", "no/such.json", "--backend", "bbox"]);
+    assert_eq!(out.status.code(), Some(2));
 }

@@ -16,7 +16,9 @@
 //! - Gradescope (`results.json`, as its autograder documentation
 //!   describes it): a top-level `score`, `output` and `tests`, each test
 //!   with `name`, `number`, `score`, `max_score`, `status` (`passed` or
-//!   `failed`) and `output`. A family is worth one point a case.
+//!   `failed`) and `output`. A family is worth one point a case, or the
+//!   points a teacher's configuration gives it (`check --config`), shared
+//!   among its cases.
 //! - JUnit XML, as Jenkins and GitLab read it: `testsuites`, one
 //!   `testsuite` with `tests`, `failures`, `errors` and `skipped`, a
 //!   `testcase` per family (`classname`, `name`), a failing one holding a
@@ -75,6 +77,8 @@ struct GraderTest {
     name: String,
     passed: u32,
     total: u32,
+    /// The points the test is worth, shared among its cases.
+    points: f64,
     /// What a failure says in one line (JUnit's `message`).
     message: String,
     /// The failure kind (JUnit's `type`).
@@ -90,6 +94,7 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
             name: "the program runs".into(),
             passed: 0,
             total: 1,
+            points: 1.0,
             message: e
                 .message
                 .lines()
@@ -188,6 +193,7 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
                 name: format!("family {}", t.family),
                 passed: t.passed,
                 total: t.total,
+                points: t.points,
                 message,
                 kind,
                 output: output.trim_end().to_string(),
@@ -240,7 +246,8 @@ fn summary(report: &CheckReport) -> String {
     s
 }
 
-/// Gradescope's `results.json`: a test per family, one point a case.
+/// Gradescope's `results.json`: a test per family, worth one point a
+/// case or the family's weight ([`CheckConfig`](super::CheckConfig)).
 pub fn gradescope(report: &CheckReport) -> Value {
     let tests: Vec<Value> = tests(report)
         .into_iter()
@@ -249,8 +256,8 @@ pub fn gradescope(report: &CheckReport) -> Value {
             json!({
                 "name": t.name,
                 "number": (i + 1).to_string(),
-                "score": f64::from(t.passed),
-                "max_score": f64::from(t.total),
+                "score": t.points * f64::from(t.passed) / f64::from(t.total.max(1)),
+                "max_score": t.points,
                 "status": if t.passed == t.total { "passed" } else { "failed" },
                 "output": t.output,
             })

@@ -174,6 +174,10 @@ pub struct CheckRequest {
     /// or 16, on the standard pattern) whose coverage masks are judged
     /// (`--msaa N`); `None` for one sample at the pixel centre.
     pub msaa: Option<u32>,
+    /// Points per family in a grader's report, by family name (a
+    /// teacher's configuration, [`CheckConfig`](super::CheckConfig));
+    /// a family not named is worth one point a case.
+    pub weights: Vec<(String, f64)>,
 }
 
 impl CheckRequest {
@@ -195,6 +199,7 @@ impl CheckRequest {
             command: String::new(),
             shrink_runs: 150,
             msaa: None,
+            weights: Vec::new(),
         }
     }
 }
@@ -230,6 +235,9 @@ pub struct FamilyTally {
     /// when no cause was named or the family has no failure; all of a
     /// family's failures are known only under `keep_going`).
     pub explained_by_cause: Option<u32>,
+    /// The points the family is worth in a grader's report, shared among
+    /// its cases: its weight in the request, or one a case.
+    pub points: f64,
 }
 
 /// One failing case, as found (not shrunk).

@@ -279,6 +279,7 @@ impl Checker<'_> {
                 passed: 0,
                 total: 0,
                 explained_by_cause: None,
+                points: 0.0,
             })
             .collect();
         let closest = table.map_or(0, |t| {
@@ -334,6 +335,14 @@ impl Checker<'_> {
             report.failing_cases.truncate(1);
         }
         tally.retain(|t| t.total > 0);
+        for t in &mut tally {
+            t.points = self
+                .request
+                .weights
+                .iter()
+                .find(|(f, _)| *f == t.family)
+                .map_or(f64::from(t.total), |(_, w)| *w);
+        }
         report.passed = tally.iter().map(|t| t.passed).sum();
         // Under a table, the closest row judges only the cases of its kind.
         let judged: u32 = tally.iter().map(|t| t.total).sum();
@@ -501,6 +510,7 @@ fn tally_for<'t>(tally: &'t mut Vec<FamilyTally>, family: &str) -> &'t mut Famil
             passed: 0,
             total: 0,
             explained_by_cause: None,
+            points: 0.0,
         });
         tally.last_mut().expect("just pushed")
     }
