@@ -510,6 +510,7 @@ fn the_example_configurations_weigh_the_families_and_score_the_starter() {
     // The scores docs/check.md states.
     for (config, max, score) in [
         ("top-left.json", 100.0, 81.0),
+        ("y-up.json", 100.0, 81.0),
         ("inclusive.json", 100.0, 100.0),
     ] {
         let results = starter_under(config);

@@ -1,7 +1,7 @@
 //! A teacher's configuration of `rasterlab check`: the rule (or, for
-//! lines, the convention) an assignment asks for, how many cases of which
-//! seed, the time limit a case, and what each family of cases is worth,
-//! read from a JSON file (`check --config FILE`).
+//! lines, the convention) an assignment asks for, which way y grows, how
+//! many cases of which seed, the time limit a case, and what each family
+//! of cases is worth, read from a JSON file (`check --config FILE`).
 //!
 //! JSON, because the check's report, the schema it follows and
 //! Gradescope's `results.json` are JSON already: a grader reads one
@@ -29,7 +29,9 @@
 //! ```
 
 use super::generate::{EXACT_FAMILIES, LINE_FAMILIES, MESH_FAMILIES, PIXEL_INDEX_FAMILIES};
-use super::request::{timeout_from_seconds, CheckRequest, ConventionChoice, Kind, RuleChoice};
+use super::request::{
+    timeout_from_seconds, CheckRequest, ConventionChoice, Kind, Origin, RuleChoice,
+};
 use crate::error::{Error, Result};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -46,6 +48,9 @@ pub struct CheckConfig {
     pub rule: Option<String>,
     /// Lines: a convention, as `--convention` takes it.
     pub convention: Option<String>,
+    /// Where the subject's origin is: `top-left` (y down) or
+    /// `bottom-left` (y up), as `--origin` takes it.
+    pub origin: Option<String>,
     /// How many cases.
     pub cases: Option<u32>,
     /// The generator's seed.
@@ -88,6 +93,9 @@ impl CheckConfig {
         }
         if let Some(c) = &self.convention {
             request.convention = Some(c.parse::<ConventionChoice>()?);
+        }
+        if let Some(o) = &self.origin {
+            request.origin = o.parse::<Origin>()?;
         }
         if let Some(n) = self.cases {
             request.cases = n;

@@ -101,7 +101,7 @@ pub use program::{shell_words, Program};
 pub use property::{LineConvention, Property};
 pub use request::{
     BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice, Counterexample,
-    FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
+    FamilyTally, Kind, Origin, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
 };
 // What only the `rasterlab` program uses; absent without the `cli` feature.
 #[cfg(feature = "cli")]

@@ -66,6 +66,31 @@ pub enum Kind {
 
 crate::names::named_enum!(Kind, "kind", Triangles = "triangles", Lines = "lines");
 
+/// Where the subject puts the origin of its screen coordinates, and so
+/// which way its y grows: the protocol's top-left corner with y down
+/// (Direct3D, Vulkan, image rows), or the bottom-left corner with y up
+/// (OpenGL's window coordinates, Scotty3D). A y-up subject is given each
+/// case with y measured up from the bottom of the target (`height - y`)
+/// and answers with rows counted up from the bottom row (row 0 the
+/// lowest); rasterlab turns both back before judging, so the rules and
+/// their names (a top edge, a left edge) are those of the picture as it
+/// is seen, whatever way the subject counts.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Origin {
+    /// At the top-left corner, y down: the protocol's own.
+    #[default]
+    TopLeft,
+    /// At the bottom-left corner, y up.
+    BottomLeft,
+}
+
+crate::names::named_enum!(
+    Origin,
+    "origin",
+    TopLeft = "top-left",
+    BottomLeft = "bottom-left"
+);
+
 /// What triangles are judged by.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum RuleChoice {
@@ -178,6 +203,8 @@ pub struct CheckRequest {
     /// teacher's configuration, [`CheckConfig`](super::CheckConfig));
     /// a family not named is worth one point a case.
     pub weights: Vec<(String, f64)>,
+    /// Which way the subject's y grows ([`Origin`]).
+    pub origin: Origin,
 }
 
 impl CheckRequest {
@@ -200,6 +227,7 @@ impl CheckRequest {
             shrink_runs: 150,
             msaa: None,
             weights: Vec::new(),
+            origin: Origin::TopLeft,
         }
     }
 }

@@ -5,7 +5,7 @@
 use super::args::msaa;
 use clap::Args;
 use rasterlab::check::{
-    timeout_from_seconds, CheckConfig, CheckRequest, ConventionChoice, Kind, Progress,
+    timeout_from_seconds, CheckConfig, CheckRequest, ConventionChoice, Kind, Origin, Progress,
     ReportFormat, RuleChoice, SubjectSpec,
 };
 use rasterlab::raster::SamplePattern;
@@ -69,6 +69,13 @@ pub struct CheckArgs {
     /// configuration's).
     #[arg(long)]
     timeout: Option<f64>,
+    /// Where the program's origin is: top-left (y down, the protocol's;
+    /// the default) or bottom-left (y up: OpenGL's window coordinates,
+    /// Scotty3D). A y-up program is given y as height - y and answers
+    /// with row 0 at the bottom; the rules are named as the picture shows
+    /// them.
+    #[arg(long)]
+    origin: Option<Origin>,
     /// A teacher's configuration (JSON): the rule or convention, the
     /// cases, the seed, the time limit and each family's weight in the
     /// grader formats (docs/check.md). An option given on the command
@@ -134,6 +141,7 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         kind: args.kind.or(request.kind),
         rule: args.rule.or(request.rule),
         convention: args.convention.or(request.convention),
+        origin: args.origin.unwrap_or(request.origin),
         msaa: args.msaa.map(SamplePattern::count),
         cases: args.cases.unwrap_or(request.cases),
         seed: args.seed.unwrap_or(request.seed),

@@ -6,11 +6,14 @@
 use super::checker::{Checker, Evidence};
 use super::Progress;
 use crate::check::case::Case;
-use crate::check::cause::{self, Diagnosis};
+use crate::check::cause::{self, Cause, Diagnosis};
 use crate::check::judge::{FailureKind, Finding, Provenance};
+use crate::check::property::Property;
+use crate::check::request::Origin;
 use crate::check::request::{BrokenReport, CheckReport, Counterexample, VerdictWord};
 use crate::check::{broken, shrink, Broken, Fragment, Subject, SubjectError};
 use crate::error::Result;
+use crate::raster::edge::FillRule;
 
 /// The other failing families' counterexamples are shrunk with this
 /// share of the first one's runs each: a program started once per case
@@ -76,6 +79,7 @@ impl Checker<'_> {
                 if let Some(e) = d.explains(property, &shrunk.case, &shrunk.drawn) {
                     d.evidence = e;
                 }
+                self.name_a_flipped_y(property, &mut d);
                 shrunk.diagnosis = Some(d.sentence());
                 shrunk.cause = Some(d);
             }
@@ -88,6 +92,35 @@ impl Checker<'_> {
             }
         }
         shrunk
+    }
+
+    /// Names the y direction where the rule found is the one checked,
+    /// mirrored top to bottom (bottom-left for top-left, ...): what a
+    /// program whose y grows the other way than the check's `--origin`
+    /// draws, for a rule the picture names by its top and bottom.
+    fn name_a_flipped_y(&self, property: Property, d: &mut Diagnosis) {
+        let Property::Exact(rule) = property else {
+            return;
+        };
+        let mirror = match rule {
+            FillRule::TopLeft => FillRule::BottomLeft,
+            FillRule::BottomLeft => FillRule::TopLeft,
+            FillRule::TopRight => FillRule::BottomRight,
+            FillRule::BottomRight => FillRule::TopRight,
+            _ => return,
+        };
+        if d.found != [Cause::FillRule(mirror)] {
+            return;
+        }
+        let (other, option) = match self.request.origin {
+            Origin::TopLeft => ("up", "with --origin bottom-left"),
+            Origin::BottomLeft => ("down", "without --origin bottom-left"),
+        };
+        d.description = format!(
+            "{}: the {rule} rule with y flipped, as a program whose y grows {other} draws it \
+             (check such a program {option})",
+            d.description
+        );
     }
 
     /// Records where the shrunk case came from, writes its files and puts

@@ -53,8 +53,8 @@ pub(crate) use subjects::Subjects;
 use super::case::Case;
 use super::property::Property;
 use super::request::{
-    timeout_from_seconds, BrokenReport, CheckReport, CheckRequest, Kind, SubjectSpec, VerdictWord,
-    MAX_CASES, MAX_JOBS,
+    timeout_from_seconds, BrokenReport, CheckReport, CheckRequest, Kind, Origin, SubjectSpec,
+    VerdictWord, MAX_CASES, MAX_JOBS,
 };
 use super::Subject;
 use crate::error::{Error, Result};
@@ -135,6 +135,12 @@ fn run_inner(
     let (subject_name, factory) = match custom {
         Some((name, make)) => (name.to_string(), Box::new(make) as Factory<'_>),
         None => subject_factory(request, chosen, kind, mode)?,
+    };
+    let factory: Factory<'_> = match request.origin {
+        Origin::TopLeft => factory,
+        Origin::BottomLeft => {
+            Box::new(move || Box::new(subjects::YUp(factory())) as Box<dyn Subject + Send>)
+        }
     };
     let mut subjects = Subjects::Pool((0..request.jobs).map(|_| factory()).collect());
     let mut report = Checker {
