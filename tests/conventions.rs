@@ -162,3 +162,25 @@ fn the_python_students_pass_in_their_convention_and_fail_for_the_named_reason() 
     assert!(String::from_utf8_lossy(&out.stderr).contains("bottom-left"));
 }
 
+#[test]
+fn every_list_of_fill_rules_names_all_seven() {
+    let rules = FillRule::ALL.map(FillRule::name);
+    for command in ["fragments", "explain"] {
+        let help = rasterlab(&[command, "--help"]);
+        let text = String::from_utf8_lossy(&help.stdout);
+        for rule in rules {
+            assert!(text.contains(rule), "{command} --help has no {rule}:\n{text}");
+        }
+    }
+    let page = rasterlab::lab::page();
+    for rule in rules {
+        assert!(
+            page.contains(&format!("<option>{rule}</option>")),
+            "the lab's rule menu has no {rule}"
+        );
+    }
+    // A rule the list does not hold is refused with the list.
+    let out = rasterlab(&["fragments", "--backend", "bbox", "--size", "4x4", "--rule", "sideways", "x"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("top-right"));
+}

@@ -1,6 +1,6 @@
 //! `rasterlab explain`: one algorithm traced step by step, and its grid picture.
 
-use super::args::{msaa, Size};
+use super::args::{fill_rule, msaa, Size};
 use clap::Args;
 use rasterlab::raster::{FillRule, SamplePattern};
 use rasterlab::teaching::{explain, ExplainRequest, GridPicture};
@@ -17,8 +17,8 @@ pub struct ExplainArgs {
     /// depth-buffer example). Any other back-end: --picture only.
     #[arg(long)]
     backend: String,
-    /// Fill rule for triangles.
-    #[arg(long, default_value = "top-left")]
+    /// Triangle fill rule.
+    #[arg(long, default_value = "top-left", value_parser = fill_rule())]
     rule: FillRule,
     /// Grid size, `WxH` (16x16 for one triangle, 14x9 for the course's
     /// depth-buffer example).

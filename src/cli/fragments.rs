@@ -1,6 +1,6 @@
 //! `rasterlab fragments`: the fragments a back-end emits for a file.
 
-use super::args::{msaa, LineArgs, Size};
+use super::args::{fill_rule, msaa, LineArgs, Size};
 use clap::Args;
 use rasterlab::geometry::{list_fragments_in_file, FragmentsRequest};
 use rasterlab::raster::{backend, Backend, FillRule, SamplePattern};
@@ -15,8 +15,8 @@ pub struct FragmentsArgs {
     /// Target size, `WxH`.
     #[arg(long)]
     size: Size,
-    /// Triangle fill rule: top-left, bottom-right, offscreen-point, inclusive, exclusive.
-    #[arg(long, default_value = "top-left")]
+    /// Triangle fill rule.
+    #[arg(long, default_value = "top-left", value_parser = fill_rule())]
     rule: FillRule,
     #[command(flatten)]
     line: LineArgs,
