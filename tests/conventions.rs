@@ -25,8 +25,11 @@ fn y_up(case: &Case) -> Result<Vec<Fragment>, SubjectError> {
             - i128::from(b.1 - a.1) * i128::from(p.0 - a.0)
     };
     let mut out = Vec::new();
-    for (id, t) in case.snapped_triangles().iter().enumerate() {
-        let mut v = t.map(|p| (p.x.raw(), p.y.raw()));
+    // Snapped to 1/256 px, halfway to even; not clamped to the guard
+    // band, which y measured up can leave (a Python int does not wrap).
+    let snap = |v: f64| (v * 256.0).round_ties_even() as i64;
+    for (id, t) in case.triangles.iter().enumerate() {
+        let mut v = t.map(|(x, y)| (snap(x), snap(y)));
         let area = edge(v[0], v[1], v[2]);
         if area == 0 {
             continue;
@@ -169,7 +172,10 @@ fn every_list_of_fill_rules_names_all_seven() {
         let help = rasterlab(&[command, "--help"]);
         let text = String::from_utf8_lossy(&help.stdout);
         for rule in rules {
-            assert!(text.contains(rule), "{command} --help has no {rule}:\n{text}");
+            assert!(
+                text.contains(rule),
+                "{command} --help has no {rule}:\n{text}"
+            );
         }
     }
     let page = rasterlab::lab::page();
@@ -180,7 +186,16 @@ fn every_list_of_fill_rules_names_all_seven() {
         );
     }
     // A rule the list does not hold is refused with the list.
-    let out = rasterlab(&["fragments", "--backend", "bbox", "--size", "4x4", "--rule", "sideways", "x"]);
+    let out = rasterlab(&[
+        "fragments",
+        "--backend",
+        "bbox",
+        "--size",
+        "4x4",
+        "--rule",
+        "sideways",
+        "x",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("top-right"));
 }

@@ -174,7 +174,8 @@ pub(super) fn subject_factory<'a>(
 /// case with `y` turned into `height - y`, its rows turned back from
 /// `height - 1 - row`. Both are exact (a whole number minus a multiple of
 /// 1/512, and snapping to even is symmetric about a whole number), so the
-/// subject is judged on the very case it was given.
+/// subject is judged on the very case it was given; a vertex near the
+/// guard band's edge may, measured up, lie up to `height` px past it.
 pub(super) struct YUp(pub(super) Box<dyn Subject + Send>);
 
 impl Subject for YUp {
