@@ -161,30 +161,33 @@ pub(crate) fn diagnose(
         }
     }
     let best = fits.iter().map(|f| f.1).max()?;
-    // A condition every difference on an edge meets (floating point)
-    // explains little alone: a model that draws most of what the subject
-    // drew, with the condition for the rest, explaining as many failing
-    // cases, is named before it ("the inclusive rule, evaluated in
+    // Floating point, a condition every difference on an edge meets,
+    // explains little alone: a model that alone explains at least half
+    // the failing cases, with floating point for the rest, explaining as
+    // many, is named before it ("the inclusive rule, evaluated in
     // floating point").
-    if let Some((condition, _)) = fits
+    if fits
         .iter()
         .find(|f| f.1 == best)
-        .filter(|f| f.0.len() == 1 && f.0[0].role() == Role::Condition)
+        .is_some_and(|f| f.0 == [Cause::FloatEdges])
     {
-        let condition = condition[0];
+        let condition = Cause::FloatEdges;
         let single = |m: Cause| {
             failing
                 .iter()
                 .filter(|(c, d)| explains(&[m], property, c, d).is_some())
                 .count()
         };
-        let models: Vec<(Cause, usize)> = catalogue
+        let mut models: Vec<(Cause, usize)> = catalogue
             .iter()
             .filter(|m| m.role() == Role::Model)
             .map(|&m| (m, single(m)))
             .filter(|&(_, n)| n > 0)
             .collect();
         let most = models.iter().map(|m| m.1).max().unwrap_or(0);
+        if 2 * most < failing.len() {
+            models.clear();
+        }
         let pairs: Vec<Vec<Cause>> = models
             .iter()
             .filter(|m| m.1 == most)

@@ -198,6 +198,10 @@ fn evidence(
     let differing = extra.len() + missing.len();
     let mut out = Vec::new();
     for c in causes {
+        // A condition beside a model that left no difference says nothing.
+        if c.role() == Role::Condition && differing == 0 {
+            continue;
+        }
         match c {
             Cause::Culls(w) => {
                 let cw = *w == Winding::Clockwise;
