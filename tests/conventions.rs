@@ -185,6 +185,37 @@ fn every_list_of_fill_rules_names_all_seven() {
             "the lab's rule menu has no {rule}"
         );
     }
+    // A rule given to a line back-end is refused, not ignored.
+    for args in [
+        &[
+            "fragments",
+            "--backend",
+            "bresenham",
+            "--size",
+            "4x4",
+            "--rule",
+            "inclusive",
+            "x",
+        ][..],
+        &[
+            "explain",
+            "--backend",
+            "bresenham",
+            "--rule",
+            "inclusive",
+            "0",
+            "0",
+            "7",
+            "3",
+        ],
+    ] {
+        let out = rasterlab(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("--rule is a triangle fill rule"), "{err}");
+    }
+    let out = rasterlab(&["explain", "--backend", "bresenham", "0", "0", "7", "3"]);
+    assert_eq!(out.status.code(), Some(0));
     // A rule the list does not hold is refused with the list.
     let out = rasterlab(&[
         "fragments",

@@ -80,3 +80,13 @@ pub fn fill_rule() -> impl TypedValueParser<Value = FillRule> {
     clap::builder::PossibleValuesParser::new(FillRule::ALL.map(FillRule::name))
         .try_map(|name| name.parse::<FillRule>())
 }
+
+/// `--rule` given with a line back-end, which draws by its own
+/// convention: refused rather than ignored.
+pub fn rule_for_lines() -> rasterlab::Error {
+    rasterlab::Error::InvalidArgument(
+        "--rule is a triangle fill rule; a line back-end draws by its own convention \
+         (see `rasterlab backends`)"
+            .into(),
+    )
+}
