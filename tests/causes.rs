@@ -683,3 +683,37 @@ fn the_catalogue_names_each_cause_once() {
         assert_eq!(unique.len(), ids.len(), "{ids:?}");
     }
 }
+
+/// The most common student rasterizer: three edge functions in `f64` on
+/// the vertices as given (no snapping), a centre drawn when all three
+/// are `>= 0`.
+fn inclusive_in_floating_point(case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+    let edge = |a: (f64, f64), b: (f64, f64), p: (f64, f64)| {
+        (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0)
+    };
+    let mut out = Vec::new();
+    for (id, t) in case.triangles.iter().enumerate() {
+        let area = edge(t[0], t[1], t[2]);
+        if area == 0.0 {
+            continue;
+        }
+        for y in 0..i64::from(case.height) {
+            for x in 0..i64::from(case.width) {
+                let p = (x as f64 + 0.5, y as f64 + 0.5);
+                if (0..3).all(|i| edge(t[i], t[(i + 1) % 3], p) * area.signum() >= 0.0) {
+                    out.push(Fragment::at(x, y, id as u32));
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+#[test]
+fn inclusive_edges_in_floating_point_name_the_inclusive_rule_first() {
+    // A difference exactly on an edge always lies within a hair of it:
+    // the rule that explains the differences comes before that condition.
+    let got = named(TOP_LEFT, &mut inclusive_in_floating_point);
+    assert_eq!(got[0], "fill-rule:inclusive", "named {got:?}");
+    assert!(got[1..].iter().all(|c| c == "float-edges"), "named {got:?}");
+}

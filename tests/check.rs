@@ -369,11 +369,12 @@ fn a_broken_program_exits_2_with_the_input_that_breaks_it() {
         &out_dir(tmp.path(), "yes"),
     ]);
     assert_eq!(out.status.code(), Some(2));
-    // Huge and negative numbers are defects of the program, reported.
+    // Huge and negative numbers are defects of the program, reported (the
+    // program is given its case, which it ignores).
     let out = rasterlab(&[
         "check",
         "--exec",
-        "echo 99999999999999999999999 -5 0",
+        "echo 99999999999999999999999 -5 0; : {input}",
         "--cases",
         "1",
         "--out",
@@ -1375,4 +1376,51 @@ fn the_counterexample_picture_labels_clips_and_uses_the_palette() {
     assert!(svg.contains(">v0, v1 (off view)</text>"), "{svg}");
     assert!(svg.contains(">v2 (off view)</text>"), "{svg}");
     assert!(svg.contains("v0 (-9075, -73.5), v1 (-9073.66796875, -73.59375)"));
+}
+
+/// Twice the signed area of a snapped triangle, in subpixel units squared.
+fn snapped_area(t: &[rasterlab::raster::FixedPoint; 3]) -> i128 {
+    let p = |k: usize| (i128::from(t[k].x.raw()), i128::from(t[k].y.raw()));
+    let ((ax, ay), (bx, by), (cx, cy)) = (p(0), p(1), p(2));
+    (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
+}
+
+#[test]
+fn the_zero_area_family_makes_triangles_of_zero_snapped_area() {
+    let property = Property::Exact(FillRule::TopLeft);
+    let at = rasterlab::check::families(property)
+        .iter()
+        .position(|f| *f == "zero-area")
+        .unwrap() as u32;
+    let (mut made, mut off_grid, mut between) = (0, 0, 0);
+    for seed in 0..50 {
+        let mut rng = fastrand::Rng::with_seed(seed);
+        for k in 0..40 {
+            let case = rasterlab::check::generate_case(property, at + 10 * k, &mut rng);
+            let snapped = case.snapped_triangles();
+            assert_eq!(
+                snapped_area(&snapped[0]),
+                0,
+                "seed {seed}, case {}: {}",
+                at + 10 * k,
+                case.to_text()
+            );
+            // The other triangle is a normal one, most of the time.
+            made += 1;
+            let c = case.triangles[0][2];
+            if (c.0 * 256.0).fract() != 0.0 {
+                off_grid += 1;
+            }
+            let [a, b, s] = snapped[0];
+            let inside = |p: i64, q: i64, r: i64| p.min(q) < r && r < p.max(q);
+            if inside(a.x.raw(), b.x.raw(), s.x.raw()) || inside(a.y.raw(), b.y.raw(), s.y.raw()) {
+                between += 1;
+            }
+        }
+    }
+    // Not a degenerate family: the third vertex is given off the grid,
+    // and often lies strictly between the first two.
+    assert_eq!(made, 2000);
+    assert!(off_grid > 1900, "{off_grid}");
+    assert!(between > 50, "{between}");
 }

@@ -608,7 +608,7 @@ fn a_students_program_gets_a_legend_entry_and_a_count_of_wrong_pixels() {
         return;
     };
     // A "rasterizer" that draws pixel (0, 0) whatever it is given.
-    let lab = Lab::start_with(&["--exec", "echo 0 0 0"]);
+    let lab = Lab::start_with(&["--exec", "echo 0 0 0; : {input}"]);
     let dev = &mut browser.dev;
     dev.open(&format!("http://{}/", lab.address));
     dev.wait_for("!document.getElementById('student-box').hidden");

@@ -48,14 +48,14 @@ fn bresenham_0_0_7_3_matches_the_hand_worked_table() {
     let expected = "\
 bresenham (midpoint) from pixel (0, 0) to pixel (7, 3) (pixel indices: the line joins their centres); first octant: no symmetry needed
    x      y  pixel            d  choice
-   0      0    0,0        0.500  d >= 0: midpoint on or above the line, keep y
-   1      0    1,0       -2.500  d < 0: midpoint below the line, y = y + 1
-   2      1    2,1        1.500  d >= 0: midpoint on or above the line, keep y
-   3      1    3,1       -1.500  d < 0: midpoint below the line, y = y + 1
-   4      2    4,2        2.500  d >= 0: midpoint on or above the line, keep y
-   5      2    5,2       -0.500  d < 0: midpoint below the line, y = y + 1
-   6      3    6,3        3.500  d >= 0: midpoint on or above the line, keep y
-   7      3    7,3        0.500  d >= 0: midpoint on or above the line, keep y
+   0      0    0,0        0.500  d >= 0: the line meets the midpoint or passes on its y side, keep y
+   1      0    1,0       -2.500  d < 0: the line passes on the midpoint's y + 1 side, y = y + 1
+   2      1    2,1        1.500  d >= 0: the line meets the midpoint or passes on its y side, keep y
+   3      1    3,1       -1.500  d < 0: the line passes on the midpoint's y + 1 side, y = y + 1
+   4      2    4,2        2.500  d >= 0: the line meets the midpoint or passes on its y side, keep y
+   5      2    5,2       -0.500  d < 0: the line passes on the midpoint's y + 1 side, y = y + 1
+   6      3    6,3        3.500  d >= 0: the line meets the midpoint or passes on its y side, keep y
+   7      3    7,3        0.500  d >= 0: the line meets the midpoint or passes on its y side, keep y
 d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame
 ";
     let ends = LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap();

@@ -140,19 +140,44 @@ fn exact(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]>
         }
         9 => overflow(rng, w, h),
         _ => {
-            // A triangle of zero area once snapped (its third vertex within
-            // half a subpixel of the line through the first two), beside a
-            // normal one.
+            // A triangle of zero area once snapped, beside a normal one:
+            // its third vertex is a point of the 1/256 grid on the line
+            // through the first two (before the first, between them, on
+            // one of them or past the second), moved off the grid by less
+            // than half a subpixel, so that snapping puts it back.
             let a = point(rng, w, h);
             let b = point(rng, w, h);
             let t = rng.f64();
             let off = (rng.f64() - 0.5) / 600.0;
-            let c = (
-                on_grid(a.0 + t * (b.0 - a.0)) + off,
-                a.1 + t * (b.1 - a.1) + off,
-            );
-            vec![[a, b, c], [a, point(rng, w, h), point(rng, w, h)]]
+            vec![
+                [a, b, collinear_on_grid(a, b, t, off)],
+                [a, point(rng, w, h), point(rng, w, h)],
+            ]
         }
+    }
+}
+
+/// A point of the 1/256 grid on the line through `a` and `b` (themselves
+/// on the grid), chosen by `t` in [0, 1) among the grid points from one
+/// step before `a` to one step past `b`, then moved by `off` (less than
+/// half a subpixel) on both axes.
+fn collinear_on_grid(a: Point, b: Point, t: f64, off: f64) -> Point {
+    let steps = |d: f64| (d * 256.0).round() as i64;
+    let (dx, dy) = (steps(b.0 - a.0), steps(b.1 - a.1));
+    let g = gcd(dx.unsigned_abs(), dy.unsigned_abs()).max(1) as i64;
+    // The grid points of the line are a + m (dx, dy) / g for whole m.
+    let m = (t * (g + 3) as f64).floor() as i64 - 1;
+    (
+        a.0 + (m * (dx / g)) as f64 / 256.0 + off,
+        a.1 + (m * (dy / g)) as f64 / 256.0 + off,
+    )
+}
+
+fn gcd(a: u64, b: u64) -> u64 {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
     }
 }
 

@@ -5,15 +5,20 @@
 //! needles, ...), scored by the cases of the family that hold, so that a
 //! student sees which kind of input breaks their rasterizer; a failing
 //! family's output carries its first problem, the named cause where it
-//! explains that family's failures, the shrunk counterexample and the
-//! command that reruns it. A subject that could not be judged (it did not
-//! start, crashed, hung or printed nonsense) is one failed test (JUnit: an
-//! `error`) with what went wrong and the input that triggers it.
+//! explains that family's failures, its own shrunk counterexample (every
+//! failing family has one) and the command that reruns it. A case the
+//! program gave no answer to (it crashed, hung, answered `error` or
+//! printed nonsense there) is one failed case of its family, shown with
+//! the input that triggers it, shrunk; only a program that breaks so on
+//! every input, the simplest included, is one failed test (JUnit: an
+//! `error`) with what went wrong.
 //!
 //! - Gradescope (`results.json`, as its autograder documentation
 //!   describes it): a top-level `score`, `output` and `tests`, each test
 //!   with `name`, `number`, `score`, `max_score`, `status` (`passed` or
-//!   `failed`) and `output`. A family is worth one point a case.
+//!   `failed`) and `output`. A family is worth one point a case, or the
+//!   points a teacher's configuration gives it (`check --config`), shared
+//!   among its cases.
 //! - JUnit XML, as Jenkins and GitLab read it: `testsuites`, one
 //!   `testsuite` with `tests`, `failures`, `errors` and `skipped`, a
 //!   `testcase` per family (`classname`, `name`), a failing one holding a
@@ -32,6 +37,7 @@
 //! assert!(junit(&report).contains(r#"failures="0""#));
 //! ```
 
+use super::judge::FailureKind;
 use super::request::{CheckReport, VerdictWord};
 use crate::markup::escape;
 use serde_json::{json, Value};
@@ -71,6 +77,8 @@ struct GraderTest {
     name: String,
     passed: u32,
     total: u32,
+    /// The points the test is worth, shared among its cases.
+    points: f64,
     /// What a failure says in one line (JUnit's `message`).
     message: String,
     /// The failure kind (JUnit's `type`).
@@ -86,6 +94,7 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
             name: "the program runs".into(),
             passed: 0,
             total: 1,
+            points: 1.0,
             message: e
                 .message
                 .lines()
@@ -123,10 +132,22 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
                 .collect();
             let mut output = format!("{} of {} cases hold\n", t.passed, t.total);
             let (mut message, mut kind) = (String::new(), String::new());
+            let unanswered = failing
+                .iter()
+                .filter(|f| f.kind == FailureKind::NoAnswer)
+                .count();
+            let own = report.counterexamples.iter().find(|c| c.family == t.family);
             if let Some(first) = failing.first() {
                 message = format!("case {}: {}", first.case_index, first.problem);
                 kind = first.kind.name().to_string();
                 let _ = writeln!(output, "first failing case: {message}");
+                if unanswered > 0 {
+                    let _ = writeln!(
+                        output,
+                        "the program gave no answer on {unanswered} of this family's {} failing case(s); each costs only itself",
+                        failing.len()
+                    );
+                }
                 match (cause, t.explained_by_cause) {
                     (Some(c), Some(n)) if n > 0 => {
                         let _ = writeln!(
@@ -136,6 +157,8 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
                             failing.len()
                         );
                     }
+                    _ if unanswered == failing.len() => {}
+                    _ if own.and_then(|c| c.cause.as_ref()).is_some() => {}
                     _ => {
                         let _ = writeln!(
                             output,
@@ -144,14 +167,24 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
                     }
                 }
             }
-            if let Some(c) = &report.counterexample {
-                if c.family == t.family {
-                    let _ = writeln!(
-                        output,
-                        "shrunk counterexample ({} primitive(s) on {}x{}):\n{}",
-                        c.primitives, c.width, c.height, c.input
-                    );
+            let own = own.or(report
+                .counterexample
+                .as_ref()
+                .filter(|c| c.family == t.family));
+            if let Some(c) = own {
+                if let Some(d) = &c.diagnosis {
+                    let _ = writeln!(output, "diagnosis of its shrunk counterexample: {d}");
                 }
+                let _ = writeln!(
+                    output,
+                    "shrunk counterexample (case {}, {}; {} primitive(s) on {}x{}):\n{}",
+                    c.case_index,
+                    c.problems.first().map_or("", String::as_str),
+                    c.primitives,
+                    c.width,
+                    c.height,
+                    c.input
+                );
             }
             if !failing.is_empty() {
                 let _ = writeln!(output, "rerun: {}", rerun_command(report));
@@ -160,6 +193,7 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
                 name: format!("family {}", t.family),
                 passed: t.passed,
                 total: t.total,
+                points: t.points,
                 message,
                 kind,
                 output: output.trim_end().to_string(),
@@ -212,7 +246,8 @@ fn summary(report: &CheckReport) -> String {
     s
 }
 
-/// Gradescope's `results.json`: a test per family, one point a case.
+/// Gradescope's `results.json`: a test per family, worth one point a
+/// case or the family's weight ([`CheckConfig`](super::CheckConfig)).
 pub fn gradescope(report: &CheckReport) -> Value {
     let tests: Vec<Value> = tests(report)
         .into_iter()
@@ -221,8 +256,8 @@ pub fn gradescope(report: &CheckReport) -> Value {
             json!({
                 "name": t.name,
                 "number": (i + 1).to_string(),
-                "score": f64::from(t.passed),
-                "max_score": f64::from(t.total),
+                "score": t.points * f64::from(t.passed) / f64::from(t.total.max(1)),
+                "max_score": t.points,
                 "status": if t.passed == t.total { "passed" } else { "failed" },
                 "output": t.output,
             })

@@ -65,6 +65,7 @@
 
 mod case;
 pub(crate) mod cause;
+mod config;
 // Some of it only the program calls: unused without the `cli` feature.
 #[cfg_attr(not(feature = "cli"), allow(dead_code))]
 mod engine;
@@ -90,6 +91,7 @@ pub use cause::{
     catalogue, catalogue_multisampled, Cause, Diagnosis, End, Side, Winding, FAR_OFF_TARGET,
     NEAR_AN_EDGE,
 };
+pub use config::CheckConfig;
 pub use engine::{run, run_with, Progress, CONFIRMING_CASES};
 pub use generate::{families, family, generate_case};
 pub use grader::{gradescope, junit};
@@ -99,7 +101,7 @@ pub use program::{shell_words, Program};
 pub use property::{LineConvention, Property};
 pub use request::{
     BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice, Counterexample,
-    FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
+    FamilyTally, Kind, Origin, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
 };
 // What only the `rasterlab` program uses; absent without the `cli` feature.
 #[cfg(feature = "cli")]

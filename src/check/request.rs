@@ -66,6 +66,31 @@ pub enum Kind {
 
 crate::names::named_enum!(Kind, "kind", Triangles = "triangles", Lines = "lines");
 
+/// Where the subject puts the origin of its screen coordinates, and so
+/// which way its y grows: the protocol's top-left corner with y down
+/// (Direct3D, Vulkan, image rows), or the bottom-left corner with y up
+/// (OpenGL's window coordinates, Scotty3D). A y-up subject is given each
+/// case with y measured up from the bottom of the target (`height - y`)
+/// and answers with rows counted up from the bottom row (row 0 the
+/// lowest); rasterlab turns both back before judging, so the rules and
+/// their names (a top edge, a left edge) are those of the picture as it
+/// is seen, whatever way the subject counts.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Origin {
+    /// At the top-left corner, y down: the protocol's own.
+    #[default]
+    TopLeft,
+    /// At the bottom-left corner, y up.
+    BottomLeft,
+}
+
+crate::names::named_enum!(
+    Origin,
+    "origin",
+    TopLeft = "top-left",
+    BottomLeft = "bottom-left"
+);
+
 /// What triangles are judged by.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum RuleChoice {
@@ -174,6 +199,12 @@ pub struct CheckRequest {
     /// or 16, on the standard pattern) whose coverage masks are judged
     /// (`--msaa N`); `None` for one sample at the pixel centre.
     pub msaa: Option<u32>,
+    /// Points per family in a grader's report, by family name (a
+    /// teacher's configuration, [`CheckConfig`](super::CheckConfig));
+    /// a family not named is worth one point a case.
+    pub weights: Vec<(String, f64)>,
+    /// Which way the subject's y grows ([`Origin`]).
+    pub origin: Origin,
 }
 
 impl CheckRequest {
@@ -195,6 +226,8 @@ impl CheckRequest {
             command: String::new(),
             shrink_runs: 150,
             msaa: None,
+            weights: Vec::new(),
+            origin: Origin::TopLeft,
         }
     }
 }
@@ -230,6 +263,9 @@ pub struct FamilyTally {
     /// when no cause was named or the family has no failure; all of a
     /// family's failures are known only under `keep_going`).
     pub explained_by_cause: Option<u32>,
+    /// The points the family is worth in a grader's report, shared among
+    /// its cases: its weight in the request, or one a case.
+    pub points: f64,
 }
 
 /// One failing case, as found (not shrunk).
@@ -241,8 +277,13 @@ pub struct CaseFailure {
     pub family: String,
     /// The kind of its first problem.
     pub kind: FailureKind,
-    /// Its first problem.
+    /// Its first problem (for a case without an answer, what went
+    /// wrong).
     pub problem: String,
+    /// For a case the program gave no answer to
+    /// ([`FailureKind::NoAnswer`]), the case as generated, which the
+    /// program can be rerun on; `None` for the others.
+    pub input: Option<String>,
 }
 
 /// The shrunk counterexample of a failure.
@@ -385,6 +426,11 @@ pub struct CheckReport {
     pub failing_cases: Vec<CaseFailure>,
     /// The shrunk counterexample of the first failure.
     pub counterexample: Option<Counterexample>,
+    /// Under `keep_going`: the first failure of each failing family,
+    /// shrunk, in the order of the families (the first failure's own is
+    /// also `counterexample`), so that a grader's test per family shows
+    /// its own; empty otherwise.
+    pub counterexamples: Vec<Counterexample>,
     /// Why the subject could not be judged.
     pub error: Option<BrokenReport>,
     /// Under `--rule any` or `--convention any`: the table.

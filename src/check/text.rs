@@ -1,8 +1,12 @@
 //! The report as text: what `rasterlab check` prints.
 
+use super::judge::FailureKind;
 use super::property::with_samples;
 use super::request::{CheckReport, VerdictWord};
 use std::fmt::{self, Write as _};
+
+/// The most lines of another family's counterexample printed.
+const INPUT_LINES_SHOWN: usize = 12;
 
 impl fmt::Display for CheckReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -71,6 +75,21 @@ impl fmt::Display for CheckReport {
             );
             for t in &self.families {
                 let _ = writeln!(out, "  {:<12} {}/{}", t.family, t.passed, t.total);
+            }
+            let unanswered: Vec<_> = self
+                .failing_cases
+                .iter()
+                .filter(|f| f.kind == FailureKind::NoAnswer)
+                .collect();
+            if let Some(first) = unanswered.first() {
+                let _ = writeln!(
+                    out,
+                    "no answer on {} case(s), each counted as a failed case; the first, case {} (family {}): {}",
+                    unanswered.len(),
+                    first.case_index,
+                    first.family,
+                    first.problem.lines().next().unwrap_or("")
+                );
             }
         }
         match self.verdict {
@@ -148,6 +167,52 @@ impl fmt::Display for CheckReport {
             }
             if let Some(file) = c.files.iter().find(|f| f.ends_with(".html")) {
                 let _ = writeln!(out, "report: {file}");
+            }
+        }
+        if self.verdict == VerdictWord::Fail
+            && self.counterexample.is_none()
+            && self.rules.is_none()
+        {
+            let _ = writeln!(
+                out,
+                "FAIL: {} of {} cases hold, {} (seed {})",
+                self.passed, self.cases_run, self.description, self.seed
+            );
+        }
+        let first = self.counterexample.as_ref().map(|c| c.case_index);
+        for c in self
+            .counterexamples
+            .iter()
+            .filter(|c| Some(c.case_index) != first)
+        {
+            let _ = writeln!(
+                out,
+                "family {}: case {}, shrunk from {} to {} primitive(s) on a {}x{} target: {}",
+                c.family,
+                c.case_index,
+                c.original_primitives,
+                c.primitives,
+                c.width,
+                c.height,
+                c.problems.first().map_or("", String::as_str)
+            );
+            if let Some(d) = &c.diagnosis {
+                let _ = writeln!(out, "  diagnosis: {d}");
+            }
+            let lines: Vec<&str> = c
+                .input
+                .lines()
+                .filter(|l| !l.starts_with("# command"))
+                .collect();
+            for line in lines.iter().take(INPUT_LINES_SHOWN) {
+                let _ = writeln!(out, "  {line}");
+            }
+            if lines.len() > INPUT_LINES_SHOWN {
+                let _ = writeln!(
+                    out,
+                    "  ... and {} more line(s)",
+                    lines.len() - INPUT_LINES_SHOWN
+                );
             }
         }
         f.write_str(out.trim_end())

@@ -1,8 +1,9 @@
 //! Argument types several subcommands share.
 
+use clap::builder::TypedValueParser;
 use clap::Args;
 use rasterlab::raster::line::{Connectivity, Endpoints, LineOptions};
-use rasterlab::raster::SamplePattern;
+use rasterlab::raster::{FillRule, SamplePattern};
 
 /// A `WxH` size.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -71,4 +72,21 @@ pub fn msaa(text: &str) -> Result<SamplePattern, String> {
         .parse()
         .map_err(|_| format!("`{text}` is not a sample count (1, 2, 4, 8 or 16)"))?;
     SamplePattern::standard(n).map_err(|e| e.to_string())
+}
+
+/// `--rule` of the commands that draw: one of [`FillRule::ALL`], which
+/// `--help` lists as the possible values.
+pub fn fill_rule() -> impl TypedValueParser<Value = FillRule> {
+    clap::builder::PossibleValuesParser::new(FillRule::ALL.map(FillRule::name))
+        .try_map(|name| name.parse::<FillRule>())
+}
+
+/// `--rule` given with a line back-end, which draws by its own
+/// convention: refused rather than ignored.
+pub fn rule_for_lines() -> rasterlab::Error {
+    rasterlab::Error::InvalidArgument(
+        "--rule is a triangle fill rule; a line back-end draws by its own convention \
+         (see `rasterlab backends`)"
+            .into(),
+    )
 }

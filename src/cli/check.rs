@@ -5,8 +5,8 @@
 use super::args::msaa;
 use clap::Args;
 use rasterlab::check::{
-    timeout_from_seconds, CheckRequest, ConventionChoice, Kind, Progress, ReportFormat, RuleChoice,
-    SubjectSpec,
+    timeout_from_seconds, CheckConfig, CheckRequest, ConventionChoice, Kind, Origin, Progress,
+    ReportFormat, RuleChoice, SubjectSpec,
 };
 use rasterlab::raster::SamplePattern;
 use rasterlab::{check, Error, Result};
@@ -58,15 +58,30 @@ pub struct CheckArgs {
     /// mask`, bit i of the mask for sample i; the masks are judged exactly.
     #[arg(long, value_name = "N", value_parser = msaa, allow_negative_numbers = true)]
     msaa: Option<SamplePattern>,
-    /// How many cases.
-    #[arg(long, default_value_t = 150)]
-    cases: u32,
-    /// Seed of the case generator (the same seed gives the same cases).
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
-    /// Seconds a program may take on one case.
-    #[arg(long, default_value_t = 5.0)]
-    timeout: f64,
+    /// How many cases (default: 150, or the configuration's).
+    #[arg(long)]
+    cases: Option<u32>,
+    /// Seed of the case generator (the same seed gives the same cases;
+    /// default: 0, or the configuration's).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Seconds a program may take on one case (default: 5, or the
+    /// configuration's).
+    #[arg(long)]
+    timeout: Option<f64>,
+    /// Where the program's origin is: top-left (y down, the protocol's;
+    /// the default) or bottom-left (y up: OpenGL's window coordinates,
+    /// Scotty3D). A y-up program is given y as height - y and answers
+    /// with row 0 at the bottom; the rules are named as the picture shows
+    /// them.
+    #[arg(long)]
+    origin: Option<Origin>,
+    /// A teacher's configuration (JSON): the rule or convention, the
+    /// cases, the seed, the time limit and each family's weight in the
+    /// grader formats (docs/check.md). An option given on the command
+    /// line wins over the file.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
     /// Cases run at once.
     #[arg(long, default_value_t = 1)]
     jobs: usize,
@@ -108,14 +123,6 @@ pub fn run(args: &CheckArgs) -> Result<()> {
             "--persistent starts an --exec program once; a --backend runs in rasterlab".into(),
         ));
     }
-    if let (Some(command), false) = (&args.exec, args.persistent) {
-        if !command.contains("{input}") {
-            eprintln!(
-                "note: the command has no {{input}}, so the program is not given the case; \
-                 a program that reads cases on its standard input runs with --persistent"
-            );
-        }
-    }
     let subject = match (&args.exec, &args.backend) {
         (Some(command), _) if args.persistent => SubjectSpec::Persistent(command.clone()),
         (Some(command), _) => SubjectSpec::Exec(command.clone()),
@@ -126,20 +133,28 @@ pub fn run(args: &CheckArgs) -> Result<()> {
             ))
         }
     };
+    let mut request = CheckRequest::new(subject);
+    if let Some(path) = &args.config {
+        CheckConfig::read(path)?.apply(&mut request)?;
+    }
     let request = CheckRequest {
-        kind: args.kind,
-        rule: args.rule,
-        convention: args.convention,
+        kind: args.kind.or(request.kind),
+        rule: args.rule.or(request.rule),
+        convention: args.convention.or(request.convention),
+        origin: args.origin.unwrap_or(request.origin),
         msaa: args.msaa.map(SamplePattern::count),
-        cases: args.cases,
-        seed: args.seed,
-        timeout: timeout_from_seconds(args.timeout)?,
+        cases: args.cases.unwrap_or(request.cases),
+        seed: args.seed.unwrap_or(request.seed),
+        timeout: match args.timeout {
+            Some(t) => timeout_from_seconds(t)?,
+            None => request.timeout,
+        },
         jobs: args.jobs,
         keep_going: args.keep_going || format.for_graders(),
         case_file: args.case.clone(),
         out: Some(args.out.clone()),
         command: check::shell_words(std::env::args()),
-        ..CheckRequest::new(subject)
+        ..request
     };
     // Ctrl-C removes the program's input files.
     if matches!(

@@ -1,8 +1,10 @@
 //! `rasterlab explain`: one algorithm traced step by step, and its grid picture.
 
-use super::args::{msaa, Size};
+use super::args::{fill_rule, msaa, rule_for_lines, Size};
 use clap::Args;
-use rasterlab::raster::{Blend, BlendMode, DepthState, FillRule, MixSpace, SamplePattern};
+use rasterlab::raster::{
+    backend, Backend, Blend, BlendMode, DepthState, FillRule, MixSpace, SamplePattern,
+};
 use rasterlab::teaching::{explain, Blending, ExplainRequest, GridPicture};
 use rasterlab::Result;
 use std::path::PathBuf;
@@ -35,9 +37,9 @@ pub struct ExplainArgs {
     /// The blend trace: sort the scene's triangles back to front first.
     #[arg(long)]
     sort: bool,
-    /// Fill rule for triangles.
-    #[arg(long, default_value = "top-left")]
-    rule: FillRule,
+    /// Triangle fill rule (default: top-left; not for a line back-end).
+    #[arg(long, value_parser = fill_rule())]
+    rule: Option<FillRule>,
     /// Grid size, `WxH` (16x16 for one triangle, 14x9 for the course's
     /// depth-buffer example).
     #[arg(long)]
@@ -62,12 +64,15 @@ pub struct ExplainArgs {
 }
 
 pub fn run(args: &ExplainArgs) -> Result<()> {
+    if args.rule.is_some() && matches!(backend(&args.backend), Ok(Backend::Line(_))) {
+        return Err(rule_for_lines());
+    }
     if let Some(path) = &args.picture {
         rasterlab::check_file(path, &GridPicture::EXTENSIONS)?;
     }
     let explanation = explain(&ExplainRequest {
         backend: args.backend.clone(),
-        rule: args.rule,
+        rule: args.rule.unwrap_or_default(),
         size: args.size.map(|s| (s.width, s.height)),
         screen: args.screen,
         coordinates: args.coordinates.clone(),

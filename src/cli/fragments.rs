@@ -1,6 +1,6 @@
 //! `rasterlab fragments`: the fragments a back-end emits for a file.
 
-use super::args::{msaa, LineArgs, Size};
+use super::args::{fill_rule, msaa, rule_for_lines, LineArgs, Size};
 use clap::Args;
 use rasterlab::geometry::{list_fragments_in_file, FragmentsRequest};
 use rasterlab::raster::{backend, Backend, FillRule, SamplePattern};
@@ -15,9 +15,9 @@ pub struct FragmentsArgs {
     /// Target size, `WxH`.
     #[arg(long)]
     size: Size,
-    /// Triangle fill rule: top-left, bottom-right, offscreen-point, inclusive, exclusive.
-    #[arg(long, default_value = "top-left")]
-    rule: FillRule,
+    /// Triangle fill rule (default: top-left; not for a line back-end).
+    #[arg(long, value_parser = fill_rule())]
+    rule: Option<FillRule>,
     #[command(flatten)]
     line: LineArgs,
     /// Multisample triangles on the standard pattern of N samples (1, 2,
@@ -29,12 +29,15 @@ pub struct FragmentsArgs {
 }
 
 pub fn run(args: &FragmentsArgs) -> Result<()> {
+    if let (Some(_), Backend::Line(_)) = (args.rule, args.backend) {
+        return Err(rule_for_lines());
+    }
     let listing = list_fragments_in_file(&FragmentsRequest {
         backend: args.backend,
         file: &args.file,
         width: args.size.width,
         height: args.size.height,
-        rule: args.rule,
+        rule: args.rule.unwrap_or_default(),
         line: args.line.options(),
         msaa: args.msaa,
     })?;

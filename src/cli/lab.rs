@@ -16,9 +16,27 @@ pub struct LabArgs {
     /// protocol ({input}, {width}, {height}, {rule}; prints `x y t`).
     #[arg(long)]
     exec: Option<String>,
+    /// Start the --exec program once and give it input after input on its
+    /// standard input, as `rasterlab check --persistent` does ({rule} is
+    /// replaced once, at the start).
+    #[arg(long, requires = "exec")]
+    persistent: bool,
 }
 
 pub fn run(args: &LabArgs) -> Result<()> {
+    let program = match args.exec.as_deref() {
+        None => None,
+        Some(command) if args.persistent => Some(Program::persistent(command, "top-left")?),
+        Some(command) if !command.contains("{input}") => {
+            return Err(Error::InvalidArgument(
+                "the --exec command has no {input}, so the program would not be given the \
+                 input: a program that reads its input on its standard input runs with \
+                 --persistent; one that reads a file takes {input}"
+                    .into(),
+            ))
+        }
+        Some(command) => Some(Program::new(command, "top-left")),
+    };
     let server = LabServer::bind(args.port)?;
     let stop = Arc::new(AtomicBool::new(false));
     let flag = Arc::clone(&stop);
@@ -28,10 +46,6 @@ pub fn run(args: &LabArgs) -> Result<()> {
         "rasterlab lab: http://127.0.0.1:{}/ (Ctrl-C stops it)",
         server.port()
     ))?;
-    let program = args
-        .exec
-        .as_deref()
-        .map(|command| Program::new(command, "top-left"));
     server.serve(program, &stop);
     eprintln!("rasterlab lab: stopped");
     Ok(())

@@ -64,8 +64,8 @@ use serde::{Deserialize, Serialize};
 const PAGE: &str = include_str!("page.html");
 
 /// The page the lab serves, with the one palette's colours, labels and
-/// legend style, and the names of the registry's triangle and line
-/// back-ends (every one has a trace).
+/// legend style, the names of the registry's triangle and line back-ends
+/// (every one has a trace), and every fill rule in the rule menu.
 pub fn page() -> String {
     let names = |names: Vec<&str>| serde_json::to_string(&names).expect("names serialise");
     PAGE.replacen("/*PALETTE_CSS*/", &palette::css(), 1)
@@ -78,6 +78,14 @@ pub fn page() -> String {
         .replacen(
             "/*LINE_BACKENDS*/[]",
             &names(line_backends().iter().map(|b| b.name()).collect()),
+            1,
+        )
+        .replacen(
+            "<!--FILL_RULES-->",
+            &FillRule::ALL
+                .iter()
+                .map(|r| format!("<option>{}</option>", r.name()))
+                .collect::<String>(),
             1,
         )
 }

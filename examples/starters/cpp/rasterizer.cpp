@@ -27,6 +27,15 @@ static double implicit_line(Point a, Point b, Point p) {
 }
 
 // The pixels of the target whose centre is inside triangle abc.
+//
+// How check judges it: it snaps every vertex to 1/256 px first (a
+// coordinate exactly halfway between two steps rounded to even, as
+// std::nearbyint(v * 256) / 256 does in the default rounding mode), then
+// decides each pixel centre with integer edge functions, and a centre
+// exactly on an edge by the fill rule (--rule, top-left by default). To
+// agree bit for bit, snap the same way and compute in integers (64 bits);
+// floating point on the vertices as given differs on a few cases (the
+// ties family, whose vertices lie exactly halfway).
 std::vector<Pixel> rasterize_triangle(Point a, Point b, Point c, int width, int height) {
     double f_bc_a = implicit_line(b, c, a), f_ca_b = implicit_line(c, a, b),
            f_ab_c = implicit_line(a, b, c);

@@ -21,6 +21,15 @@ function implicitLine(a, b, p) {
 }
 
 // The pixels [x, y] of the target whose centre is inside triangle abc.
+//
+// How check judges it: it snaps every vertex to 1/256 px first (a
+// coordinate exactly halfway between two steps rounded to even; note that
+// Math.round rounds halfway up, not to even), then decides each pixel
+// centre with integer edge functions, and a centre exactly on an edge by
+// the fill rule (--rule, top-left by default). To agree bit for bit, snap
+// the same way and compute in integers (BigInt, or numbers while they stay
+// below 2^53); floating point on the vertices as given differs on a few
+// cases (the ties family, whose vertices lie exactly halfway).
 function rasterizeTriangle(a, b, c, width, height) {
   const fBCa = implicitLine(b, c, a);
   const fCAb = implicitLine(c, a, b);

@@ -26,7 +26,16 @@ def implicit_line(a, b, p):
 
 
 def rasterize_triangle(a, b, c, width, height):
-    """The pixels (x, y) of the target whose centre is inside triangle abc."""
+    """The pixels (x, y) of the target whose centre is inside triangle abc.
+
+    How check judges it: it snaps every vertex to 1/256 px first (a
+    coordinate exactly halfway between two steps rounded to even, as
+    Python's round(v * 256) / 256 does), then decides each pixel centre
+    with integer edge functions, and a centre exactly on an edge by the
+    fill rule (--rule, top-left by default). To agree bit for bit, snap the
+    same way and compute in integers; floating point on the vertices as
+    given differs on a few cases (the ties family, whose vertices lie
+    exactly halfway)."""
     f_bc_a = implicit_line(b, c, a)
     f_ca_b = implicit_line(c, a, b)
     f_ab_c = implicit_line(a, b, c)

@@ -161,6 +161,44 @@ pub(crate) fn diagnose(
         }
     }
     let best = fits.iter().map(|f| f.1).max()?;
+    // Floating point, a condition every difference on an edge meets,
+    // explains little alone: a model that alone explains at least half
+    // the failing cases, with floating point for the rest, explaining as
+    // many, is named before it ("the inclusive rule, evaluated in
+    // floating point").
+    if fits
+        .iter()
+        .find(|f| f.1 == best)
+        .is_some_and(|f| f.0 == [Cause::FloatEdges])
+    {
+        let condition = Cause::FloatEdges;
+        let single = |m: Cause| {
+            failing
+                .iter()
+                .filter(|(c, d)| explains(&[m], property, c, d).is_some())
+                .count()
+        };
+        let mut models: Vec<(Cause, usize)> = catalogue
+            .iter()
+            .filter(|m| m.role() == Role::Model)
+            .map(|&m| (m, single(m)))
+            .filter(|&(_, n)| n > 0)
+            .collect();
+        let most = models.iter().map(|m| m.1).max().unwrap_or(0);
+        if 2 * most < failing.len() {
+            models.clear();
+        }
+        let pairs: Vec<Vec<Cause>> = models
+            .iter()
+            .filter(|m| m.1 == most)
+            .map(|m| vec![m.0, condition])
+            .collect();
+        let mut pair_fits = explaining_first(pairs);
+        pair_fits.retain(|f| f.1 == best);
+        if !pair_fits.is_empty() {
+            fits = pair_fits;
+        }
+    }
     let mut best_fits = fits.into_iter().filter(|f| f.1 == best);
     let (found, confirmed_on) = best_fits.next()?;
     let also_fits = best_fits

@@ -8,12 +8,12 @@ use super::{Progress, CONFIRMING_CASES, CONFIRMING_FAILURES};
 use crate::check::case::Case;
 use crate::check::cause::Diagnosis;
 use crate::check::generate;
-use crate::check::judge::{judge, Finding};
+use crate::check::judge::{judge, FailureKind, Finding};
 use crate::check::property::{with_samples, Property};
 use crate::check::request::{
     CaseFailure, CheckReport, CheckRequest, FamilyTally, RuleTable, VerdictWord,
 };
-use crate::check::{Broken, Fragment, Subject, SubjectError};
+use crate::check::{simplest_case, Broken, Fragment, Subject, SubjectError};
 use crate::error::Result;
 use crate::raster::multisample::SamplePattern;
 
@@ -42,6 +42,10 @@ struct Judged {
     confirming: Vec<Finding>,
     /// The case that broke the subject, and how.
     broken_at: Option<(u32, Case, SubjectError)>,
+    /// Under `keep_going`, the cases the subject gave no answer to (it
+    /// crashed, hung, refused or printed nonsense there but not on every
+    /// input): each a failed case, the run going on.
+    pub(super) errored: Vec<(u32, Case, SubjectError)>,
     /// The first failure, where the run stopped short of its cases.
     stopped_at: Option<u32>,
 }
@@ -78,7 +82,7 @@ impl Checker<'_> {
             self.confirm_in_family(at, subjects, &mut judged.confirming, progress);
         }
         let subject = subjects.first();
-        let mut report = self.empty_report(judged.outcomes.len() as u32);
+        let mut report = self.empty_report((judged.outcomes.len() + judged.errored.len()) as u32);
         let broken = match judged.broken_at.take() {
             Some((index, case, error)) => {
                 Some(self.report_broken(&mut report, index, &case, error, from_file, subject)?)
@@ -92,6 +96,9 @@ impl Checker<'_> {
         let evidence = self.tally(&judged, table.as_ref(), from_file, &mut report);
         let original =
             self.report_first_failure(&mut report, &evidence, from_file, subject, progress)?;
+        if self.request.keep_going && report.verdict == VerdictWord::Fail {
+            self.report_each_family(&mut report, &evidence, &judged.errored, subject, progress);
+        }
         if let Some(table) = table {
             report_rule_table(&mut report, table);
         }
@@ -121,8 +128,11 @@ impl Checker<'_> {
             outcomes: Vec::new(),
             confirming: Vec::new(),
             broken_at: None,
+            errored: Vec::new(),
             stopped_at: None,
         };
+        // The errors tried on the simplest input, and whether it broke so.
+        let mut tried: Vec<(std::mem::Discriminant<SubjectError>, bool)> = Vec::new();
         let mut next = 0;
         'cases: while next < total {
             let limit = match judged.stopped_at {
@@ -145,8 +155,9 @@ impl Checker<'_> {
                     (i, case)
                 })
                 .collect();
-            next = end;
             let drawn = subjects.draw_all(&cases);
+            // One subject stops a batch at the case that breaks it.
+            next = cases[0].0 + drawn.len() as u32;
             for ((index, case), drawn) in cases.into_iter().zip(drawn) {
                 if let Some(at) = judged.stopped_at {
                     progress(Progress::Confirming {
@@ -166,6 +177,10 @@ impl Checker<'_> {
                 });
                 let drawn = match drawn {
                     Ok(d) => d,
+                    Err(e) if self.costs_one_case(&e, from_file, &mut tried, subjects) => {
+                        judged.errored.push((index, case, e));
+                        continue;
+                    }
                     Err(e) => {
                         judged.broken_at = Some((index, case, e));
                         break 'cases;
@@ -180,6 +195,41 @@ impl Checker<'_> {
             }
         }
         judged
+    }
+
+    /// Whether an error costs only its case: under `keep_going`, for a
+    /// check of one property, when the subject does not break the same
+    /// way on the simplest input (tried once for each kind of error, and
+    /// remembered in `tried`). A subject broken on every input is
+    /// reported broken, as without `keep_going`.
+    fn costs_one_case(
+        &self,
+        error: &SubjectError,
+        from_file: bool,
+        tried: &mut Vec<(std::mem::Discriminant<SubjectError>, bool)>,
+        subjects: &mut Subjects<'_>,
+    ) -> bool {
+        let Mode::One(property) = self.mode else {
+            return false;
+        };
+        if !self.request.keep_going || from_file {
+            return false;
+        }
+        let kind = std::mem::discriminant(error);
+        if let Some(&(_, every)) = tried.iter().find(|(k, _)| *k == kind) {
+            return !every;
+        }
+        let simplest = Case {
+            samples: self.samples,
+            ..simplest_case(property.is_lines())
+        };
+        let every = subjects
+            .first()
+            .draw(&simplest)
+            .err()
+            .is_some_and(|e| std::mem::discriminant(&e) == kind);
+        tried.push((kind, every));
+        !every
     }
 
     /// The report before any case is counted: what was asked, and how
@@ -203,6 +253,7 @@ impl Checker<'_> {
             families: Vec::new(),
             failing_cases: Vec::new(),
             counterexample: None,
+            counterexamples: Vec::new(),
             error: None,
             rules: None,
             finding: None,
@@ -228,6 +279,7 @@ impl Checker<'_> {
                 passed: 0,
                 total: 0,
                 explained_by_cause: None,
+                points: 0.0,
             })
             .collect();
         let closest = table.map_or(0, |t| {
@@ -258,15 +310,39 @@ impl Checker<'_> {
                         family: family.to_string(),
                         kind: f.kind(),
                         problem: f.problems[0].clone(),
+                        input: None,
                     });
                     failures.push((*index, case, f));
                 }
             }
         }
+        for (index, case, error) in &cases.errored {
+            let family = self.family_of(*index, from_file);
+            tally_for(&mut tally, family).total += 1;
+            report.failing_cases.push(CaseFailure {
+                case_index: *index,
+                family: family.to_string(),
+                kind: FailureKind::NoAnswer,
+                problem: format!("no answer: {error}"),
+                input: Some(case.to_text()),
+            });
+        }
+        report.failing_cases.sort_by_key(|f| f.case_index);
+        if !cases.errored.is_empty() && report.verdict == VerdictWord::Pass {
+            report.verdict = VerdictWord::Fail;
+        }
         if !self.request.keep_going {
             report.failing_cases.truncate(1);
         }
         tally.retain(|t| t.total > 0);
+        for t in &mut tally {
+            t.points = self
+                .request
+                .weights
+                .iter()
+                .find(|(f, _)| *f == t.family)
+                .map_or(f64::from(t.total), |(_, w)| *w);
+        }
         report.passed = tally.iter().map(|t| t.passed).sum();
         // Under a table, the closest row judges only the cases of its kind.
         let judged: u32 = tally.iter().map(|t| t.total).sum();
@@ -307,7 +383,13 @@ impl Checker<'_> {
             report.verdict = VerdictWord::Fail;
         }
         let diagnosis = self.find_cause(first.property, evidence, subject);
-        let shrunk = self.shrink(first.clone(), diagnosis, subject, progress);
+        let shrunk = self.shrink(
+            first.clone(),
+            diagnosis,
+            self.request.shrink_runs,
+            subject,
+            progress,
+        );
         if let Some(cause) = &shrunk.cause {
             self.count_explained(&mut report.families, cause, &evidence.failures, from_file);
         }
@@ -428,6 +510,7 @@ fn tally_for<'t>(tally: &'t mut Vec<FamilyTally>, family: &str) -> &'t mut Famil
             passed: 0,
             total: 0,
             explained_by_cause: None,
+            points: 0.0,
         });
         tally.last_mut().expect("just pushed")
     }

@@ -53,7 +53,8 @@ pub(crate) use subjects::Subjects;
 use super::case::Case;
 use super::property::Property;
 use super::request::{
-    timeout_from_seconds, CheckReport, CheckRequest, Kind, SubjectSpec, MAX_CASES, MAX_JOBS,
+    timeout_from_seconds, BrokenReport, CheckReport, CheckRequest, Kind, Origin, SubjectSpec,
+    VerdictWord, MAX_CASES, MAX_JOBS,
 };
 use super::Subject;
 use crate::error::{Error, Result};
@@ -135,6 +136,12 @@ fn run_inner(
         Some((name, make)) => (name.to_string(), Box::new(make) as Factory<'_>),
         None => subject_factory(request, chosen, kind, mode)?,
     };
+    let factory: Factory<'_> = match request.origin {
+        Origin::TopLeft => factory,
+        Origin::BottomLeft => {
+            Box::new(move || Box::new(subjects::YUp(factory())) as Box<dyn Subject + Send>)
+        }
+    };
     let mut subjects = Subjects::Pool((0..request.jobs).map(|_| factory()).collect());
     let mut report = Checker {
         request,
@@ -144,7 +151,40 @@ fn run_inner(
     .check(given, &mut subjects, progress)?
     .report;
     report.subject = subject_name;
+    if let SubjectSpec::Exec(command) = &request.subject {
+        if !command.contains("{input}") {
+            not_given_the_case(&mut report);
+        }
+    }
     Ok(report)
+}
+
+/// A program run once per case without `{input}` in its command line is
+/// not given the case (its standard input is empty): when it fails, that
+/// is the reason, not a cause of the catalogue, and the subject is
+/// reported broken (exit status 2) with what to do instead.
+fn not_given_the_case(report: &mut CheckReport) {
+    if report.verdict != VerdictWord::Fail {
+        return;
+    }
+    let first = report.failing_cases.first();
+    report.verdict = VerdictWord::Broken;
+    report.error = Some(BrokenReport {
+        message: "the program is not given the case: its command line has no {input} \
+                  (the path of the case's file), and its standard input is empty. \
+                  A program that reads case after case on its standard input runs \
+                  with --persistent; one that reads a file takes {input}"
+            .into(),
+        case_index: first.map_or(0, |f| f.case_index),
+        family: first
+            .map(|f| f.family.clone())
+            .or_else(|| report.families.first().map(|t| t.family.clone()))
+            .unwrap_or_else(|| "file".into()),
+        on_every_input: true,
+        shrunk: false,
+        input: String::new(),
+        files: Vec::new(),
+    });
 }
 
 /// Checks the request's numbers: cases, jobs and the time limit.

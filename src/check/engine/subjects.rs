@@ -168,3 +168,32 @@ pub(super) fn subject_factory<'a>(
         (None, SubjectSpec::Backend(_)) => unreachable!("a back-end name was resolved"),
     })
 }
+
+/// A subject whose y grows up from the bottom of the target
+/// ([`Origin::BottomLeft`](crate::check::request::Origin)): given each
+/// case with `y` turned into `height - y`, its rows turned back from
+/// `height - 1 - row`. Both are exact (a whole number minus a multiple of
+/// 1/512, and snapping to even is symmetric about a whole number), so the
+/// subject is judged on the very case it was given; a vertex near the
+/// guard band's edge may, measured up, lie up to `height` px past it.
+pub(super) struct YUp(pub(super) Box<dyn Subject + Send>);
+
+impl Subject for YUp {
+    fn draw(&mut self, case: &Case) -> std::result::Result<Vec<Fragment>, SubjectError> {
+        let h = f64::from(case.height);
+        let mut flipped = case.clone();
+        for t in &mut flipped.triangles {
+            *t = t.map(|(x, y)| (x, h - y));
+        }
+        for l in &mut flipped.lines {
+            *l = l.map(|(x, y)| (x, h - y));
+        }
+        let last = i64::from(case.height) - 1;
+        Ok(self
+            .0
+            .draw(&flipped)?
+            .into_iter()
+            .map(|f| Fragment { y: last - f.y, ..f })
+            .collect())
+    }
+}

@@ -77,6 +77,10 @@ pub enum FailureKind {
     /// Under `--msaa`: a pixel drawn with another coverage mask than the
     /// rule's.
     Mask,
+    /// The program gave no answer to the case: it crashed, ran past its
+    /// time limit, answered `error` or printed something that is not
+    /// fragments. Under `keep_going` such a case costs only itself.
+    NoAnswer,
 }
 
 crate::names::named_enum!(
@@ -92,7 +96,8 @@ crate::names::named_enum!(
     DoubleDraw = "double-draw",
     Connectivity = "connectivity",
     Count = "count",
-    Mask = "mask"
+    Mask = "mask",
+    NoAnswer = "no-answer"
 );
 
 /// Where a case came from: recorded in the counterexample file, the
@@ -319,7 +324,7 @@ fn exact(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
             FailureKind::Extra,
             Some(f),
             format!(
-                "{} fragment(s) not in the answer, first ({}, {}) of primitive {}",
+                "{} fragment(s) drawn by the program but not by the reference (extra), first ({}, {}) of primitive {}",
                 plain_extra.len(),
                 f.x,
                 f.y,
@@ -346,7 +351,7 @@ fn exact(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
             FailureKind::Missing,
             Some(f),
             format!(
-                "{} fragment(s) missing, first ({}, {}) of primitive {}",
+                "{} fragment(s) drawn by the reference but not by the program (missing), first ({}, {}) of primitive {}",
                 plain_missing.len(),
                 f.x,
                 f.y,

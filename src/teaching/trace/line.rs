@@ -117,9 +117,9 @@ fn bresenham(ends: &LineEnds) -> Trace {
         let (px, py) = frame.to_screen(step.i, step.k);
         let d = step.d as f64 / AREA_UNIT;
         let choice = if step.step_up {
-            "d < 0: midpoint below the line, y = y + 1"
+            "d < 0: the line passes on the midpoint's y + 1 side, y = y + 1"
         } else {
-            "d >= 0: midpoint on or above the line, keep y"
+            "d >= 0: the line meets the midpoint or passes on its y side, keep y"
         };
         out.rows.push(TraceRow::at_pixel(
             vec![

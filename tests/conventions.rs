@@ -1,0 +1,232 @@
+//! The courses' conventions: a rasterizer whose y grows up (Scotty3D,
+//! OpenGL's window coordinates) passes with `--origin bottom-left` and
+//! fails without it with the y flip named; one of the inclusive rule
+//! (CS184, CS248) passes `--rule inclusive` and fails the default
+//! top-left rule with the inclusive rule named. Each is checked twice: as
+//! a Rust subject through the library, and as the Python students of
+//! `examples/student/` through the command line.
+
+mod common;
+
+use common::{part_missing, rasterlab};
+use rasterlab::check::{
+    run_with, Builtin, Case, CheckReport, CheckRequest, Fragment, Origin, RuleChoice, Subject,
+    SubjectError, SubjectSpec, VerdictWord,
+};
+use rasterlab::raster::{triangle_backend, FillRule};
+use std::process::Command;
+
+/// A rasterizer whose y grows up, of the top-left rule as its own
+/// picture shows it (a top edge has the triangle below it, at smaller y),
+/// in integers on the snapped vertices.
+fn y_up(case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+    let edge = |a: (i64, i64), b: (i64, i64), p: (i64, i64)| {
+        i128::from(b.0 - a.0) * i128::from(p.1 - a.1)
+            - i128::from(b.1 - a.1) * i128::from(p.0 - a.0)
+    };
+    let mut out = Vec::new();
+    // Snapped to 1/256 px, halfway to even; not clamped to the guard
+    // band, which y measured up can leave (a Python int does not wrap).
+    let snap = |v: f64| (v * 256.0).round_ties_even() as i64;
+    for (id, t) in case.triangles.iter().enumerate() {
+        let mut v = t.map(|(x, y)| (snap(x), snap(y)));
+        let area = edge(v[0], v[1], v[2]);
+        if area == 0 {
+            continue;
+        }
+        if area < 0 {
+            v.swap(1, 2);
+        }
+        let owns = |a: (i64, i64), b: (i64, i64)| {
+            if a.1 == b.1 {
+                b.0 < a.0
+            } else {
+                b.1 < a.1
+            }
+        };
+        for y in 0..i64::from(case.height) {
+            for x in 0..i64::from(case.width) {
+                let p = (x * 256 + 128, y * 256 + 128);
+                let inside = (0..3).all(|k| {
+                    let (a, b) = (v[k], v[(k + 1) % 3]);
+                    let e = edge(a, b, p);
+                    e > 0 || (e == 0 && owns(a, b))
+                });
+                if inside {
+                    out.push(Fragment::at(x, y, id as u32));
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn report(
+    origin: Origin,
+    rule: FillRule,
+    make: &(dyn Fn() -> Box<dyn Subject + Send> + Sync),
+) -> CheckReport {
+    let mut request = CheckRequest::new(SubjectSpec::Backend(String::new()));
+    request.cases = 200;
+    request.origin = origin;
+    request.rule = Some(RuleChoice::Exact(rule));
+    run_with(&request, "mine", make).unwrap()
+}
+
+fn diagnosis(report: &CheckReport) -> String {
+    report
+        .counterexample
+        .as_ref()
+        .and_then(|c| c.diagnosis.clone())
+        .unwrap_or_default()
+}
+
+#[test]
+fn a_y_up_rasterizer_passes_with_its_origin_and_is_named_flipped_without() {
+    let up = report(Origin::BottomLeft, FillRule::TopLeft, &|| Box::new(y_up));
+    assert_eq!(up.verdict, VerdictWord::Pass, "{up}");
+    let down = report(Origin::TopLeft, FillRule::TopLeft, &|| Box::new(y_up));
+    assert_eq!(down.verdict, VerdictWord::Fail);
+    let d = diagnosis(&down);
+    assert!(
+        d.contains("top-left rule with y flipped") && d.contains("--origin bottom-left"),
+        "{d}"
+    );
+    // A y-down back-end told its y grows up fails the other way round.
+    let bbox = triangle_backend("bbox").unwrap();
+    let make =
+        move || Box::new(Builtin::triangles(bbox, FillRule::TopLeft)) as Box<dyn Subject + Send>;
+    let flipped = report(Origin::BottomLeft, FillRule::TopLeft, &make);
+    assert_eq!(flipped.verdict, VerdictWord::Fail);
+    let d = diagnosis(&flipped);
+    assert!(d.contains("without --origin bottom-left"), "{d}");
+    // The rule is named as the picture shows it: a y-up subject judged
+    // by the bottom-left rule is the y-down back-end's mirror, and fails.
+    let mirror = report(Origin::BottomLeft, FillRule::BottomLeft, &|| Box::new(y_up));
+    assert_eq!(mirror.verdict, VerdictWord::Fail);
+}
+
+/// `rasterlab check` on a Python student of `examples/student/`, with
+/// more options; the exit status and what it printed (both streams).
+fn student(file: &str, options: &[&str]) -> Option<(i32, String)> {
+    let python = Command::new("python3")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !python {
+        part_missing(
+            "the convention students",
+            "python3",
+            "RASTERLAB_REQUIRE_STARTERS",
+        );
+        return None;
+    }
+    let command = format!(
+        "python3 {}/examples/student/{file}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out_dir = tempfile::tempdir().unwrap();
+    let mut args = vec!["check", "--persistent", "--exec", &command, "--out"];
+    args.push(out_dir.path().to_str().unwrap());
+    args.extend_from_slice(options);
+    let out = rasterlab(&args);
+    Some((
+        out.status.code().unwrap_or(-1),
+        format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        ),
+    ))
+}
+
+#[test]
+fn the_python_students_pass_in_their_convention_and_fail_for_the_named_reason() {
+    let Some((code, text)) = student("y_up.py", &["--origin", "bottom-left", "--cases", "300"])
+    else {
+        return;
+    };
+    assert_eq!(code, 0, "{text}");
+    assert!(text.starts_with("PASS: 300 cases"), "{text}");
+    let (code, text) = student("y_up.py", &[]).unwrap();
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("y flipped"), "{text}");
+    let (code, text) = student("inclusive.py", &["--rule", "inclusive", "--cases", "300"]).unwrap();
+    assert_eq!(code, 0, "{text}");
+    let (code, text) = student("inclusive.py", &[]).unwrap();
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("diagnosis: cause: ties decided by the inclusive rule"),
+        "{text}"
+    );
+    // An origin that is not one is refused.
+    let out = rasterlab(&["check", "--backend", "bbox", "--origin", "middle"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("bottom-left"));
+}
+
+#[test]
+fn every_list_of_fill_rules_names_all_seven() {
+    let rules = FillRule::ALL.map(FillRule::name);
+    for command in ["fragments", "explain"] {
+        let help = rasterlab(&[command, "--help"]);
+        let text = String::from_utf8_lossy(&help.stdout);
+        for rule in rules {
+            assert!(
+                text.contains(rule),
+                "{command} --help has no {rule}:\n{text}"
+            );
+        }
+    }
+    let page = rasterlab::lab::page();
+    for rule in rules {
+        assert!(
+            page.contains(&format!("<option>{rule}</option>")),
+            "the lab's rule menu has no {rule}"
+        );
+    }
+    // A rule given to a line back-end is refused, not ignored.
+    for args in [
+        &[
+            "fragments",
+            "--backend",
+            "bresenham",
+            "--size",
+            "4x4",
+            "--rule",
+            "inclusive",
+            "x",
+        ][..],
+        &[
+            "explain",
+            "--backend",
+            "bresenham",
+            "--rule",
+            "inclusive",
+            "0",
+            "0",
+            "7",
+            "3",
+        ],
+    ] {
+        let out = rasterlab(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("--rule is a triangle fill rule"), "{err}");
+    }
+    let out = rasterlab(&["explain", "--backend", "bresenham", "0", "0", "7", "3"]);
+    assert_eq!(out.status.code(), Some(0));
+    // A rule the list does not hold is refused with the list.
+    let out = rasterlab(&[
+        "fragments",
+        "--backend",
+        "bbox",
+        "--size",
+        "4x4",
+        "--rule",
+        "sideways",
+        "x",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("top-right"));
+}
