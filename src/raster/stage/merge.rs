@@ -223,19 +223,45 @@ impl Blend {
     /// covering `coverage` of it lands on `d`: decoded, mixed by the
     /// mode, encoded, masked. A whole fragment under `replace` is `s`
     /// itself, masked.
-    #[inline]
+    #[inline(always)]
     pub fn mix_rgba8(self, s: [u8; 4], coverage: f32, d: [u8; 4]) -> [u8; 4] {
+        if self.is_copy() && coverage >= 1.0 {
+            s
+        } else {
+            self.mix_slowly(s, coverage, d)
+        }
+    }
+
+    /// Whether a whole fragment's colour is copied as it is: `replace`,
+    /// every channel written. The merge's loops test this once a group,
+    /// so that the copy stays the plain store it was before blending.
+    #[inline(always)]
+    fn is_copy(self) -> bool {
+        self.mode == BlendMode::Replace && self.write_mask == WriteMask::ALL
+    }
+
+    /// [`mix_rgba8`](Self::mix_rgba8) when it mixes: out of line, so that
+    /// the copy's loops stay small.
+    #[inline(never)]
+    fn mix_slowly(self, s: [u8; 4], coverage: f32, d: [u8; 4]) -> [u8; 4] {
         let mixed = if self.mode == BlendMode::Replace && coverage >= 1.0 {
             s
         } else {
             let space = self.mix_in;
             space.encode(self.mode.mix(space.decode(s), coverage, space.decode(d)))
         };
-        if self.write_mask == WriteMask::ALL {
-            mixed
-        } else {
-            let mask = self.write_mask.bytes();
-            (u32::from_ne_bytes(mixed) & mask | u32::from_ne_bytes(d) & !mask).to_ne_bytes()
+        let mask = self.write_mask.bytes();
+        (u32::from_ne_bytes(mixed) & mask | u32::from_ne_bytes(d) & !mask).to_ne_bytes()
+    }
+
+    /// [`merge`](Self::merge) where [`is_copy`](Self::is_copy) holds: a
+    /// whole fragment's colour as it is, a partial one mixed.
+    #[inline(always)]
+    fn merge_copying(self, source: Source, dst: [u8; 4]) -> [u8; 4] {
+        match source {
+            Source::Rgba8(color) => color,
+            Source::Shaded { color, coverage } if coverage >= 1.0 => to_rgba8(color),
+            Source::Shaded { color, coverage } => self.mix_slowly(to_rgba8(color), coverage, dst),
         }
     }
 
@@ -276,10 +302,31 @@ pub(crate) fn merge<const WRITE_DEPTH: bool>(
     colour: &mut [[u8; 4]],
     depth: &mut [f32],
 ) {
+    // A copy is decided once for the group, so that its loops are the
+    // plain stores (and, under a mask, the vector selects) they were
+    // before blending.
+    if blend.is_copy() {
+        let copy = |k: usize, c: [u8; 4]| blend.merge_copying(source(k), c);
+        merge_group::<WRITE_DEPTH>(copy, passed, z, colour, depth);
+    } else {
+        let mix = |k: usize, c: [u8; 4]| blend.merge(source(k), c);
+        merge_group::<WRITE_DEPTH>(mix, passed, z, colour, depth);
+    }
+}
+
+/// [`merge`]'s loops, pixel `k` of colour `c` becoming `merged(k, c)`.
+#[inline(always)]
+fn merge_group<const WRITE_DEPTH: bool>(
+    merged: impl Fn(usize, [u8; 4]) -> [u8; 4],
+    passed: Passed<'_>,
+    z: &[f32],
+    colour: &mut [[u8; 4]],
+    depth: &mut [f32],
+) {
     match passed {
         Passed::All => {
             for (k, c) in colour.iter_mut().enumerate() {
-                *c = blend.merge(source(k), *c);
+                *c = merged(k, *c);
             }
             if WRITE_DEPTH {
                 depth.copy_from_slice(z);
@@ -287,9 +334,9 @@ pub(crate) fn merge<const WRITE_DEPTH: bool>(
         }
         Passed::Where(pass) => {
             for (k, (c, &pass)) in colour.iter_mut().zip(pass).enumerate() {
-                let merged = u32::from_ne_bytes(blend.merge(source(k), *c));
+                let new = u32::from_ne_bytes(merged(k, *c));
                 let kept = u32::from_ne_bytes(*c) & !pass;
-                *c = (merged & pass | kept).to_ne_bytes();
+                *c = (new & pass | kept).to_ne_bytes();
                 if WRITE_DEPTH {
                     let d = &mut depth[k];
                     *d = f32::from_bits(z[k].to_bits() & pass | d.to_bits() & !pass);
