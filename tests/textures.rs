@@ -9,7 +9,7 @@ use rasterlab::geometry::{
 };
 use rasterlab::raster::{
     quad_helpers, triangle_backends, DepthState, Derivatives, Filter, FragmentList, Interpolation,
-    LevelMode, Mipmapped, PixelRect, RenderTarget, Sampler, Texture, Varyings, Wrap,
+    LevelMode, Mipmapped, PixelRect, RenderTarget, Sampler, Texture, UvPlanes, Varyings, Wrap,
 };
 
 const SIZE: (u32, u32) = (96, 64);
@@ -194,5 +194,172 @@ fn quads_bring_helper_pixels_along_the_edges() {
     assert!(
         helpers > 0 && helpers < fragments / 4,
         "{helpers} helpers, {fragments} fragments"
+    );
+}
+
+/// Pixels, and the ground truth at each.
+type Inner = (Vec<(u32, u32)>, Vec<Vec4>);
+
+/// The RMS and worst error of each method against the ground truth: the
+/// texture over each pixel's square, as 16x16 bilinear samples of level 0
+/// box-filtered, on the floor's pixels whose neighbours are all floor.
+/// Mipmapping must come closer to it than level 0 does, and anisotropic
+/// filtering closer than trilinear; the figures are
+/// printed (`cargo test --test textures -- --nocapture`).
+#[test]
+fn mipmapping_comes_closer_to_the_ground_truth_than_level_zero() {
+    let geometry = floor();
+    let texture = checkerboard();
+    let setup = &geometry.setups[0];
+    let t = &geometry.shaded.triangles[setup.id as usize];
+    let planes = UvPlanes::new(
+        setup,
+        t.vertices.map(|i| geometry.shaded.vertices[i as usize]),
+        true,
+    );
+    let truth = |x: u32, y: u32| {
+        let n = 16;
+        let mut sum = Vec4::ZERO;
+        for j in 0..n {
+            for i in 0..n {
+                let (px, py) = (
+                    f64::from(x) + (f64::from(i) + 0.5) / f64::from(n),
+                    f64::from(y) + (f64::from(j) + 0.5) / f64::from(n),
+                );
+                let uv = planes.uv_at_point(px, py).unwrap().as_vec2();
+                sum += texture.levels()[0].sample(uv, Filter::Bilinear, Wrap::Repeat);
+            }
+        }
+        sum / (n * n) as f32
+    };
+    // The floor's inner pixels and their ground truth, found on the first render.
+    let mut reference: Option<Inner> = None;
+    let mut rms_of = Vec::new();
+    let configs = [
+        (
+            "level 0, nearest",
+            Filter::Nearest,
+            LevelMode::Zero,
+            Derivatives::Analytic,
+            1,
+        ),
+        (
+            "level 0, bilinear",
+            Filter::Bilinear,
+            LevelMode::Zero,
+            Derivatives::Analytic,
+            1,
+        ),
+        (
+            "nearest level, bilinear",
+            Filter::Bilinear,
+            LevelMode::Nearest,
+            Derivatives::Analytic,
+            1,
+        ),
+        (
+            "trilinear, analytic",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Analytic,
+            1,
+        ),
+        (
+            "trilinear, quad",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Quad,
+            1,
+        ),
+        (
+            "trilinear, forward",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Forward,
+            1,
+        ),
+        (
+            "anisotropic 4x",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Analytic,
+            4,
+        ),
+        (
+            "anisotropic 16x",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Analytic,
+            16,
+        ),
+    ];
+    for (name, filter, levels, method, anisotropy) in configs {
+        let sampler = Sampler {
+            filter,
+            levels,
+            wrap: Wrap::Repeat,
+            anisotropy,
+        };
+        let shader = Mipmapped::new(
+            texture.clone(),
+            sampler,
+            method,
+            &geometry.setups,
+            &geometry.shaded,
+            true,
+        );
+        let mut target = RenderTarget::new(SIZE.0, SIZE.1).unwrap();
+        draw(
+            &geometry,
+            triangle_backends()[0],
+            &shader,
+            DepthState::DEFAULT,
+            Interpolation::PerspectiveCorrect,
+            &mut target,
+        );
+        let (pixels, truths) = reference.get_or_insert_with(|| {
+            let covered = |x: i64, y: i64| {
+                x >= 0
+                    && y >= 0
+                    && x < i64::from(SIZE.0)
+                    && y < i64::from(SIZE.1)
+                    && target.coverage[target.index(x as u32, y as u32)] > 0
+            };
+            let pixels: Vec<(u32, u32)> = (0..SIZE.1)
+                .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
+                .filter(|&(x, y)| {
+                    (-1..=1).all(|j| (-1..=1).all(|i| covered(i64::from(x) + i, i64::from(y) + j)))
+                })
+                .collect();
+            let truths = pixels.iter().map(|&(x, y)| truth(x, y)).collect();
+            (pixels, truths)
+        });
+        let (mut squares, mut worst) = (0.0f64, 0.0f32);
+        for (&(x, y), want) in pixels.iter().zip(truths.iter()) {
+            let got = target.color[target.index(x, y)];
+            for c in 0..3 {
+                let e = (f32::from(got[c]) / 255.0 - want[c]).abs();
+                squares += f64::from(e * e);
+                worst = worst.max(e);
+            }
+        }
+        let rms = (squares / (3 * pixels.len()) as f64).sqrt();
+        eprintln!(
+            "{name:>24}: RMS {rms:.4}, worst {worst:.3} over {} pixels",
+            pixels.len()
+        );
+        rms_of.push(rms);
+    }
+    assert!(
+        rms_of[7] < rms_of[3],
+        "anisotropic {} vs trilinear {}",
+        rms_of[7],
+        rms_of[3]
+    );
+    assert!(
+        rms_of[3] < rms_of[1],
+        "trilinear {} vs level 0 {}",
+        rms_of[3],
+        rms_of[1]
     );
 }

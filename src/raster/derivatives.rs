@@ -134,9 +134,23 @@ impl UvPlanes {
 
     /// The three planes' values at the centre of pixel `(x, y)`.
     fn planes_at(&self, x: i64, y: i64) -> (f64, f64, f64) {
-        let (dx, dy) = ((x - self.origin.0) as f64, (y - self.origin.1) as f64);
+        self.planes_at_offset((x - self.origin.0) as f64, (y - self.origin.1) as f64)
+    }
+
+    /// The three planes' values `(dx, dy)` pixels from the origin's centre.
+    fn planes_at_offset(&self, dx: f64, dy: f64) -> (f64, f64, f64) {
         let at = |p: &Plane| p.at + p.dy * dy + p.dx * dx;
         (at(&self.u), at(&self.v), at(&self.r))
+    }
+
+    /// The coordinate at the screen point `(x, y)` (pixel `(i, j)` covers
+    /// `[i, i + 1) x [j, j + 1)`), as [`uv_at`](Self::uv_at) gives it at a
+    /// centre: what a ground truth integrates over a pixel's square.
+    pub fn uv_at_point(&self, x: f64, y: f64) -> Option<DVec2> {
+        let dx = x - 0.5 - self.origin.0 as f64;
+        let dy = y - 0.5 - self.origin.1 as f64;
+        let (u, v, r) = self.planes_at_offset(dx, dy);
+        (r > 0.0).then(|| DVec2::new(u / r, v / r))
     }
 
     /// The coordinate at the centre of pixel `(x, y)`, inside the triangle
