@@ -363,3 +363,46 @@ fn mipmapping_comes_closer_to_the_ground_truth_than_level_zero() {
         rms_of[1]
     );
 }
+
+/// `render --shading texture --mip linear --anisotropy 4 --derivatives
+/// quad` on the bundled bunny: every back-end draws the same frame, which
+/// differs from level 0's; a multisampled one is refused, not drawn at
+/// level 0 silently.
+#[test]
+fn a_mipmapped_mesh_is_the_same_frame_from_every_backend() {
+    use rasterlab::geometry::{Mesh, MeshRenderer, RenderSettings, Shading};
+    use rasterlab::raster::{MultisampleTarget, SamplePattern};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bunny.ply");
+    let mesh = Mesh::load(&path).unwrap();
+    let settings = RenderSettings {
+        width: 160,
+        height: 120,
+        zoom: 3.0,
+        shading: Shading::Texture,
+        mip: LevelMode::Linear,
+        anisotropy: 4,
+        derivatives: Derivatives::Quad,
+        ..RenderSettings::default()
+    };
+    let renderer = MeshRenderer::new(&mesh, settings).unwrap();
+    let first = renderer.render(triangle_backends()[0]).unwrap().target;
+    for backend in triangle_backends() {
+        let frame = renderer.render(*backend).unwrap().target;
+        assert!(frame.color == first.color, "{}", backend.name());
+    }
+    let level0 = RenderSettings {
+        mip: LevelMode::Zero,
+        anisotropy: 1,
+        ..settings
+    };
+    let plain = MeshRenderer::new(&mesh, level0).unwrap();
+    assert!(plain.render(triangle_backends()[0]).unwrap().target.color != first.color);
+    let mut msaa = MultisampleTarget::new(160, 120, SamplePattern::standard(4).unwrap()).unwrap();
+    let refused = renderer.render_multisampled_into(triangle_backends()[0], &mut msaa);
+    assert!(refused.unwrap_err().to_string().contains("--msaa"));
+    let bad = RenderSettings {
+        anisotropy: 17,
+        ..settings
+    };
+    assert!(MeshRenderer::new(&mesh, bad).is_err());
+}
