@@ -406,3 +406,34 @@ fn a_mipmapped_mesh_is_the_same_frame_from_every_backend() {
     };
     assert!(MeshRenderer::new(&mesh, bad).is_err());
 }
+
+/// `render --texture FILE.png`: an image file becomes a texture, channel
+/// by channel `c / 255`; a missing file, a file that is no image and an
+/// image too wide are errors naming the problem.
+#[test]
+fn textures_load_from_png_files_or_say_why_not() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.png");
+    let mut png = image::RgbaImage::new(4, 2);
+    png.put_pixel(3, 1, image::Rgba([255, 51, 0, 255]));
+    png.save(&path).unwrap();
+    let texture = Texture::load(&path).unwrap();
+    assert_eq!(
+        (texture.width(), texture.height(), texture.levels().len()),
+        (4, 2, 3)
+    );
+    assert_eq!(
+        texture.levels()[0].texel(3, 1),
+        Vec4::new(1.0, 0.2, 0.0, 1.0)
+    );
+    let missing = Texture::load(&dir.path().join("none.png")).unwrap_err();
+    assert!(missing.to_string().contains("none.png"), "{missing}");
+    let text = dir.path().join("not.png");
+    std::fs::write(&text, "not an image").unwrap();
+    let garbage = Texture::load(&text).unwrap_err();
+    assert!(garbage.to_string().contains("not.png"), "{garbage}");
+    let wide = dir.path().join("wide.png");
+    image::GrayImage::new(16385, 1).save(&wide).unwrap();
+    let refused = Texture::load(&wide).unwrap_err().to_string();
+    assert!(refused.contains("longer than 16384"), "{refused}");
+}

@@ -90,6 +90,10 @@ pub struct MeshArgs {
     /// Texture filter for --shading texture: nearest, bilinear (default).
     #[arg(long)]
     filter: Option<Filter>,
+    /// An image (PNG) for --shading texture in place of the checkerboard,
+    /// on the mesh's uv coordinates (OBJ `vt`).
+    #[arg(long, value_name = "FILE.png")]
+    texture: Option<PathBuf>,
     /// Mip levels for --shading texture: zero (level 0 only, default),
     /// nearest, linear (trilinear with --filter bilinear).
     #[arg(long)]
@@ -154,6 +158,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         mesh: MeshOverrides {
             shading: m.shading,
             filter: m.filter,
+            texture: m.texture.clone(),
             mip: m.mip,
             wrap: m.wrap,
             anisotropy: m.anisotropy,

@@ -286,6 +286,21 @@ impl MeshRenderer {
         )
     }
 
+    /// The renderer with `texture` in place of the checkerboard of
+    /// [`Shading::Texture`]; an error for any other shading, where it
+    /// would do nothing.
+    pub fn with_texture(mut self, texture: Texture) -> Result<MeshRenderer> {
+        match &mut self.shader {
+            MeshShader::Texture(textured) => {
+                textured.texture = texture;
+                Ok(self)
+            }
+            _ => Err(Error::InvalidArgument(
+                "a texture is drawn with --shading texture".into(),
+            )),
+        }
+    }
+
     /// Renders one frame with `backend` into a new target that counts
     /// coverage, on rayon's threads ([`draw_binned`](crate::geometry::pipeline::draw_binned)): the image does not
     /// depend on their number.

@@ -43,7 +43,7 @@ use crate::raster::registry::{
 use crate::raster::shader::{Filter, Flat};
 use crate::raster::stage::{Blend, Interpolation};
 use crate::raster::target::{DepthState, RenderTarget, MAX_TARGET_SIDE};
-use crate::raster::texture::{LevelMode, Wrap};
+use crate::raster::texture::{LevelMode, Texture, Wrap};
 use serde::Serialize;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -76,6 +76,8 @@ pub struct MeshOverrides {
     pub shading: Option<Shading>,
     /// The texture filter of [`Shading::Texture`].
     pub filter: Option<Filter>,
+    /// An image (PNG) for [`Shading::Texture`] in place of the checkerboard.
+    pub texture: Option<PathBuf>,
     /// The mip level mode of [`Shading::Texture`].
     pub mip: Option<LevelMode>,
     /// The wrap mode of [`Shading::Texture`].
@@ -106,6 +108,7 @@ impl MeshOverrides {
         [
             ("--shading", self.shading.is_some()),
             ("--filter", self.filter.is_some()),
+            ("--texture", self.texture.is_some()),
             ("--mip", self.mip.is_some()),
             ("--wrap", self.wrap.is_some()),
             ("--anisotropy", self.anisotropy.is_some()),
@@ -275,7 +278,10 @@ impl RenderRequest {
             },
             ..defaults
         })?;
-        let renderer = MeshRenderer::new(&mesh, settings)?;
+        let mut renderer = MeshRenderer::new(&mesh, settings)?;
+        if let Some(texture) = &self.mesh.texture {
+            renderer = renderer.with_texture(Texture::load(texture)?)?;
+        }
         if !self.force {
             // A multisampled frame walks the triangles once per sample.
             let passes = self.msaa.map_or(1, SamplePattern::count);

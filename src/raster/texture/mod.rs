@@ -159,23 +159,30 @@ fn invalid(width: u64, height: u64, reason: String) -> Error {
     }
 }
 
+/// An error unless `width` x `height` is a size a texture may have.
+fn check_size(width: u32, height: u32) -> Result<()> {
+    let (w, h) = (u64::from(width), u64::from(height));
+    if width == 0 || height == 0 {
+        return Err(invalid(w, h, "both sides must be at least 1 texel".into()));
+    }
+    if width.max(height) > MAX_TEXTURE_SIDE {
+        let reason = format!("a side is longer than {MAX_TEXTURE_SIDE} texels");
+        return Err(invalid(w, h, reason));
+    }
+    if w * h > MAX_TEXTURE_TEXELS {
+        let reason = format!("it has more than {MAX_TEXTURE_TEXELS} texels");
+        return Err(invalid(w, h, reason));
+    }
+    Ok(())
+}
+
 impl Image {
     /// An image from texels in row-major order. An error when a side is
     /// zero or over [`MAX_TEXTURE_SIDE`], when there are more than
     /// [`MAX_TEXTURE_TEXELS`], or when `texels` does not fill the image.
     pub fn new(width: u32, height: u32, texels: Vec<Vec4>) -> Result<Image> {
+        check_size(width, height)?;
         let (w, h) = (u64::from(width), u64::from(height));
-        if width == 0 || height == 0 {
-            return Err(invalid(w, h, "both sides must be at least 1 texel".into()));
-        }
-        if width.max(height) > MAX_TEXTURE_SIDE {
-            let reason = format!("a side is longer than {MAX_TEXTURE_SIDE} texels");
-            return Err(invalid(w, h, reason));
-        }
-        if w * h > MAX_TEXTURE_TEXELS {
-            let reason = format!("it has more than {MAX_TEXTURE_TEXELS} texels");
-            return Err(invalid(w, h, reason));
-        }
         if texels.len() as u64 != w * h {
             let reason = format!("{} texels were given for {}", texels.len(), w * h);
             return Err(invalid(w, h, reason));
@@ -260,6 +267,31 @@ impl Texture {
             levels.push(next);
         }
         Texture { levels }
+    }
+
+    /// A texture read from an image file (PNG), its pyramid built: each
+    /// 8-bit channel `c` becomes `c / 255`, as the shaders read an RGBA8
+    /// colour. Errors: an unreadable or undecodable file (naming
+    /// it), and the sizes [`Image::new`] refuses, checked from the file's
+    /// header before any texel is decoded.
+    pub fn load(path: &std::path::Path) -> Result<Texture> {
+        let parse = |e: image::ImageError| Error::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            message: e.to_string(),
+        };
+        let (width, height) = image::image_dimensions(path).map_err(|e| match e {
+            image::ImageError::IoError(io) => Error::io(path, &io),
+            other => parse(other),
+        })?;
+        // The size first: a header claiming a huge image decodes nothing.
+        check_size(width, height)?;
+        let rgba = image::open(path).map_err(parse)?.to_rgba8();
+        let texels = rgba
+            .pixels()
+            .map(|p| Vec4::from_array(p.0.map(f32::from)) / 255.0)
+            .collect();
+        Texture::new(rgba.width(), rgba.height(), texels)
     }
 
     /// A texture with levels of its own (as Scotty3D's tests give them):
