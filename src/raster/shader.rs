@@ -8,7 +8,9 @@
 //! [`Diffuse`] lights each fragment with its interpolated normal (the
 //! software-rasterizer article), [`Textured`] samples a [`Texture`] at the interpolated UV (nearest
 //! or bilinear; textures, their mipmaps and filters live in
-//! [`texture`](crate::raster::texture)), and [`NormalColors`] shows the normals themselves.
+//! [`texture`](crate::raster::texture)), [`Mipmapped`] samples one with its
+//! mip pyramid at the level of detail of each fragment's derivatives, and
+//! [`NormalColors`] shows the normals themselves.
 
 use crate::raster::derivatives::{Derivatives, Gradient, UvPlanes};
 use crate::raster::edge::TriangleSetup;
