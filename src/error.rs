@@ -40,6 +40,17 @@ pub enum Error {
         /// Largest allowed side.
         max: u32,
     },
+    /// A texture of zero or excessive size, whose texels do not fill it,
+    /// or whose mip levels break the pyramid rule.
+    #[error("texture {width}x{height} is invalid: {reason}")]
+    InvalidTexture {
+        /// Width of level 0.
+        width: u64,
+        /// Height of level 0.
+        height: u64,
+        /// What is wrong.
+        reason: String,
+    },
     /// No back-end of that name (and kind) exists.
     #[error("unknown {kind} back-end `{name}` (known: {known})")]
     UnknownBackend {

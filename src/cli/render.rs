@@ -8,8 +8,8 @@ use clap::Args;
 use rasterlab::geometry::{CullMode, FrontFace, Shading};
 use rasterlab::measure::{MeshOverrides, RenderInput, RenderRequest};
 use rasterlab::raster::{
-    Blend, BlendMode, DepthState, FillRule, Filter, Interpolation, MixSpace, SamplePattern,
-    WriteMask,
+    Blend, BlendMode, DepthState, Derivatives, FillRule, Filter, Interpolation, LevelMode,
+    MixSpace, SamplePattern, Wrap, WriteMask,
 };
 use rasterlab::{Error, Result};
 use std::path::PathBuf;
@@ -90,6 +90,24 @@ pub struct MeshArgs {
     /// Texture filter for --shading texture: nearest, bilinear (default).
     #[arg(long)]
     filter: Option<Filter>,
+    /// An image (PNG) for --shading texture in place of the checkerboard,
+    /// on the mesh's uv coordinates (OBJ `vt`).
+    #[arg(long, value_name = "FILE.png")]
+    texture: Option<PathBuf>,
+    /// Mip levels for --shading texture: zero (level 0 only, default),
+    /// nearest, linear (trilinear with --filter bilinear).
+    #[arg(long)]
+    mip: Option<LevelMode>,
+    /// Texture wrap mode: repeat (default), clamp, mirror.
+    #[arg(long)]
+    wrap: Option<Wrap>,
+    /// The most anisotropic probes along the footprint, 1 (default) to 16.
+    #[arg(long, value_name = "N")]
+    anisotropy: Option<u32>,
+    /// Texture coordinate derivatives for --mip and --anisotropy: analytic
+    /// (default), quad (2x2 quads, fine), forward (CS184).
+    #[arg(long)]
+    derivatives: Option<Derivatives>,
     /// Varying interpolation: perspective (correct, default) or linear (to see the difference).
     #[arg(long)]
     interpolation: Option<Interpolation>,
@@ -140,6 +158,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         mesh: MeshOverrides {
             shading: m.shading,
             filter: m.filter,
+            texture: m.texture.clone(),
+            mip: m.mip,
+            wrap: m.wrap,
+            anisotropy: m.anisotropy,
+            derivatives: m.derivatives,
             interpolation: m.interpolation,
             cull: m.cull,
             front_face: m.front_face,

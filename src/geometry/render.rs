@@ -33,8 +33,9 @@ use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::multisample_stage::{draw_multisampled, MultisampleTarget};
 use crate::raster::primitive::ShadedLine;
 use crate::raster::shader::FragmentShader;
-use crate::raster::shader::{Diffuse, Flat, Gouraud, NormalColors, Texture, Textured};
+use crate::raster::shader::{Diffuse, Flat, Gouraud, Mipmapped, NormalColors, Texture, Textured};
 use crate::raster::stage::FragmentStage;
+use crate::raster::stage::Interpolation;
 use crate::raster::target::{Clear, DepthState, DepthTest, RenderTarget};
 use crate::raster::triangle::TriangleRasterizer;
 use glam::{Mat4, Vec4};
@@ -285,6 +286,21 @@ impl MeshRenderer {
         )
     }
 
+    /// The renderer with `texture` in place of the checkerboard of
+    /// [`Shading::Texture`]; an error for any other shading, where it
+    /// would do nothing.
+    pub fn with_texture(mut self, texture: Texture) -> Result<MeshRenderer> {
+        match &mut self.shader {
+            MeshShader::Texture(textured) => {
+                textured.texture = texture;
+                Ok(self)
+            }
+            _ => Err(Error::InvalidArgument(
+                "a texture is drawn with --shading texture".into(),
+            )),
+        }
+    }
+
     /// Renders one frame with `backend` into a new target that counts
     /// coverage, on rayon's threads ([`draw_binned`](crate::geometry::pipeline::draw_binned)): the image does not
     /// depend on their number.
@@ -322,6 +338,11 @@ impl MeshRenderer {
         target: &mut RenderTarget,
     ) -> Result<FrameStats> {
         self.check_target((target.width(), target.height()))?;
+        if let MeshShader::Texture(textured) = &self.shader {
+            if self.settings.mipmapped() {
+                return self.render_mipmapped(textured, backend, target);
+            }
+        }
         let frame_start = Instant::now();
         // A renderer drawing from several threads at once gives the other
         // threads buffers of their own.
@@ -363,6 +384,56 @@ impl MeshRenderer {
         })
     }
 
+    /// A textured frame with mipmaps, anisotropy or a wrap mode other
+    /// than repeat: the whole geometry, then the [`Mipmapped`] shader made
+    /// for its triangles, drawn on one thread; the wireframe over it.
+    fn render_mipmapped(
+        &self,
+        textured: &Textured,
+        backend: &dyn TriangleRasterizer,
+        target: &mut RenderTarget,
+    ) -> Result<FrameStats> {
+        let frame_start = Instant::now();
+        let geometry = self.geometry()?;
+        let mut shader = Mipmapped::new(
+            textured.texture.clone(),
+            self.settings.sampler(),
+            self.settings.derivatives,
+            &geometry.setups,
+            &geometry.shaded,
+            self.settings.interpolation == Interpolation::PerspectiveCorrect,
+        );
+        shader.light = textured.light;
+        let geometry_time = frame_start.elapsed();
+        let start = Instant::now();
+        let work = pipeline::draw_clearing(
+            &geometry,
+            backend,
+            &shader,
+            self.settings.depth,
+            self.settings.interpolation,
+            Clear::all(self.settings.background),
+            target,
+        );
+        if let Some(line_backend) = self.settings.wireframe {
+            let lines = pipeline::process_lines(
+                &self.vertices,
+                &self.edges,
+                &self.transform,
+                self.viewport(),
+            )?;
+            self.draw_wireframe(line_backend, &lines, target);
+        }
+        let raster_time = start.elapsed();
+        Ok(FrameStats {
+            geometry: geometry.stats,
+            work,
+            geometry_time,
+            raster_time,
+            times: FrameTimes::new(frame_start.elapsed(), None, geometry_time, raster_time),
+        })
+    }
+
     /// Clears `target` and renders one frame into it multisampled, on the
     /// target's sample pattern ([`draw_multisampled`]): the set-up keeps
     /// every triangle that may cover a sample, not only a pixel centre,
@@ -390,6 +461,11 @@ impl MeshRenderer {
         target: &mut MultisampleTarget,
     ) -> Result<FrameStats> {
         self.check_target((target.width(), target.height()))?;
+        if self.settings.mipmapped() {
+            return Err(Error::InvalidArgument(
+                "a multisampled frame samples textures at level 0 with repeat: leave out --msaa, or --mip, --wrap and --anisotropy".into(),
+            ));
+        }
         if self.settings.wireframe.is_some() {
             return Err(Error::InvalidArgument(
                 "a wireframe is drawn with lines, which are not multisampled: leave out --wireframe or --msaa".into(),

@@ -30,6 +30,7 @@ use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::geometry::scene::Scene2D;
 use crate::geometry::{milliseconds, optional_milliseconds, FrameTimes};
 use crate::measure::workload::LineWorkload;
+use crate::raster::derivatives::Derivatives;
 use crate::raster::descriptor::{within_budget, WorkBudget};
 use crate::raster::edge::FillRule;
 use crate::raster::fragment::WorkCounters;
@@ -42,6 +43,7 @@ use crate::raster::registry::{
 use crate::raster::shader::{Filter, Flat};
 use crate::raster::stage::{Blend, Interpolation};
 use crate::raster::target::{DepthState, RenderTarget, MAX_TARGET_SIDE};
+use crate::raster::texture::{LevelMode, Texture, Wrap};
 use serde::Serialize;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -74,6 +76,16 @@ pub struct MeshOverrides {
     pub shading: Option<Shading>,
     /// The texture filter of [`Shading::Texture`].
     pub filter: Option<Filter>,
+    /// An image (PNG) for [`Shading::Texture`] in place of the checkerboard.
+    pub texture: Option<PathBuf>,
+    /// The mip level mode of [`Shading::Texture`].
+    pub mip: Option<LevelMode>,
+    /// The wrap mode of [`Shading::Texture`].
+    pub wrap: Option<Wrap>,
+    /// The most anisotropic probes of [`Shading::Texture`].
+    pub anisotropy: Option<u32>,
+    /// How [`Shading::Texture`]'s derivatives are computed.
+    pub derivatives: Option<Derivatives>,
     /// Perspective-correct or linear varyings.
     pub interpolation: Option<Interpolation>,
     /// Back-face culling (`render`'s default: [`RENDER_CULL`]).
@@ -96,6 +108,11 @@ impl MeshOverrides {
         [
             ("--shading", self.shading.is_some()),
             ("--filter", self.filter.is_some()),
+            ("--texture", self.texture.is_some()),
+            ("--mip", self.mip.is_some()),
+            ("--wrap", self.wrap.is_some()),
+            ("--anisotropy", self.anisotropy.is_some()),
+            ("--derivatives", self.derivatives.is_some()),
             ("--interpolation", self.interpolation.is_some()),
             ("--cull", self.cull.is_some()),
             ("--front-face", self.front_face.is_some()),
@@ -124,6 +141,10 @@ impl MeshOverrides {
             zoom: self.zoom.unwrap_or(settings.zoom),
             shading: self.shading.unwrap_or(settings.shading),
             filter: self.filter.unwrap_or(settings.filter),
+            mip: self.mip.unwrap_or(settings.mip),
+            wrap: self.wrap.unwrap_or(settings.wrap),
+            anisotropy: self.anisotropy.unwrap_or(settings.anisotropy),
+            derivatives: self.derivatives.unwrap_or(settings.derivatives),
             interpolation: self.interpolation.unwrap_or(settings.interpolation),
             pipeline,
             wireframe,
@@ -257,7 +278,10 @@ impl RenderRequest {
             },
             ..defaults
         })?;
-        let renderer = MeshRenderer::new(&mesh, settings)?;
+        let mut renderer = MeshRenderer::new(&mesh, settings)?;
+        if let Some(texture) = &self.mesh.texture {
+            renderer = renderer.with_texture(Texture::load(texture)?)?;
+        }
         if !self.force {
             // A multisampled frame walks the triangles once per sample.
             let passes = self.msaa.map_or(1, SamplePattern::count);

@@ -29,7 +29,10 @@
 //!   [`Varyings`]), the shared fragment stage ([`FragmentStage`]: depth
 //!   test, interpolation, shading, writes), fragment shaders
 //!   ([`FragmentShader`], [`Flat`], [`Gouraud`], [`Textured`]...) and the
-//!   colour, depth and coverage buffers ([`RenderTarget`]).
+//!   colour, depth and coverage buffers ([`RenderTarget`]);
+//! * textures ([`texture`]): wrap modes, nearest and bilinear filters, the
+//!   mip pyramid, the level of detail and anisotropic filtering
+//!   ([`Texture`], [`Sampler`]).
 //!
 //! Nothing here depends on the rest of the crate: geometry input,
 //! teaching and measurement are built on this.
@@ -52,6 +55,7 @@
 
 pub(crate) mod area;
 pub(crate) mod compact;
+pub(crate) mod derivatives;
 pub(crate) mod descriptor;
 pub(crate) mod edge;
 pub(crate) mod fixed;
@@ -66,11 +70,13 @@ pub(crate) mod srgb;
 pub(crate) mod stage;
 pub(crate) mod supersample;
 pub(crate) mod target;
+pub mod texture;
 pub mod triangle;
 pub(crate) mod vector;
 
 pub use area::{area_coverage, AreaFragment};
 pub use compact::{SmallTriangle, MAX_SPAN};
+pub use derivatives::{quad_helpers, Derivatives, Gradient, UvPlanes};
 pub use descriptor::{within_budget, CostClass, Descriptor, Role, WorkBudget};
 pub use edge::{
     EdgeFunction, EdgeKind, FillRule, PixelRect, TriangleSetup, OFFSCREEN_POINT,
@@ -89,13 +95,17 @@ pub use registry::{
     triangle_backends, Backend,
 };
 pub use shader::{
-    to_rgba8, ColorLanes, Constant, Diffuse, DirectionalLight, Filter, Flat, FragmentInput,
-    FragmentLanes, FragmentShader, Gouraud, Texture, Textured, LANES,
+    to_rgba8, ColorLanes, Constant, Diffuse, DirectionalLight, Flat, FragmentInput, FragmentLanes,
+    FragmentShader, Gouraud, Mipmapped, Textured, LANES,
 };
 pub use srgb::{linear_to_srgb8, srgb8_to_linear, MixSpace};
 pub use stage::{Blend, BlendMode, FragmentStage, Interpolation, WriteMask};
 pub use supersample::{supersample, SampleCount};
 pub use target::{Clear, DepthState, DepthTest, RenderTarget, TargetRows, MAX_TARGET_SIDE};
+pub use texture::{
+    Filter, Footprint, Image, LevelMode, Sampler, Texture, Wrap, MAX_ANISOTROPY, MAX_TEXTURE_SIDE,
+    MAX_TEXTURE_TEXELS,
+};
 // What only the `rasterlab` program uses; absent without the `cli` feature.
 #[cfg(feature = "cli")]
 pub use self::registry::{all_backends, BackendInfo, BackendKind};

@@ -7,9 +7,16 @@
 //! barycentric coordinates (the line-drawing slides: `c = alpha c_a + beta c_b + gamma c_c`).
 //! [`Diffuse`] lights each fragment with its interpolated normal (the
 //! software-rasterizer article), [`Textured`] samples a [`Texture`] at the interpolated UV (nearest
-//! or bilinear), and [`NormalColors`] shows the normals themselves.
+//! or bilinear; textures, their mipmaps and filters live in
+//! [`texture`](crate::raster::texture)), [`Mipmapped`] samples one with its
+//! mip pyramid at the level of detail of each fragment's derivatives, and
+//! [`NormalColors`] shows the normals themselves.
 
-use crate::raster::primitive::Varyings;
+use crate::raster::derivatives::{Derivatives, Gradient, UvPlanes};
+use crate::raster::edge::TriangleSetup;
+use crate::raster::primitive::{TriangleData, Varyings};
+use crate::raster::texture::Sampler;
+pub use crate::raster::texture::{Filter, Texture};
 use glam::{Vec2, Vec3, Vec4};
 
 /// What a fragment shader is given.
@@ -330,105 +337,6 @@ impl FragmentShader for NormalColors {
     }
 }
 
-/// How a texture is sampled between texel centres.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum Filter {
-    /// The texel containing the sample point.
-    Nearest,
-    /// The four nearest texels, weighted by distance.
-    #[default]
-    Bilinear,
-}
-
-crate::names::named_enum!(
-    Filter,
-    "texture filter",
-    Nearest = "nearest",
-    Bilinear = "bilinear"
-);
-
-/// An RGBA texture with repeating (wrap-around) addressing.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Texture {
-    width: u32,
-    height: u32,
-    texels: Vec<Vec4>,
-}
-
-impl Texture {
-    /// A texture from texels in row-major order; `None` when the size does
-    /// not match or is zero.
-    pub fn new(width: u32, height: u32, texels: Vec<Vec4>) -> Option<Texture> {
-        (width > 0 && height > 0 && texels.len() == width as usize * height as usize).then_some(
-            Texture {
-                width,
-                height,
-                texels,
-            },
-        )
-    }
-
-    /// A `squares` x `squares` checkerboard of two colours, each square
-    /// `texels` texels wide.
-    pub fn checkerboard(squares: u32, texels: u32, a: Vec4, b: Vec4) -> Texture {
-        let side = (squares * texels).max(1);
-        let texels = (0..side * side)
-            .map(|i| {
-                let (x, y) = (i % side, i / side);
-                if (x / texels.max(1) + y / texels.max(1)).is_multiple_of(2) {
-                    a
-                } else {
-                    b
-                }
-            })
-            .collect();
-        Texture {
-            width: side,
-            height: side,
-            texels,
-        }
-    }
-
-    /// Width in texels.
-    pub fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// Height in texels.
-    pub fn height(&self) -> u32 {
-        self.height
-    }
-
-    #[inline]
-    fn texel(&self, x: i64, y: i64) -> Vec4 {
-        let x = x.rem_euclid(i64::from(self.width)) as usize;
-        let y = y.rem_euclid(i64::from(self.height)) as usize;
-        self.texels[y * self.width as usize + x]
-    }
-
-    /// Samples at `uv` (`(0, 0)` is the top-left corner of texel `(0, 0)`,
-    /// `(1, 1)` the bottom-right corner of the last texel; outside, the
-    /// texture repeats). Non-finite coordinates sample texel `(0, 0)`.
-    pub fn sample(&self, uv: Vec2, filter: Filter) -> Vec4 {
-        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
-        let u = f64::from(uv.x) * f64::from(self.width);
-        let v = f64::from(uv.y) * f64::from(self.height);
-        match filter {
-            Filter::Nearest => self.texel(u.floor() as i64, v.floor() as i64),
-            Filter::Bilinear => {
-                // Texel centres sit at half-integers.
-                let (u, v) = (u - 0.5, v - 0.5);
-                let (x0, y0) = (u.floor(), v.floor());
-                let (fx, fy) = ((u - x0) as f32, (v - y0) as f32);
-                let (x0, y0) = (x0 as i64, y0 as i64);
-                let top = self.texel(x0, y0).lerp(self.texel(x0 + 1, y0), fx);
-                let bottom = self.texel(x0, y0 + 1).lerp(self.texel(x0 + 1, y0 + 1), fx);
-                top.lerp(bottom, fy)
-            }
-        }
-    }
-}
-
 /// A texture sampled at the interpolated UV, optionally lit per fragment.
 #[derive(Clone, Debug)]
 pub struct Textured {
@@ -443,6 +351,80 @@ pub struct Textured {
 impl FragmentShader for Textured {
     fn shade(&self, input: &FragmentInput) -> Vec4 {
         let c = self.texture.sample(input.varyings.uv, self.filter);
+        match self.light {
+            Some(light) => (c.truncate() * light.intensity(input.varyings.normal)).extend(c.w),
+            None => c,
+        }
+    }
+}
+
+/// A texture sampled with its mipmaps: each fragment's level of detail
+/// (and anisotropic footprint) from the screen-space derivatives of its
+/// texture coordinate, which a [`Derivatives`] method computes from the
+/// fragment's triangle and pixel alone, so every back-end draws the same
+/// image. Made for one draw of triangles: it keeps each triangle's
+/// [`UvPlanes`], by triangle id.
+#[derive(Clone, Debug)]
+pub struct Mipmapped {
+    /// The texture and its pyramid.
+    pub texture: Texture,
+    /// Pixel filter, level mode, wrap mode and anisotropy.
+    pub sampler: Sampler,
+    /// How the derivatives are computed.
+    pub derivatives: Derivatives,
+    /// Diffuse lighting applied to the texel colour, if any.
+    pub light: Option<DirectionalLight>,
+    planes: Vec<Option<UvPlanes>>,
+}
+
+impl Mipmapped {
+    /// The shader for the triangles `setups` whose stage data is `data`;
+    /// `perspective` as the draw's interpolation is perspective-correct.
+    pub fn new(
+        texture: Texture,
+        sampler: Sampler,
+        derivatives: Derivatives,
+        setups: &[TriangleSetup],
+        data: &TriangleData,
+        perspective: bool,
+    ) -> Mipmapped {
+        let mut planes = vec![None; data.triangles.len()];
+        for s in setups {
+            let Some(t) = data.triangles.get(s.id as usize) else {
+                continue;
+            };
+            let vertices = t.vertices.map(|i| data.vertices.get(i as usize).copied());
+            if let [Some(a), Some(b), Some(c)] = vertices {
+                planes[s.id as usize] = Some(UvPlanes::new(s, [a, b, c], perspective));
+            }
+        }
+        Mipmapped {
+            texture,
+            sampler,
+            derivatives,
+            light: None,
+            planes,
+        }
+    }
+
+    /// The derivatives of `input`'s texture coordinate; zero for a
+    /// primitive this shader was not made for.
+    pub fn gradient(&self, input: &FragmentInput) -> Gradient {
+        match self.planes.get(input.primitive as usize) {
+            Some(Some(planes)) => {
+                planes.derivatives(self.derivatives, i64::from(input.x), i64::from(input.y))
+            }
+            _ => Gradient::default(),
+        }
+    }
+}
+
+impl FragmentShader for Mipmapped {
+    fn shade(&self, input: &FragmentInput) -> Vec4 {
+        let g = self.gradient(input);
+        let c = self
+            .texture
+            .sample_grad(input.varyings.uv, g.dx, g.dy, &self.sampler);
         match self.light {
             Some(light) => (c.truncate() * light.intensity(input.varyings.normal)).extend(c.w),
             None => c,

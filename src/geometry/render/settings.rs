@@ -5,10 +5,12 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::pipeline::PipelineOptions;
+use crate::raster::derivatives::Derivatives;
 use crate::raster::line::LineRasterizer;
 use crate::raster::shader::{DirectionalLight, Filter};
 use crate::raster::stage::{Blend, Interpolation};
 use crate::raster::target::{DepthState, RenderTarget};
+use crate::raster::texture::{LevelMode, Sampler, Wrap, MAX_ANISOTROPY};
 use glam::Vec4;
 
 /// How a mesh is coloured.
@@ -54,6 +56,17 @@ pub struct RenderSettings {
     pub shading: Shading,
     /// Texture filter for [`Shading::Texture`].
     pub filter: Filter,
+    /// Mip level mode for [`Shading::Texture`]: zero (level 0 only, the
+    /// default), nearest or linear (trilinear with the bilinear filter).
+    pub mip: LevelMode,
+    /// Wrap mode for [`Shading::Texture`].
+    pub wrap: Wrap,
+    /// The most anisotropic probes for [`Shading::Texture`], 1 (the
+    /// default, isotropic) to [`MAX_ANISOTROPY`].
+    pub anisotropy: u32,
+    /// How the texture coordinate's derivatives are computed where the
+    /// level mode or the anisotropy reads them.
+    pub derivatives: Derivatives,
     /// Perspective-correct or linear varyings.
     pub interpolation: Interpolation,
     /// Fill rule and culling.
@@ -82,6 +95,10 @@ impl Default for RenderSettings {
             zoom: 1.0,
             shading: Shading::Diffuse,
             filter: Filter::Bilinear,
+            mip: LevelMode::Zero,
+            wrap: Wrap::Repeat,
+            anisotropy: 1,
+            derivatives: Derivatives::Analytic,
             interpolation: Interpolation::PerspectiveCorrect,
             pipeline: PipelineOptions::default(),
             depth: DepthState::DEFAULT,
@@ -111,6 +128,12 @@ impl RenderSettings {
                 )));
             }
         }
+        if !(1..=MAX_ANISOTROPY).contains(&self.anisotropy) {
+            return Err(Error::InvalidArgument(format!(
+                "anisotropy must be between 1 and {MAX_ANISOTROPY}, not {}",
+                self.anisotropy
+            )));
+        }
         // NaN fails this test too.
         if !(self.zoom > 0.0 && self.zoom <= MAX_ZOOM) {
             return Err(Error::InvalidArgument(format!(
@@ -119,5 +142,27 @@ impl RenderSettings {
             )));
         }
         Ok(())
+    }
+
+    /// The texture's sampler: filter, level mode, wrap and anisotropy.
+    pub fn sampler(&self) -> Sampler {
+        Sampler {
+            filter: self.filter,
+            levels: self.mip,
+            wrap: self.wrap,
+            anisotropy: self.anisotropy,
+        }
+    }
+
+    /// Whether texturing goes beyond level 0 with repeating addressing,
+    /// the textured frame's fast path: mipmaps, anisotropy or another
+    /// wrap mode, which the mipmapped shader draws.
+    pub fn mipmapped(&self) -> bool {
+        self.shading == Shading::Texture
+            && self.sampler()
+                != Sampler {
+                    filter: self.filter,
+                    ..Sampler::default()
+                }
     }
 }

@@ -1,0 +1,439 @@
+//! Mipmapped textures through the stage: a receding checkerboard floor,
+//! the plane that aliases in every course, drawn under each pixel filter,
+//! level mode, derivative method and anisotropy by every triangle
+//! back-end.
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+use rasterlab::geometry::{
+    draw, process_triangles, ClipVertex, PipelineOptions, Transform, Viewport,
+};
+use rasterlab::raster::{
+    quad_helpers, triangle_backends, DepthState, Derivatives, Filter, FragmentList, Interpolation,
+    LevelMode, Mipmapped, PixelRect, RenderTarget, Sampler, Texture, UvPlanes, Varyings, Wrap,
+};
+
+const SIZE: (u32, u32) = (96, 64);
+
+/// The floor y = 0, x in [-4, 4], z in [-1, -60], seen from one unit above
+/// it; its uv repeats the texture 4 times across and 30 times along.
+fn floor() -> rasterlab::geometry::Geometry {
+    let (w, h) = SIZE;
+    let projection = Mat4::perspective_rh_gl(60f32.to_radians(), w as f32 / h as f32, 0.5, 100.0);
+    let view = Mat4::look_at_rh(Vec3::new(0., 1., 0.), Vec3::new(0., 0.3, -10.), Vec3::Y);
+    let transform = Transform::new(Mat4::IDENTITY, view, projection);
+    let corners = [(-4., -1.), (4., -1.), (4., -60.), (-4., -60.)];
+    let vertices: Vec<(Vec3, Vec2)> = corners
+        .iter()
+        .map(|&(x, z)| {
+            (
+                Vec3::new(x, 0., z),
+                Vec2::new((x + 4.) / 2., (z + 1.) / -2.),
+            )
+        })
+        .collect();
+    let shader = |v: &(Vec3, Vec2)| ClipVertex {
+        position: transform.mvp * v.0.extend(1.0),
+        varyings: Varyings {
+            uv: v.1,
+            ..Varyings::default()
+        },
+    };
+    process_triangles(
+        &vertices,
+        &[[0, 1, 2], [0, 2, 3]],
+        &shader,
+        Viewport {
+            width: w,
+            height: h,
+        },
+        &PipelineOptions::default(),
+    )
+    .unwrap()
+}
+
+fn checkerboard() -> Texture {
+    Texture::checkerboard(8, 4, Vec4::ONE, Vec4::new(0.1, 0.2, 0.6, 1.0))
+}
+
+/// Under each of the six filter x level combinations, each derivative
+/// method and anisotropy 1, 4 and 16, every triangle back-end draws the
+/// floor bit for bit as the first: a derivative depends on the triangle
+/// and the pixel, never on the walk.
+#[test]
+fn every_backend_draws_the_mipmapped_floor_alike() {
+    let geometry = floor();
+    let mut distinct = Vec::new();
+    for filter in [Filter::Nearest, Filter::Bilinear] {
+        for levels in [LevelMode::Zero, LevelMode::Nearest, LevelMode::Linear] {
+            for method in [
+                Derivatives::Analytic,
+                Derivatives::Quad,
+                Derivatives::Forward,
+            ] {
+                for anisotropy in [1, 4, 16] {
+                    let sampler = Sampler {
+                        filter,
+                        levels,
+                        wrap: Wrap::Repeat,
+                        anisotropy,
+                    };
+                    let shader = Mipmapped::new(
+                        checkerboard(),
+                        sampler,
+                        method,
+                        &geometry.setups,
+                        &geometry.shaded,
+                        true,
+                    );
+                    let mut first: Option<Vec<[u8; 4]>> = None;
+                    for backend in triangle_backends() {
+                        let mut target = RenderTarget::new(SIZE.0, SIZE.1).unwrap();
+                        draw(
+                            &geometry,
+                            *backend,
+                            &shader,
+                            DepthState::DEFAULT,
+                            Interpolation::PerspectiveCorrect,
+                            &mut target,
+                        );
+                        match &first {
+                            None => first = Some(target.color.clone()),
+                            Some(f) => assert!(
+                                *f == target.color,
+                                "{} differs under {filter} {levels} {method} x{anisotropy}",
+                                backend.name()
+                            ),
+                        }
+                    }
+                    distinct.push(first.unwrap());
+                }
+            }
+        }
+    }
+    // The options do change the picture: mipmapping greys the distance.
+    distinct.sort();
+    distinct.dedup();
+    assert!(distinct.len() > 20, "{} distinct images", distinct.len());
+}
+
+/// Towards the horizon the floor's squares shrink below a pixel: level 0
+/// alone aliases (neighbouring pixels far apart in colour), trilinear
+/// filtering averages them to the checkerboard's mean.
+#[test]
+fn trilinear_filtering_greys_the_horizon_that_level_zero_aliases() {
+    let geometry = floor();
+    let render = |levels| {
+        let sampler = Sampler {
+            levels,
+            ..Sampler::default()
+        };
+        let shader = Mipmapped::new(
+            checkerboard(),
+            sampler,
+            Derivatives::Analytic,
+            &geometry.setups,
+            &geometry.shaded,
+            true,
+        );
+        let mut target = RenderTarget::new(SIZE.0, SIZE.1).unwrap();
+        let backend = triangle_backends()[0];
+        draw(
+            &geometry,
+            backend,
+            &shader,
+            DepthState::DEFAULT,
+            Interpolation::PerspectiveCorrect,
+            &mut target,
+        );
+        target
+    };
+    // The sum of the colour jumps between horizontal neighbours in the
+    // floor's most distant covered rows.
+    let jumps = |t: &RenderTarget| {
+        let rows: Vec<u32> = (0..SIZE.1)
+            .filter(|&y| (0..SIZE.0).all(|x| t.coverage[t.index(x, y)] > 0))
+            .take(4)
+            .collect();
+        assert_eq!(rows.len(), 4);
+        let mut sum = 0u64;
+        for y in rows {
+            for x in 1..SIZE.0 {
+                let (a, b) = (t.color[t.index(x - 1, y)], t.color[t.index(x, y)]);
+                sum += u64::from(a[2].abs_diff(b[2]));
+            }
+        }
+        sum
+    };
+    let (aliased, filtered) = (
+        jumps(&render(LevelMode::Zero)),
+        jumps(&render(LevelMode::Linear)),
+    );
+    assert!(
+        filtered * 3 < aliased,
+        "level 0: {aliased}, trilinear: {filtered}"
+    );
+}
+
+/// Shading in 2x2 quads brings in helper pixels: on the floor's two
+/// triangles, the quads they touch hold more pixels than they cover.
+#[test]
+fn quads_bring_helper_pixels_along_the_edges() {
+    let geometry = floor();
+    let mut helpers = 0;
+    let mut fragments = 0;
+    for setup in &geometry.setups {
+        let mut list = FragmentList::default();
+        triangle_backends()[0].rasterize(
+            std::slice::from_ref(setup),
+            PixelRect::of_target(SIZE.0, SIZE.1),
+            &mut list,
+        );
+        fragments += list.triangles.len() as u64;
+        helpers += quad_helpers(list.triangles.iter().map(|f| (f.x, f.y)));
+    }
+    assert!(
+        helpers > 0 && helpers < fragments / 4,
+        "{helpers} helpers, {fragments} fragments"
+    );
+}
+
+/// Pixels, and the ground truth at each.
+type Inner = (Vec<(u32, u32)>, Vec<Vec4>);
+
+/// The RMS and worst error of each method against the ground truth: the
+/// texture over each pixel's square, as 16x16 bilinear samples of level 0
+/// box-filtered, on the floor's pixels whose neighbours are all floor.
+/// Mipmapping must come closer to it than level 0 does, and anisotropic
+/// filtering closer than trilinear; the figures are
+/// printed (`cargo test --test textures -- --nocapture`).
+#[test]
+fn mipmapping_comes_closer_to_the_ground_truth_than_level_zero() {
+    let geometry = floor();
+    let texture = checkerboard();
+    let setup = &geometry.setups[0];
+    let t = &geometry.shaded.triangles[setup.id as usize];
+    let planes = UvPlanes::new(
+        setup,
+        t.vertices.map(|i| geometry.shaded.vertices[i as usize]),
+        true,
+    );
+    let truth = |x: u32, y: u32| {
+        let n = 16;
+        let mut sum = Vec4::ZERO;
+        for j in 0..n {
+            for i in 0..n {
+                let (px, py) = (
+                    f64::from(x) + (f64::from(i) + 0.5) / f64::from(n),
+                    f64::from(y) + (f64::from(j) + 0.5) / f64::from(n),
+                );
+                let uv = planes.uv_at_point(px, py).unwrap().as_vec2();
+                sum += texture.levels()[0].sample(uv, Filter::Bilinear, Wrap::Repeat);
+            }
+        }
+        sum / (n * n) as f32
+    };
+    // The floor's inner pixels and their ground truth, found on the first render.
+    let mut reference: Option<Inner> = None;
+    let mut rms_of = Vec::new();
+    let configs = [
+        (
+            "level 0, nearest",
+            Filter::Nearest,
+            LevelMode::Zero,
+            Derivatives::Analytic,
+            1,
+        ),
+        (
+            "level 0, bilinear",
+            Filter::Bilinear,
+            LevelMode::Zero,
+            Derivatives::Analytic,
+            1,
+        ),
+        (
+            "nearest level, bilinear",
+            Filter::Bilinear,
+            LevelMode::Nearest,
+            Derivatives::Analytic,
+            1,
+        ),
+        (
+            "trilinear, analytic",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Analytic,
+            1,
+        ),
+        (
+            "trilinear, quad",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Quad,
+            1,
+        ),
+        (
+            "trilinear, forward",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Forward,
+            1,
+        ),
+        (
+            "anisotropic 4x",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Analytic,
+            4,
+        ),
+        (
+            "anisotropic 16x",
+            Filter::Bilinear,
+            LevelMode::Linear,
+            Derivatives::Analytic,
+            16,
+        ),
+    ];
+    for (name, filter, levels, method, anisotropy) in configs {
+        let sampler = Sampler {
+            filter,
+            levels,
+            wrap: Wrap::Repeat,
+            anisotropy,
+        };
+        let shader = Mipmapped::new(
+            texture.clone(),
+            sampler,
+            method,
+            &geometry.setups,
+            &geometry.shaded,
+            true,
+        );
+        let mut target = RenderTarget::new(SIZE.0, SIZE.1).unwrap();
+        draw(
+            &geometry,
+            triangle_backends()[0],
+            &shader,
+            DepthState::DEFAULT,
+            Interpolation::PerspectiveCorrect,
+            &mut target,
+        );
+        let (pixels, truths) = reference.get_or_insert_with(|| {
+            let covered = |x: i64, y: i64| {
+                x >= 0
+                    && y >= 0
+                    && x < i64::from(SIZE.0)
+                    && y < i64::from(SIZE.1)
+                    && target.coverage[target.index(x as u32, y as u32)] > 0
+            };
+            let pixels: Vec<(u32, u32)> = (0..SIZE.1)
+                .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
+                .filter(|&(x, y)| {
+                    (-1..=1).all(|j| (-1..=1).all(|i| covered(i64::from(x) + i, i64::from(y) + j)))
+                })
+                .collect();
+            let truths = pixels.iter().map(|&(x, y)| truth(x, y)).collect();
+            (pixels, truths)
+        });
+        let (mut squares, mut worst) = (0.0f64, 0.0f32);
+        for (&(x, y), want) in pixels.iter().zip(truths.iter()) {
+            let got = target.color[target.index(x, y)];
+            for c in 0..3 {
+                let e = (f32::from(got[c]) / 255.0 - want[c]).abs();
+                squares += f64::from(e * e);
+                worst = worst.max(e);
+            }
+        }
+        let rms = (squares / (3 * pixels.len()) as f64).sqrt();
+        eprintln!(
+            "{name:>24}: RMS {rms:.4}, worst {worst:.3} over {} pixels",
+            pixels.len()
+        );
+        rms_of.push(rms);
+    }
+    assert!(
+        rms_of[7] < rms_of[3],
+        "anisotropic {} vs trilinear {}",
+        rms_of[7],
+        rms_of[3]
+    );
+    assert!(
+        rms_of[3] < rms_of[1],
+        "trilinear {} vs level 0 {}",
+        rms_of[3],
+        rms_of[1]
+    );
+}
+
+/// `render --shading texture --mip linear --anisotropy 4 --derivatives
+/// quad` on the bundled bunny: every back-end draws the same frame, which
+/// differs from level 0's; a multisampled one is refused, not drawn at
+/// level 0 silently.
+#[test]
+fn a_mipmapped_mesh_is_the_same_frame_from_every_backend() {
+    use rasterlab::geometry::{Mesh, MeshRenderer, RenderSettings, Shading};
+    use rasterlab::raster::{MultisampleTarget, SamplePattern};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bunny.ply");
+    let mesh = Mesh::load(&path).unwrap();
+    let settings = RenderSettings {
+        width: 160,
+        height: 120,
+        zoom: 3.0,
+        shading: Shading::Texture,
+        mip: LevelMode::Linear,
+        anisotropy: 4,
+        derivatives: Derivatives::Quad,
+        ..RenderSettings::default()
+    };
+    let renderer = MeshRenderer::new(&mesh, settings).unwrap();
+    let first = renderer.render(triangle_backends()[0]).unwrap().target;
+    for backend in triangle_backends() {
+        let frame = renderer.render(*backend).unwrap().target;
+        assert!(frame.color == first.color, "{}", backend.name());
+    }
+    let level0 = RenderSettings {
+        mip: LevelMode::Zero,
+        anisotropy: 1,
+        ..settings
+    };
+    let plain = MeshRenderer::new(&mesh, level0).unwrap();
+    assert!(plain.render(triangle_backends()[0]).unwrap().target.color != first.color);
+    let mut msaa = MultisampleTarget::new(160, 120, SamplePattern::standard(4).unwrap()).unwrap();
+    let refused = renderer.render_multisampled_into(triangle_backends()[0], &mut msaa);
+    assert!(refused.unwrap_err().to_string().contains("--msaa"));
+    let bad = RenderSettings {
+        anisotropy: 17,
+        ..settings
+    };
+    assert!(MeshRenderer::new(&mesh, bad).is_err());
+}
+
+/// `render --texture FILE.png`: an image file becomes a texture, channel
+/// by channel `c / 255`; a missing file, a file that is no image and an
+/// image too wide are errors naming the problem.
+#[test]
+fn textures_load_from_png_files_or_say_why_not() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.png");
+    let mut png = image::RgbaImage::new(4, 2);
+    png.put_pixel(3, 1, image::Rgba([255, 51, 0, 255]));
+    png.save(&path).unwrap();
+    let texture = Texture::load(&path).unwrap();
+    assert_eq!(
+        (texture.width(), texture.height(), texture.levels().len()),
+        (4, 2, 3)
+    );
+    assert_eq!(
+        texture.levels()[0].texel(3, 1),
+        Vec4::new(1.0, 0.2, 0.0, 1.0)
+    );
+    let missing = Texture::load(&dir.path().join("none.png")).unwrap_err();
+    assert!(missing.to_string().contains("none.png"), "{missing}");
+    let text = dir.path().join("not.png");
+    std::fs::write(&text, "not an image").unwrap();
+    let garbage = Texture::load(&text).unwrap_err();
+    assert!(garbage.to_string().contains("not.png"), "{garbage}");
+    let wide = dir.path().join("wide.png");
+    image::GrayImage::new(16385, 1).save(&wide).unwrap();
+    let refused = Texture::load(&wide).unwrap_err().to_string();
+    assert!(refused.contains("longer than 16384"), "{refused}");
+}
