@@ -92,9 +92,20 @@ impl Scene2D {
     /// three that overlap in a cycle; no order of whole triangles draws
     /// those right (see [`Scene2D::built_in`]'s `cycle`).
     pub fn sorted_back_to_front(&self) -> Scene2D {
+        self.reordered(&self.back_to_front_order())
+    }
+
+    /// The order [`sorted_back_to_front`](Self::sorted_back_to_front)
+    /// draws the triangles in, as their indices here.
+    pub fn back_to_front_order(&self) -> Vec<usize> {
         let mean = |v: &[ShadedVertex; 3]| v.iter().map(|v| v.depth).sum::<f32>() / 3.0;
         let mut order: Vec<usize> = (0..self.triangles.len()).collect();
         order.sort_by(|&a, &b| mean(&self.vertices[b]).total_cmp(&mean(&self.vertices[a])));
+        order
+    }
+
+    /// The scene with its triangles drawn in `order`, given as indices.
+    pub fn reordered(&self, order: &[usize]) -> Scene2D {
         Scene2D {
             triangles: order.iter().map(|&i| self.triangles[i]).collect(),
             vertices: order.iter().map(|&i| self.vertices[i]).collect(),

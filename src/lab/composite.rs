@@ -91,14 +91,12 @@ impl CompositeView {
             triangles: snapped,
             vertices,
         };
-        let mean = |i: usize| request.depths.get(i).copied().unwrap_or(0.0);
-        let mut order: Vec<usize> = (0..scene.triangles.len()).collect();
-        let scene = if request.sort {
-            order.sort_by(|&a, &b| mean(b).total_cmp(&mean(a)));
-            scene.sorted_back_to_front()
+        let order: Vec<usize> = if request.sort {
+            scene.back_to_front_order()
         } else {
-            scene
+            (0..scene.triangles.len()).collect()
         };
+        let scene = scene.reordered(&order);
         let depth = if request.depths.is_empty() {
             DepthState::OFF
         } else {
