@@ -5,6 +5,7 @@
 
 use glam::Vec4;
 use rasterlab::geometry::Scene2D;
+use rasterlab::raster::triangle::TriangleRasterizer;
 use rasterlab::raster::{
     linear_to_srgb8, triangle_backends, Blend, BlendMode, DepthState, DepthTest, FillRule, Flat,
     MixSpace, MultisampleTarget, RenderTarget, SamplePattern,
@@ -104,30 +105,33 @@ fn over_depends_on_the_order() {
     assert!(close(blue_then_red, Vec4::new(0.5, 0.0, 0.25, 1.0)));
 }
 
-/// The same blended scene through the one-sample stage and through the
-/// multisampled stage with one sample (whose only sample is the centre):
-/// every back-end gives one image, for each mode and space.
-fn render(scene: &Scene2D, depth: DepthState, blend: Blend) -> RenderTarget {
-    let mut first: Option<RenderTarget> = None;
-    for &b in triangle_backends() {
-        let mut target = RenderTarget::new(scene.width, scene.height).unwrap();
-        let black = RenderTarget::BLACK;
-        scene.render_frame(
-            b,
-            FillRule::TopLeft,
-            (depth, blend),
-            &Flat,
-            black,
-            &mut target,
-        );
-        match &first {
-            None => first = Some(target),
-            Some(f) => assert!(*f == target, "{} differs, {blend:?}", b.name()),
-        }
+/// What `draw` gives with every triangle back-end, after checking they
+/// all give the same.
+fn same_on_every_back_end<T: PartialEq>(
+    what: &str,
+    draw: impl Fn(&dyn TriangleRasterizer) -> T,
+) -> T {
+    let first = draw(triangle_backends()[0]);
+    for &b in &triangle_backends()[1..] {
+        assert!(draw(b) == first, "{} differs, {what}", b.name());
     }
-    first.unwrap()
+    first
 }
 
+/// The blended scene through the one-sample stage, the same on every
+/// back-end.
+fn render(scene: &Scene2D, depth: DepthState, blend: Blend) -> RenderTarget {
+    same_on_every_back_end(&format!("{blend:?}"), |b| {
+        let mut target = RenderTarget::new(scene.width, scene.height).unwrap();
+        let black = RenderTarget::BLACK;
+        let state = (depth, blend);
+        scene.render_frame(b, FillRule::TopLeft, state, &Flat, black, &mut target);
+        target
+    })
+}
+
+/// The blended scene through the multisampled stage on the standard
+/// pattern of `samples`, the same on every back-end.
 fn render_multisampled(
     scene: &Scene2D,
     depth: DepthState,
@@ -135,24 +139,13 @@ fn render_multisampled(
     samples: u32,
 ) -> MultisampleTarget {
     let pattern = SamplePattern::standard(samples).unwrap();
-    let mut first: Option<MultisampleTarget> = None;
-    for &b in triangle_backends() {
+    same_on_every_back_end(&format!("multisampled, {blend:?}"), |b| {
         let mut target = MultisampleTarget::new(scene.width, scene.height, pattern).unwrap();
         let black = RenderTarget::BLACK;
-        scene.render_frame_multisampled(
-            b,
-            FillRule::TopLeft,
-            (depth, blend),
-            &Flat,
-            black,
-            &mut target,
-        );
-        match &first {
-            None => first = Some(target),
-            Some(f) => assert!(*f == target, "{} differs multisampled, {blend:?}", b.name()),
-        }
-    }
-    first.unwrap()
+        let state = (depth, blend);
+        scene.render_frame_multisampled(b, FillRule::TopLeft, state, &Flat, black, &mut target);
+        target
+    })
 }
 
 fn blends() -> Vec<Blend> {
@@ -305,12 +298,7 @@ fn no_order_of_the_cycle_is_right() {
         [2, 0, 1],
         [2, 1, 0],
     ] {
-        let reordered = Scene2D {
-            triangles: order.iter().map(|&i| scene.triangles[i]).collect(),
-            vertices: order.iter().map(|&i| scene.vertices[i]).collect(),
-            ..scene.clone()
-        };
-        let image = render(&reordered, DepthState::OFF, over);
+        let image = render(&scene.reordered(&order), DepthState::OFF, over);
         let worst = image
             .color
             .iter()
