@@ -1,7 +1,8 @@
 //! The line-drawing slides' line algorithms side by side on one line, from pixel (1, 1)
 //! to pixel (13, 6): direct evaluation of y = m x + b, the incremental
 //! DDA, midpoint / Bresenham, Wu's anti-aliased line and the
-//! Direct3D / Vulkan diamond-exit rule. Each prints the pixels it chose,
+//! Direct3D / Vulkan diamond-exit rule, plain and with Scotty3D's
+//! tie-break. Each prints the pixels it chose,
 //! as a small grid (`#` chosen, for Wu a digit 1-9 for the coverage).
 //!
 //! `cargo run --release --example line_algorithms`

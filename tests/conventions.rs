@@ -2,7 +2,9 @@
 //! OpenGL's window coordinates) passes with `--origin bottom-left` and
 //! fails without it with the y flip named; one of the inclusive rule
 //! (CS184, CS248) passes `--rule inclusive` and fails the default
-//! top-left rule with the inclusive rule named. Each is checked twice: as
+//! top-left rule with the inclusive rule named; Scotty3D's lines, the
+//! diamond rule with its (e, e^2) tie-break, are told apart from the plain
+//! diamond rule. Each is checked twice: as
 //! a Rust subject through the library, and as the Python students of
 //! `examples/student/` through the command line.
 
@@ -163,6 +165,48 @@ fn the_python_students_pass_in_their_convention_and_fail_for_the_named_reason() 
     let out = rasterlab(&["check", "--backend", "bbox", "--origin", "middle"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("bottom-left"));
+}
+
+/// Scotty3D's lines: the diamond rule with the ends moved by (e, e^2).
+/// The back-end of that convention passes it; the plain diamond rule
+/// fails it, and the other way round, each with the other named.
+#[test]
+fn scotty3d_lines_are_the_diamond_rule_nudged_and_told_apart_from_it() {
+    let check = |backend: &str, convention: &str| {
+        let out_dir = tempfile::tempdir().unwrap();
+        let out = rasterlab(&[
+            "check",
+            "--kind",
+            "lines",
+            "--backend",
+            backend,
+            "--convention",
+            convention,
+            "--cases",
+            "300",
+            "--out",
+            out_dir.path().to_str().unwrap(),
+        ]);
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+        )
+    };
+    let (code, text) = check("diamond-nudged", "diamond-nudged");
+    assert_eq!(code, Some(0), "{text}");
+    assert!(text.starts_with("PASS: 300 cases"), "{text}");
+    let (code, text) = check("diamond", "diamond-nudged");
+    assert_eq!(code, Some(1), "{text}");
+    assert!(
+        text.contains("diagnosis: cause: the diamond convention's pixels"),
+        "{text}"
+    );
+    let (code, text) = check("diamond-nudged", "diamond");
+    assert_eq!(code, Some(1), "{text}");
+    assert!(
+        text.contains("diagnosis: cause: the diamond-nudged convention's pixels"),
+        "{text}"
+    );
 }
 
 #[test]

@@ -608,6 +608,9 @@ pub fn reference(property: Property, case: &Case) -> Vec<Fragment> {
             case,
             c.walk().unwrap_or(pixel_index::WholePixelWalk::TowardStart),
         ),
+        Property::Line(judge::LineConvention::DiamondNudged) => {
+            line_fragments(line_backend_walking(LineWalk::DiamondExitNudged), case)
+        }
         Property::Line(_) => line_fragments(line_backend_walking(LineWalk::DiamondExit), case),
     }
 }

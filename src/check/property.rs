@@ -21,6 +21,10 @@ pub enum LineConvention {
     Midpoint,
     /// Exactly the diamond-exit rule of the `diamond` back-end.
     Diamond,
+    /// The diamond-exit rule with Scotty3D's tie-break, exactly as the
+    /// `diamond-nudged` back-end draws it: both ends moved by an
+    /// infinitesimal `(e, e^2)`, y up.
+    DiamondNudged,
     /// Vulkan's tolerance around the diamond-exit answer: every fragment
     /// within one pixel of it, as many fragments give or take one, one
     /// fragment per step along the major axis.
@@ -54,9 +58,10 @@ pub enum LineConvention {
 
 impl LineConvention {
     /// Every convention, default first.
-    pub const ALL: [LineConvention; 8] = [
+    pub const ALL: [LineConvention; 9] = [
         LineConvention::Midpoint,
         LineConvention::Diamond,
+        LineConvention::DiamondNudged,
         LineConvention::Vulkan,
         LineConvention::PixelIndex,
         LineConvention::PixelIndexTowardEnd,
@@ -96,6 +101,7 @@ crate::names::named_enum!(
     "line convention",
     Midpoint = "midpoint",
     Diamond = "diamond",
+    DiamondNudged = "diamond-nudged",
     Vulkan = "vulkan",
     PixelIndex = "pixel-index",
     PixelIndexTowardEnd = "pixel-index-toward-end",
@@ -153,6 +159,9 @@ impl fmt::Display for Property {
             Property::CrackFree => f.write_str("crack-free"),
             Property::Line(LineConvention::Midpoint) => f.write_str("lines, midpoint rule"),
             Property::Line(LineConvention::Diamond) => f.write_str("lines, diamond exit rule"),
+            Property::Line(LineConvention::DiamondNudged) => f.write_str(
+                "lines, diamond exit rule with Scotty3D's tie-break (both ends moved by (e, e^2), y up)",
+            ),
             Property::Line(LineConvention::Vulkan) => {
                 f.write_str("lines, Vulkan's tolerance of the diamond exit rule")
             }

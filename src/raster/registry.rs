@@ -12,7 +12,8 @@
 use crate::error::{Error, Result};
 use crate::raster::descriptor::{within_budget, Role, WorkBudget};
 use crate::raster::line::{
-    bresenham::Bresenham, dda::Dda, diamond::Diamond, direct::Direct, wu::Wu, LineRasterizer,
+    bresenham::Bresenham, dda::Dda, diamond::Diamond, diamond_nudged::DiamondNudged,
+    direct::Direct, wu::Wu, LineRasterizer,
 };
 use crate::raster::triangle::{
     bbox::BoundingBox, incremental::Incremental, naive::Naive, scanline::Scanline, tiled::Tiled,
@@ -107,7 +108,8 @@ pub fn triangle_backend(name: &str) -> Result<&'static dyn TriangleRasterizer> {
         .ok_or_else(|| unknown(name, "triangle"))
 }
 
-static LINE_BACKENDS: [&dyn LineRasterizer; 5] = [&Direct, &Dda, &Bresenham, &Wu, &Diamond];
+static LINE_BACKENDS: [&dyn LineRasterizer; 6] =
+    [&Direct, &Dda, &Bresenham, &Wu, &Diamond, &DiamondNudged];
 
 /// Every line back-end.
 pub fn line_backends() -> &'static [&'static dyn LineRasterizer] {

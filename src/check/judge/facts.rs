@@ -319,6 +319,9 @@ fn diagnose_line(finding: &Finding, pixel: Fragment) -> Option<String> {
         LineConvention::Diamond | LineConvention::Vulkan => {
             "the pixels whose diamond the segment exits"
         }
+        LineConvention::DiamondNudged => {
+            "the pixels whose diamond the segment exits, both ends moved by (e, e^2) with y up"
+        }
     };
     // Halfway between two pixel centres: the ideal line on a pixel
     // boundary.
@@ -334,6 +337,7 @@ fn diagnose_line(finding: &Finding, pixel: Fragment) -> Option<String> {
                 LineConvention::PixelIndexLeftToRight => "toward the endpoint with the smaller major coordinate",
                 LineConvention::PixelIndexOpenCv | LineConvention::PixelIndexOpenCv4 => "toward the endpoint with the smaller x",
                 LineConvention::Diamond | LineConvention::Vulkan => "by the diamonds' half-open sides",
+                LineConvention::DiamondNudged => "by moving both ends by (e, e^2), y up",
             }
         )
     } else {

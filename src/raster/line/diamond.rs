@@ -43,7 +43,7 @@ pub struct Diamond;
 /// products of two coordinate differences: `i64` holds them while every
 /// coordinate is under 2^28 fixed-point units (the guard band keeps
 /// snapped points under 2^23), `i128` whatever the coordinates.
-trait Exact:
+pub(super) trait Exact:
     Copy + Ord + From<i64> + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self>
 {
     fn abs(self) -> Self;
@@ -71,21 +71,40 @@ impl Exact for i128 {
 /// A bound on the segment parameter `t`: the fraction `num / den`
 /// (`den > 0`), and whether the bound itself is excluded.
 #[derive(Copy, Clone, Debug)]
-struct Bound<T> {
-    num: T,
-    den: T,
-    strict: bool,
+pub(super) struct Bound<T> {
+    pub(super) num: T,
+    pub(super) den: T,
+    pub(super) strict: bool,
 }
 
 impl<T: Exact> Bound<T> {
-    fn cmp_value(&self, other: &Bound<T>) -> Ordering {
+    /// The range `[0, 1]` of the segment parameter, both ends included.
+    pub(super) fn whole_segment() -> (Bound<T>, Bound<T>) {
+        let bound = |num| Bound {
+            num: T::from(num),
+            den: T::from(1),
+            strict: false,
+        };
+        (bound(0), bound(1))
+    }
+
+    pub(super) fn cmp_value(&self, other: &Bound<T>) -> Ordering {
         (self.num * other.den).cmp(&(other.num * self.den))
+    }
+
+    /// Is the range from this lower bound to `upper` not empty?
+    pub(super) fn below(&self, upper: &Bound<T>) -> bool {
+        match self.cmp_value(upper) {
+            Ordering::Less => true,
+            Ordering::Equal => !self.strict && !upper.strict,
+            Ordering::Greater => false,
+        }
     }
 }
 
 /// Does the segment intersect the open slab `lo < s0 + t ds < hi`
 /// within the current `[lower, upper]` range of `t`? Narrows the range.
-fn clip_slab<T: Exact>(
+pub(super) fn clip_slab<T: Exact>(
     s0: T,
     ds: T,
     lo: T,
@@ -191,16 +210,7 @@ fn exits_in<T: Exact>(from: FixedPoint, to: FixedPoint, px: i64, py: i64) -> boo
     let h = T::from(HALF_PIXEL);
     let (ax, ay) = (T::from(from.x.raw()), T::from(from.y.raw()));
     let (bx, by) = (T::from(to.x.raw()), T::from(to.y.raw()));
-    let mut lower = Bound {
-        num: T::from(0),
-        den: T::from(1),
-        strict: false,
-    };
-    let mut upper = Bound {
-        num: T::from(1),
-        den: T::from(1),
-        strict: false,
-    };
+    let (mut lower, mut upper) = Bound::whole_segment();
     // s = x + y within (cx + cy - h, cx + cy + h); d = x - y likewise.
     let ok = clip_slab(
         ax + ay,
@@ -217,11 +227,7 @@ fn exits_in<T: Exact>(from: FixedPoint, to: FixedPoint, px: i64, py: i64) -> boo
         &mut lower,
         &mut upper,
     );
-    ok && match lower.cmp_value(&upper) {
-        Ordering::Less => true,
-        Ordering::Equal => !lower.strict && !upper.strict,
-        Ordering::Greater => false,
-    }
+    ok && lower.below(&upper)
 }
 
 impl Diamond {
@@ -249,53 +255,68 @@ impl Diamond {
     /// reuses its memory from one segment to the next.
     pub fn walk_into(
         line: &LineSetup,
-        mut observe: impl FnMut(i64, i64, bool),
+        observe: impl FnMut(i64, i64, bool),
         pixels: &mut Vec<(i64, i64)>,
     ) {
-        pixels.clear();
-        let (a, b) = (line.from, line.to);
-        let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
-        let x_major = dx.abs() >= dy.abs();
-        let (a_major, b_major) = if x_major {
-            (a.x.raw(), b.x.raw())
+        walk_candidates(line, exits_diamond, observe, pixels);
+    }
+}
+
+/// The walk of the diamond-exit rules: in each column (row, for a y-major
+/// segment), in the order of travel, the three candidates around the
+/// line, each put to `exits` (the rule's test) and reported to `observe`;
+/// the pixels drawn go to `pixels` (emptied first). The candidates are
+/// those of any rule whose diamonds differ from the open ones by their
+/// boundary alone.
+pub(super) fn walk_candidates(
+    line: &LineSetup,
+    exits: impl Fn(FixedPoint, FixedPoint, i64, i64) -> bool,
+    mut observe: impl FnMut(i64, i64, bool),
+    pixels: &mut Vec<(i64, i64)>,
+) {
+    pixels.clear();
+    let (a, b) = (line.from, line.to);
+    let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
+    let x_major = dx.abs() >= dy.abs();
+    let (a_major, b_major) = if x_major {
+        (a.x.raw(), b.x.raw())
+    } else {
+        (a.y.raw(), b.y.raw())
+    };
+    let (a_minor, b_minor) = if x_major {
+        (a.y.raw(), b.y.raw())
+    } else {
+        (a.x.raw(), b.x.raw())
+    };
+    let first = (a_major.min(b_major) - HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) - 1;
+    let last = (a_major.max(b_major) + HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) + 1;
+    let forward = b_major >= a_major;
+    for n in 0..=last - first {
+        let i = if forward { first + n } else { last - n };
+        // The line's minor coordinate at this column's centre: with
+        // |slope| <= 1, any diamond of this column the segment passes
+        // through has its centre within half a pixel of it.
+        let centre = i * SUBPIXEL_SCALE + HALF_PIXEL;
+        let d_major = b_major - a_major;
+        // In the guard band both factors are below 2^25 (the
+        // columns reach 1.5 pixels past the ends), so the product
+        // fits an i64 and the division needs no 128-bit call.
+        let minor = if d_major == 0 {
+            a_minor
         } else {
-            (a.y.raw(), b.y.raw())
+            a_minor + (centre - a_major) * (b_minor - a_minor) / d_major
         };
-        let (a_minor, b_minor) = if x_major {
-            (a.y.raw(), b.y.raw())
-        } else {
-            (a.x.raw(), b.x.raw())
-        };
-        let first = (a_major.min(b_major) - HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) - 1;
-        let last = (a_major.max(b_major) + HALF_PIXEL).div_euclid(SUBPIXEL_SCALE) + 1;
-        let forward = b_major >= a_major;
-        for n in 0..=last - first {
-            let i = if forward { first + n } else { last - n };
-            // The line's minor coordinate at this column's centre: with
-            // |slope| <= 1, any diamond of this column the segment passes
-            // through has its centre within half a pixel of it.
-            let centre = i * SUBPIXEL_SCALE + HALF_PIXEL;
-            let d_major = b_major - a_major;
-            // In the guard band both factors are below 2^25 (the
-            // columns reach 1.5 pixels past the ends), so the product
-            // fits an i64 and the division needs no 128-bit call.
-            let minor = if d_major == 0 {
-                a_minor
-            } else {
-                a_minor + (centre - a_major) * (b_minor - a_minor) / d_major
-            };
-            let k = minor.div_euclid(SUBPIXEL_SCALE);
-            let mut rows = [k - 1, k, k + 1];
-            if b_minor < a_minor {
-                rows.reverse();
-            }
-            for k in rows {
-                let (px, py) = if x_major { (i, k) } else { (k, i) };
-                let exits = exits_diamond(a, b, px, py);
-                observe(px, py, exits);
-                if exits {
-                    pixels.push((px, py));
-                }
+        let k = minor.div_euclid(SUBPIXEL_SCALE);
+        let mut rows = [k - 1, k, k + 1];
+        if b_minor < a_minor {
+            rows.reverse();
+        }
+        for k in rows {
+            let (px, py) = if x_major { (i, k) } else { (k, i) };
+            let drawn = exits(a, b, px, py);
+            observe(px, py, drawn);
+            if drawn {
+                pixels.push((px, py));
             }
         }
     }

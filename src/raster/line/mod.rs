@@ -21,11 +21,13 @@
 //! smaller major coordinate, so `a -> b` and `b -> a` give the same pixels.
 //!
 //! `diamond` (the Direct3D / Vulkan diamond-exit rule) is the reference for
-//! aliased lines and follows its own rule; `wu` is anti-aliased.
+//! aliased lines and follows its own rule; `diamond-nudged` is the same
+//! rule with Scotty3D's tie-break; `wu` is anti-aliased.
 
 pub mod bresenham;
 pub mod dda;
 pub mod diamond;
+pub mod diamond_nudged;
 pub mod direct;
 pub mod wu;
 
@@ -125,6 +127,9 @@ pub enum LineWalk {
     AntiAliased,
     /// The pixels whose diamond the segment leaves (Direct3D, Vulkan).
     DiamondExit,
+    /// The diamond-exit rule with both ends moved by an infinitesimal
+    /// `(e, e^2)`, y up (Scotty3D).
+    DiamondExitNudged,
 }
 
 /// A line back-end's facts ([`Descriptor`] of a [`LineWalk`]).

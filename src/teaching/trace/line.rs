@@ -147,7 +147,8 @@ pub fn trace_line(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace
         LineWalk::DirectEvaluation | LineWalk::Incremental => column_trace(backend, ends),
         LineWalk::Midpoint => Ok(bresenham(ends)),
         LineWalk::AntiAliased => Ok(wu(ends)),
-        LineWalk::DiamondExit => diamond(ends),
+        LineWalk::DiamondExit => diamond(ends, false),
+        LineWalk::DiamondExitNudged => diamond(ends, true),
     }
 }
 
@@ -276,9 +277,11 @@ fn wu(ends: &LineEnds) -> Trace {
 /// The diamond-exit rule, recorded from the back-end's walk
 /// ([`Diamond::walk`](crate::raster::line::diamond::Diamond::walk)): for each column (row, for steep lines) in the order
 /// of travel, the three candidate pixels around the line, and whether the
-/// segment leaves each pixel's diamond (then the pixel is drawn).
-fn diamond(ends: &LineEnds) -> Result<Trace> {
-    use crate::raster::line::{diamond::Diamond, LineSetup};
+/// segment leaves each pixel's diamond (then the pixel is drawn). With
+/// `nudged`, the ties are settled as Scotty3D settles them
+/// ([`DiamondNudged::walk`](crate::raster::line::diamond_nudged::DiamondNudged::walk)).
+fn diamond(ends: &LineEnds, nudged: bool) -> Result<Trace> {
+    use crate::raster::line::{diamond::Diamond, diamond_nudged::DiamondNudged, LineSetup};
     let (a, b) = (ends.from, ends.to);
     let (dx, dy) = (b.x.raw() - a.x.raw(), b.y.raw() - a.y.raw());
     let x_major = dx.abs() >= dy.abs();
@@ -287,6 +290,11 @@ fn diamond(ends: &LineEnds) -> Result<Trace> {
         ends.describe(),
         if x_major { "x" } else { "y" }
     ));
+    if nudged {
+        out.header.push(
+            "ties settled as Scotty3D does: both ends moved by (e, e^2) with y up, that is (e, -e^2) on this y-down grid, for the smallest e > 0".to_string(),
+        );
+    }
     // The walk visits at most the major extent's columns and two more on
     // each side, three candidates each.
     let columns = dx.abs().max(dy.abs()) / SUBPIXEL_SCALE + 5;
@@ -297,7 +305,7 @@ fn diamond(ends: &LineEnds) -> Result<Trace> {
         from: a,
         to: b,
     };
-    let drawn = Diamond::walk(&line, |px, py, exits| {
+    let observe = |px, py, exits| {
         let verdict = if exits {
             "exits its diamond: drawn"
         } else {
@@ -308,7 +316,12 @@ fn diamond(ends: &LineEnds) -> Result<Trace> {
             px,
             py,
         ));
-    })
+    };
+    let drawn = if nudged {
+        DiamondNudged::walk(&line, observe)
+    } else {
+        Diamond::walk(&line, observe)
+    }
     .len();
     out.footer.push(format!("{drawn} pixels drawn"));
     Ok(out)
