@@ -397,7 +397,7 @@ fn case_of(width: u32, height: u32, triangles: Vec<[(f64, f64); 3]>) -> Case {
         height,
         triangles,
         lines: Vec::new(),
-        samples: None,
+        ..Case::default()
     }
 }
 
@@ -706,7 +706,7 @@ fn a_line_failure_is_diagnosed() {
         height: 8,
         triangles: Vec::new(),
         lines: vec![[(0.5, 0.5), (6.5, 3.5)]],
-        samples: None,
+        ..Case::default()
     };
     let mut drawn = line_fragments(bresenham, &case);
     drawn.retain(|f| f.x != 3);
@@ -732,7 +732,7 @@ fn the_midpoint_convention_is_the_documented_one() {
                 height: 8,
                 triangles: Vec::new(),
                 lines: vec![line],
-                samples: None,
+                ..Case::default()
             },
         );
         f.sort();

@@ -11,9 +11,10 @@
 mod common;
 
 use common::{part_missing, rasterlab};
+use rasterlab::check::triangle_fragments;
 use rasterlab::check::{
-    run_with, Builtin, Case, CheckReport, CheckRequest, Fragment, Origin, RuleChoice, Subject,
-    SubjectError, SubjectSpec, VerdictWord,
+    run_with, Builtin, Case, CheckReport, CheckRequest, Fragment, Origin, RuleChoice, Snapping,
+    Subject, SubjectError, SubjectSpec, VerdictWord,
 };
 use rasterlab::raster::{triangle_backend, FillRule};
 use std::process::Command;
@@ -165,6 +166,194 @@ fn the_python_students_pass_in_their_convention_and_fail_for_the_named_reason() 
     let out = rasterlab(&["check", "--backend", "bbox", "--origin", "middle"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("bottom-left"));
+}
+
+/// The top-left rule in floating point on the vertices as given, as the
+/// courses' rasterizers compute it: edge functions `a x + b y + c` of the
+/// rules' own form, in `f64` (or `f32`), a centre on an edge decided by
+/// the top-left rule, no snapping.
+fn float_top_left<F: Float>(case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+    float_rule::<F, false>(case)
+}
+
+/// [`float_top_left`], or with `INCLUSIVE` every centre on an edge drawn.
+fn float_rule<F: Float, const INCLUSIVE: bool>(case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+    let mut out = Vec::new();
+    for (id, t) in case.triangles.iter().enumerate() {
+        let v = t.map(|(x, y)| (F::of(x), F::of(y)));
+        // Edge k from v[k+1] to v[k+2], opposite vertex k.
+        let edge = |k: usize| {
+            let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            (b.1 - a.1, a.0 - b.0, b.0 * a.1 - a.0 * b.1)
+        };
+        let mut edges = [edge(0), edge(1), edge(2)];
+        let area = {
+            let (a, b, c) = edges[0];
+            a * v[0].0 + b * v[0].1 + c
+        };
+        if area == F::of(0.0) {
+            continue;
+        }
+        if area < F::of(0.0) {
+            for e in &mut edges {
+                *e = (-e.0, -e.1, -e.2);
+            }
+        }
+        for y in 0..case.height {
+            for x in 0..case.width {
+                let p = (F::of(f64::from(x) + 0.5), F::of(f64::from(y) + 0.5));
+                let inside = edges.iter().all(|&(a, b, c)| {
+                    let e = a * p.0 + b * p.1 + c;
+                    let top_left = a > F::of(0.0) || (a == F::of(0.0) && b > F::of(0.0));
+                    e > F::of(0.0) || (e == F::of(0.0) && (top_left || INCLUSIVE))
+                });
+                if inside {
+                    out.push(Fragment::at(i64::from(x), i64::from(y), id as u32));
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// `f64` or `f32`, for [`float_top_left`].
+trait Float:
+    Copy
+    + PartialOrd
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+    + std::ops::Neg<Output = Self>
+{
+    fn of(v: f64) -> Self;
+}
+
+impl Float for f64 {
+    fn of(v: f64) -> f64 {
+        v
+    }
+}
+
+impl Float for f32 {
+    fn of(v: f64) -> f32 {
+        v as f32
+    }
+}
+
+/// `--snap none`: a top-left rasterizer in `f64` on the vertices as given
+/// passes 1,000 cases of every family (their coordinates, multiples of
+/// 1/256 px, are exact in `f64`, and so are its edge functions); with the
+/// default 1/256 px snapping it fails the ties family, whose vertices lie
+/// halfway between two steps. In `f32` it fails, and the cause names
+/// floating point.
+#[test]
+fn a_floating_point_rasterizer_passes_when_nothing_is_snapped() {
+    let run = |snapping: Snapping,
+               cases: u32,
+               subject: fn(&Case) -> Result<Vec<Fragment>, SubjectError>| {
+        let mut request = CheckRequest::new(SubjectSpec::Backend(String::new()));
+        request.cases = cases;
+        request.keep_going = true;
+        request.snapping = snapping;
+        request.rule = Some(RuleChoice::Exact(FillRule::TopLeft));
+        run_with(&request, "float", &move || Box::new(subject)).unwrap()
+    };
+    let none = run(Snapping::AsGiven, 10_000, float_top_left::<f64>);
+    assert_eq!(none.verdict, VerdictWord::Pass, "{none}");
+    assert_eq!(none.families.len(), 10);
+    for f in &none.families {
+        assert_eq!((f.passed, f.total), (1000, 1000), "{}", f.family);
+    }
+    assert!(
+        none.description
+            .ends_with("vertices not snapped: judged as given"),
+        "{}",
+        none.description
+    );
+
+    let snapped = run(Snapping::default(), 200, float_top_left::<f64>);
+    assert_eq!(snapped.verdict, VerdictWord::Fail);
+    let ties = snapped
+        .families
+        .iter()
+        .find(|f| f.family == "ties")
+        .unwrap();
+    assert!(ties.passed < ties.total, "{ties:?}");
+
+    let single = run(Snapping::AsGiven, 10_000, float_top_left::<f32>);
+    assert_eq!(single.verdict, VerdictWord::Fail);
+    let d = diagnosis(&single);
+    assert!(d.contains("floating-point"), "{d}");
+}
+
+/// `--snap 1/16`: a rasterizer that snaps to 1/16 px passes it, and fails
+/// the default 1/256 with the coarse snapping named. Under `--snap none`
+/// a case file off the 1/256 px grid is refused, naming the file; an
+/// unknown grid is refused with the choices.
+#[test]
+fn a_coarser_grid_is_judged_on_its_own_grid_and_wrong_grids_are_refused() {
+    fn sixteenth(case: &Case) -> Result<Vec<Fragment>, SubjectError> {
+        let snapped = Case {
+            triangles: case
+                .triangles
+                .iter()
+                .map(|t| {
+                    t.map(|(x, y)| {
+                        (
+                            (x * 16.0).round_ties_even() / 16.0,
+                            (y * 16.0).round_ties_even() / 16.0,
+                        )
+                    })
+                })
+                .collect(),
+            ..case.clone()
+        };
+        Ok(triangle_fragments(
+            triangle_backend("tiled").unwrap(),
+            &snapped,
+            FillRule::TopLeft,
+        ))
+    }
+    let run = |snapping: Snapping| {
+        let mut request = CheckRequest::new(SubjectSpec::Backend(String::new()));
+        request.cases = 300;
+        request.snapping = snapping;
+        run_with(&request, "sixteenth", &|| Box::new(sixteenth)).unwrap()
+    };
+    let coarse = run("1/16".parse().unwrap());
+    assert_eq!(coarse.verdict, VerdictWord::Pass, "{coarse}");
+    let fine = run(Snapping::default());
+    assert_eq!(fine.verdict, VerdictWord::Fail);
+    let d = diagnosis(&fine);
+    assert!(
+        d.contains("vertices snapped to 1/16 px instead of 1/256"),
+        "{d}"
+    );
+
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("off-grid.txt");
+    std::fs::write(&file, "# size 4x4\n0.1 0 3 0 0 3\n").unwrap();
+    let out = rasterlab(&[
+        "check",
+        "--backend",
+        "bbox",
+        "--snap",
+        "none",
+        "--case",
+        file.to_str().unwrap(),
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("off-grid.txt") && err.contains("1/256 px grid"),
+        "{err}"
+    );
+    let out = rasterlab(&["check", "--backend", "bbox", "--snap", "1/3"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("1/256") && err.contains("none"), "{err}");
 }
 
 /// Scotty3D's lines: the diamond rule with the ends moved by (e, e^2).

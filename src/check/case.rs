@@ -3,6 +3,7 @@
 //! counterexample file and read back.
 //! The generators make cases, the judge and the shrinker read them.
 
+use super::snapping::Snapping;
 use crate::error::{Error, Result};
 use crate::raster::fixed::FixedPoint;
 use crate::raster::multisample::SamplePattern;
@@ -27,6 +28,9 @@ pub struct Case {
     /// at the pixel centre). A multisampled case's fragments carry a
     /// coverage mask.
     pub samples: Option<SamplePattern>,
+    /// How the vertices are snapped before they are judged (`check
+    /// --snap`; 1/256 px by default).
+    pub snapping: Snapping,
 }
 
 impl Case {
@@ -40,23 +44,36 @@ impl Case {
         self.len() == 0
     }
 
-    /// The triangles snapped to 1/256 pixel.
+    /// The triangles as judged: snapped as the case's [`Snapping`] says,
+    /// on the 1/256 pixel grid.
     pub fn snapped_triangles(&self) -> Vec<[FixedPoint; 3]> {
-        self.triangles.iter().map(|t| t.map(snap)).collect()
+        let s = self.snapping;
+        self.triangles
+            .iter()
+            .map(|t| t.map(|p| snap(s.apply(p))))
+            .collect()
     }
 
-    /// The segments snapped to 1/256 pixel.
+    /// The segments as judged, like [`Case::snapped_triangles`].
     pub fn snapped_lines(&self) -> Vec<[FixedPoint; 2]> {
-        self.lines.iter().map(|l| l.map(snap)).collect()
+        let s = self.snapping;
+        self.lines
+            .iter()
+            .map(|l| l.map(|p| snap(s.apply(p))))
+            .collect()
     }
 
     /// The input file: `# size WxH`, under `--msaa N` a line `# msaa N`,
-    /// then one primitive per line (`-0` written as `0`).
+    /// under a snapping other than 1/256 px a line `# snap S`, then one
+    /// primitive per line (`-0` written as `0`).
     pub fn to_text(&self) -> String {
         let clean = self.without_negative_zeros();
         let mut out = format!("# size {}x{}\n", clean.width, clean.height);
         if let Some(p) = self.samples {
             let _ = writeln!(out, "# msaa {}", p.count());
+        }
+        if self.snapping != Snapping::default() {
+            let _ = writeln!(out, "# snap {}", self.snapping);
         }
         for t in &clean.triangles {
             let _ = writeln!(
@@ -80,12 +97,14 @@ impl Case {
             triangles: self.triangles.iter().map(|t| t.map(fix)).collect(),
             lines: self.lines.iter().map(|l| l.map(fix)).collect(),
             samples: self.samples,
+            snapping: self.snapping,
         }
     }
 
     /// Reads a case written by [`Case::to_text`] (a counterexample file),
     /// or any soup or line set with a `# size WxH` line (and a `# msaa N`
-    /// line for a multisampled one, `N` one of 1, 2, 4, 8 and 16).
+    /// line for a multisampled one, `N` one of 1, 2, 4, 8 and 16; a
+    /// `# snap S` line for a snapping other than 1/256 px).
     pub fn from_text(text: &str) -> Result<Case> {
         let mut case = Case::default();
         for (i, line) in text.lines().enumerate() {
@@ -96,6 +115,10 @@ impl Case {
                     .ok_or_else(|| bad("expected # size WxH".into()))?;
                 case.width = w.trim().parse().map_err(|_| bad("bad width".into()))?;
                 case.height = h.trim().parse().map_err(|_| bad("bad height".into()))?;
+                continue;
+            }
+            if let Some(s) = line.trim().strip_prefix("# snap ") {
+                case.snapping = s.parse().map_err(|e: Error| bad(e.to_string()))?;
                 continue;
             }
             if let Some(n) = line.trim().strip_prefix("# msaa ") {

@@ -32,6 +32,7 @@ use super::generate::{EXACT_FAMILIES, LINE_FAMILIES, MESH_FAMILIES, PIXEL_INDEX_
 use super::request::{
     timeout_from_seconds, CheckRequest, ConventionChoice, Kind, Origin, RuleChoice,
 };
+use super::snapping::Snapping;
 use crate::error::{Error, Result};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -51,6 +52,9 @@ pub struct CheckConfig {
     /// Where the subject's origin is: `top-left` (y down) or
     /// `bottom-left` (y up), as `--origin` takes it.
     pub origin: Option<String>,
+    /// How vertices are snapped before judging: `1/256` (the default),
+    /// another power of two down to `1`, or `none`, as `--snap` takes it.
+    pub snap: Option<String>,
     /// How many cases.
     pub cases: Option<u32>,
     /// The generator's seed.
@@ -96,6 +100,9 @@ impl CheckConfig {
         }
         if let Some(o) = &self.origin {
             request.origin = o.parse::<Origin>()?;
+        }
+        if let Some(s) = &self.snap {
+            request.snapping = s.parse::<Snapping>()?;
         }
         if let Some(n) = self.cases {
             request.cases = n;

@@ -14,8 +14,8 @@
 //! | mesh | the Delaunay triangulation of random points |
 //! | needles | long triangles a fraction of a pixel wide |
 //! | huge | vertices far outside the target, up to the guard band, and negative |
-//! | ties | coordinates on half a subpixel (1/512 px), where snapping rounds to even (exact only) |
-//! | zero area | triangles that become segments or points once snapped, beside a normal one (exact only) |
+//! | ties | coordinates halfway between two steps of the snapping's grid (1/512 px for 1/256), where snapping rounds to even; under `--snap none`, on whole and half pixels, so that edges run through pixel centres (exact only) |
+//! | zero area | triangles that become segments or points once snapped (under `--snap none`, exactly collinear), beside a normal one (exact only) |
 //! | overflow | vertices 1,500 to 30,000 px off the target, on every side, both windings, of which only a corner or a thin band is seen: edge values beyond 32 bits where the few visible pixels are, among them wide corners (the pair within one 64x64 tile at a corner of the target, far edges thousands of px long and away: length times distance past 2^23 px²) |
 //!
 //! Lines: random segments, segments between pixel centres (the midpoint
@@ -30,6 +30,7 @@
 
 use super::case::{snap, Case, Point};
 use super::judge::Property;
+use super::snapping::Snapping;
 use crate::raster::fixed::{FixedPoint, GUARD_BAND};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 use std::f64::consts::TAU;
@@ -78,19 +79,37 @@ pub fn family(property: Property, index: u32) -> &'static str {
     f[index as usize % f.len()]
 }
 
-/// The `index`-th case of a check of `property`, from `rng`.
+/// The `index`-th case of a check of `property`, from `rng`, snapped to
+/// 1/256 px.
 pub fn generate_case(property: Property, index: u32, rng: &mut fastrand::Rng) -> Case {
+    generate_case_snapped(property, Snapping::default(), index, rng)
+}
+
+/// The `index`-th case of a check of `property` under `snapping`, from
+/// `rng`. Every coordinate is on the 1/256 px grid but in the ties and
+/// zero-area families, which follow the snapping: under a grid, the ties
+/// are halfway between two of its steps and the zero-area triangles have
+/// zero area once snapped to it; under `none`, the ties are vertices on
+/// whole and half pixels (edges through pixel centres) and the zero-area
+/// triangles are exactly collinear.
+pub fn generate_case_snapped(
+    property: Property,
+    snapping: Snapping,
+    index: u32,
+    rng: &mut fastrand::Rng,
+) -> Case {
     let width = rng.u32(6..=40);
     let height = rng.u32(6..=40);
     let mut case = Case {
         width,
         height,
+        snapping,
         ..Case::default()
     };
     let (w, h) = (f64::from(width), f64::from(height));
     match property {
         Property::Line(c) if c.whole_pixels() => case.lines = pixel_index_lines(index, rng, w, h),
-        Property::Line(_) => case.lines = lines(index, rng, w, h),
+        Property::Line(_) => case.lines = lines(index, rng, w, h, snapping),
         Property::Watertight | Property::CrackFree => {
             // Jitter or clamping can fold a grid or fan over itself; such
             // an input is not watertight, whoever draws it. Keep only
@@ -104,9 +123,20 @@ pub fn generate_case(property: Property, index: u32, rng: &mut fastrand::Rng) ->
             }
             case.triangles = polygon(rng, w, h);
         }
-        Property::Exact(_) => case.triangles = exact(index, rng, w, h),
+        Property::Exact(_) => case.triangles = exact(index, rng, w, h, snapping),
     }
     case
+}
+
+/// A coordinate from `lo` to `hi` for the ties family: halfway between two
+/// steps of the snapping's grid, or under `none` on a whole or half pixel.
+fn tie(rng: &mut fastrand::Rng, lo: f64, hi: f64, snapping: Snapping) -> f64 {
+    let per_pixel = match snapping {
+        Snapping::Grid { .. } => 2.0 / snapping.step(),
+        Snapping::AsGiven => 2.0,
+    };
+    let k = rng.i32((lo * per_pixel) as i32..(hi * per_pixel) as i32);
+    f64::from(k) / per_pixel
 }
 
 fn coord(rng: &mut fastrand::Rng, lo: f64, hi: f64) -> f64 {
@@ -118,7 +148,13 @@ fn point(rng: &mut fastrand::Rng, w: f64, h: f64) -> Point {
 }
 
 /// Inputs for the exact property: every family.
-fn exact(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]> {
+fn exact(
+    index: u32,
+    rng: &mut fastrand::Rng,
+    w: f64,
+    h: f64,
+    snapping: Snapping,
+) -> Vec<[Point; 3]> {
     match index % 10 {
         0 => (0..rng.usize(1..=4))
             .map(|_| [(); 3].map(|_| point(rng, w, h)))
@@ -129,47 +165,52 @@ fn exact(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]>
         4 => mesh(rng, w, h),
         5 => needles(rng, w, h),
         6 => huge(rng, w, h),
-        7 => {
-            // Half-subpixel ties: k / 512, snapped to even.
-            let tie = |rng: &mut fastrand::Rng, hi: f64| {
-                f64::from(rng.i32(-512..(hi as i32 * 512 + 512))) / 512.0
-            };
-            (0..rng.usize(1..=3))
-                .map(|_| [(); 3].map(|_| (tie(rng, w), tie(rng, h))))
-                .collect()
-        }
+        7 => (0..rng.usize(1..=3))
+            .map(|_| {
+                [(); 3].map(|_| {
+                    (
+                        tie(rng, -1.0, w + 1.0, snapping),
+                        tie(rng, -1.0, h + 1.0, snapping),
+                    )
+                })
+            })
+            .collect(),
         9 => overflow(rng, w, h),
         _ => {
             // A triangle of zero area once snapped, beside a normal one:
-            // its third vertex is a point of the 1/256 grid on the line
-            // through the first two (before the first, between them, on
-            // one of them or past the second), moved off the grid by less
-            // than half a subpixel, so that snapping puts it back.
-            let a = point(rng, w, h);
-            let b = point(rng, w, h);
+            // its third vertex is a point of the snapping's grid on the
+            // line through the first two as snapped (before the first,
+            // between them, on one of them or past the second), moved off
+            // the grid by less than half a step, so that snapping puts it
+            // back. Under `none`, exactly on the line, on the 1/256 grid.
+            let a = snapping.apply(point(rng, w, h));
+            let b = snapping.apply(point(rng, w, h));
             let t = rng.f64();
-            let off = (rng.f64() - 0.5) / 600.0;
+            let off = match snapping {
+                Snapping::Grid { .. } => (rng.f64() - 0.5) * 0.9 * snapping.step(),
+                Snapping::AsGiven => 0.0,
+            };
             vec![
-                [a, b, collinear_on_grid(a, b, t, off)],
+                [a, b, collinear_on_grid(a, b, t, off, snapping.step())],
                 [a, point(rng, w, h), point(rng, w, h)],
             ]
         }
     }
 }
 
-/// A point of the 1/256 grid on the line through `a` and `b` (themselves
-/// on the grid), chosen by `t` in [0, 1) among the grid points from one
-/// step before `a` to one step past `b`, then moved by `off` (less than
-/// half a subpixel) on both axes.
-fn collinear_on_grid(a: Point, b: Point, t: f64, off: f64) -> Point {
-    let steps = |d: f64| (d * 256.0).round() as i64;
+/// A point of the grid of `step` px on the line through `a` and `b`
+/// (themselves on the grid), chosen by `t` in [0, 1) among the grid
+/// points from one step before `a` to one step past `b`, then moved by
+/// `off` (less than half a step) on both axes.
+fn collinear_on_grid(a: Point, b: Point, t: f64, off: f64, step: f64) -> Point {
+    let steps = |d: f64| (d / step).round() as i64;
     let (dx, dy) = (steps(b.0 - a.0), steps(b.1 - a.1));
     let g = gcd(dx.unsigned_abs(), dy.unsigned_abs()).max(1) as i64;
     // The grid points of the line are a + m (dx, dy) / g for whole m.
     let m = (t * (g + 3) as f64).floor() as i64 - 1;
     (
-        a.0 + (m * (dx / g)) as f64 / 256.0 + off,
-        a.1 + (m * (dy / g)) as f64 / 256.0 + off,
+        a.0 + (m * (dx / g)) as f64 * step + off,
+        a.1 + (m * (dy / g)) as f64 * step + off,
     )
 }
 
@@ -452,7 +493,13 @@ fn huge(rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 3]> {
 }
 
 /// Line segments.
-fn lines(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 2]> {
+fn lines(
+    index: u32,
+    rng: &mut fastrand::Rng,
+    w: f64,
+    h: f64,
+    snapping: Snapping,
+) -> Vec<[Point; 2]> {
     let n = rng.usize(1..=4);
     let centre = |rng: &mut fastrand::Rng, hi: f64| f64::from(rng.i32(0..hi as i32)) + 0.5;
     (0..n)
@@ -487,12 +534,10 @@ fn lines(index: u32, rng: &mut fastrand::Rng, w: f64, h: f64) -> Vec<[Point; 2]>
                 );
                 [a, b]
             }
-            4 => {
-                let tie = |rng: &mut fastrand::Rng, hi: f64| {
-                    f64::from(rng.i32(0..(hi as i32 * 512))) / 512.0
-                };
-                [(tie(rng, w), tie(rng, h)), (tie(rng, w), tie(rng, h))]
-            }
+            4 => [
+                (tie(rng, 0.0, w, snapping), tie(rng, 0.0, h, snapping)),
+                (tie(rng, 0.0, w, snapping), tie(rng, 0.0, h, snapping)),
+            ],
             _ => {
                 let a = point(rng, w, h);
                 if rng.bool() {

@@ -84,6 +84,7 @@ mod property;
 pub(crate) mod report;
 mod request;
 mod shrink;
+mod snapping;
 mod text;
 
 pub use case::Case;
@@ -93,7 +94,7 @@ pub use cause::{
 };
 pub use config::CheckConfig;
 pub use engine::{run, run_with, Progress, CONFIRMING_CASES};
-pub use generate::{families, family, generate_case};
+pub use generate::{families, family, generate_case, generate_case_snapped};
 pub use grader::{gradescope, junit};
 pub use judge::{judge, FailureKind, Finding, Provenance};
 pub use process::parse_fragments;
@@ -103,6 +104,7 @@ pub use request::{
     BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice, Counterexample,
     FamilyTally, Kind, Origin, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
 };
+pub use snapping::Snapping;
 // What only the `rasterlab` program uses; absent without the `cli` feature.
 #[cfg(feature = "cli")]
 pub use self::{
@@ -495,7 +497,7 @@ pub fn simplest_case(lines: bool) -> Case {
         } else {
             Vec::new()
         },
-        samples: None,
+        ..Case::default()
     }
 }
 

@@ -3,6 +3,7 @@
 //! [`LineConvention`]).
 
 use super::pixel_index;
+use super::snapping::Snapping;
 use crate::raster::edge::FillRule;
 use crate::raster::multisample::SamplePattern;
 use std::fmt;
@@ -181,6 +182,17 @@ impl fmt::Display for Property {
                 "lines, pixel-index endpoints as OpenCV's LINE_4 (clipped, a 4-connected staircase)",
             ),
         }
+    }
+}
+
+/// A property in words, with the snapping where it is not the rules' own
+/// 1/256 px: `exact under the top-left rule, vertices not snapped: judged
+/// as given`.
+pub(crate) fn with_snapping(words: String, snapping: Snapping) -> String {
+    if snapping == Snapping::default() {
+        words
+    } else {
+        format!("{words}, vertices {}", snapping.describe())
     }
 }
 

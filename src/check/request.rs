@@ -35,6 +35,7 @@
 
 use super::cause::Diagnosis;
 use super::judge::{FailureKind, Finding, LineConvention};
+use super::snapping::Snapping;
 use crate::error::{Error, Result};
 use crate::raster::edge::FillRule;
 use serde::Serialize;
@@ -205,6 +206,9 @@ pub struct CheckRequest {
     pub weights: Vec<(String, f64)>,
     /// Which way the subject's y grows ([`Origin`]).
     pub origin: Origin,
+    /// How the cases' vertices are snapped before they are judged
+    /// ([`Snapping`]: 1/256 px by default).
+    pub snapping: Snapping,
 }
 
 impl CheckRequest {
@@ -228,6 +232,7 @@ impl CheckRequest {
             msaa: None,
             weights: Vec::new(),
             origin: Origin::TopLeft,
+            snapping: Snapping::default(),
         }
     }
 }

@@ -247,5 +247,6 @@ fn map_points(case: &Case, f: impl Fn(Point) -> Point) -> Case {
         triangles: case.triangles.iter().map(|t| t.map(&f)).collect(),
         lines: case.lines.iter().map(|l| l.map(&f)).collect(),
         samples: case.samples,
+        snapping: case.snapping,
     }
 }

@@ -6,7 +6,7 @@ use super::args::msaa;
 use clap::Args;
 use rasterlab::check::{
     timeout_from_seconds, CheckConfig, CheckRequest, ConventionChoice, Kind, Origin, Progress,
-    ReportFormat, RuleChoice, SubjectSpec,
+    ReportFormat, RuleChoice, Snapping, SubjectSpec,
 };
 use rasterlab::raster::SamplePattern;
 use rasterlab::{check, Error, Result};
@@ -76,6 +76,13 @@ pub struct CheckArgs {
     /// them.
     #[arg(long)]
     origin: Option<Origin>,
+    /// How vertices are snapped before judging: 1/256 (the default, as
+    /// Direct3D and Vulkan hardware snap), a coarser power of two down to
+    /// 1, or none: judged as given, in exact arithmetic, as the courses'
+    /// floating-point rasterizers compute (every case's coordinates are
+    /// then multiples of 1/256 px, exact in floating point).
+    #[arg(long, value_name = "GRID")]
+    snap: Option<Snapping>,
     /// A teacher's configuration (JSON): the rule or convention, the
     /// cases, the seed, the time limit and each family's weight in the
     /// grader formats (docs/check.md). An option given on the command
@@ -142,6 +149,7 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         rule: args.rule.or(request.rule),
         convention: args.convention.or(request.convention),
         origin: args.origin.unwrap_or(request.origin),
+        snapping: args.snap.unwrap_or(request.snapping),
         msaa: args.msaa.map(SamplePattern::count),
         cases: args.cases.unwrap_or(request.cases),
         seed: args.seed.unwrap_or(request.seed),

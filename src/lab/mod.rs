@@ -252,7 +252,7 @@ impl LabRequest {
             } else {
                 Vec::new()
             },
-            samples: None,
+            ..Case::default()
         }
     }
 }

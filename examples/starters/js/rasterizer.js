@@ -29,7 +29,10 @@ function implicitLine(a, b, p) {
 // the fill rule (--rule, top-left by default). To agree bit for bit, snap
 // the same way and compute in integers (BigInt, or numbers while they stay
 // below 2^53); floating point on the vertices as given differs on a few
-// cases (the ties family, whose vertices lie exactly halfway).
+// cases (the ties family, whose vertices lie exactly halfway). Under
+// --snap none check snaps nothing and judges the vertices as given,
+// exactly; its coordinates are then multiples of 1/256 px, where numbers
+// are exact.
 function rasterizeTriangle(a, b, c, width, height) {
   const fBCa = implicitLine(b, c, a);
   const fCAb = implicitLine(c, a, b);

@@ -35,7 +35,9 @@ def rasterize_triangle(a, b, c, width, height):
     fill rule (--rule, top-left by default). To agree bit for bit, snap the
     same way and compute in integers; floating point on the vertices as
     given differs on a few cases (the ties family, whose vertices lie
-    exactly halfway)."""
+    exactly halfway). Under --snap none check snaps nothing and judges the
+    vertices as given, exactly; its coordinates are then multiples of
+    1/256 px, where floats are exact."""
     f_bc_a = implicit_line(b, c, a)
     f_ca_b = implicit_line(c, a, b)
     f_ab_c = implicit_line(a, b, c)

@@ -9,7 +9,7 @@ use crate::check::case::Case;
 use crate::check::cause::Diagnosis;
 use crate::check::generate;
 use crate::check::judge::{judge, FailureKind, Finding};
-use crate::check::property::{with_samples, Property};
+use crate::check::property::{with_samples, with_snapping, Property};
 use crate::check::request::{
     CaseFailure, CheckReport, CheckRequest, FamilyTally, RuleTable, VerdictWord,
 };
@@ -61,11 +61,11 @@ pub(super) struct Evidence<'j> {
 
 impl Checker<'_> {
     /// The case `index` of `property`'s families, with the check's samples
-    /// per pixel.
+    /// per pixel and snapping.
     pub(super) fn generate(&self, property: Property, index: u32, rng: &mut fastrand::Rng) -> Case {
         Case {
             samples: self.samples,
-            ..generate::generate_case(property, index, rng)
+            ..generate::generate_case_snapped(property, self.request.snapping, index, rng)
         }
     }
 
@@ -240,7 +240,10 @@ impl Checker<'_> {
             schema: "rasterlab-check-report/2",
             verdict: VerdictWord::Pass,
             property: self.mode.id(),
-            description: with_samples(self.mode.description(), self.samples),
+            description: with_snapping(
+                with_samples(self.mode.description(), self.samples),
+                self.request.snapping,
+            ),
             samples: self.samples.map_or(1, SamplePattern::count),
             subject: String::new(),
             command: request.command.clone(),

@@ -56,6 +56,7 @@ use super::request::{
     timeout_from_seconds, BrokenReport, CheckReport, CheckRequest, Kind, Origin, SubjectSpec,
     VerdictWord, MAX_CASES, MAX_JOBS,
 };
+use super::snapping::Snapping;
 use super::Subject;
 use crate::error::{Error, Result};
 use crate::raster::multisample::SamplePattern;
@@ -123,7 +124,7 @@ fn run_inner(
     let mut samples = samples_asked(request, mode)?;
     let given = match &request.case_file {
         Some(path) => {
-            let case = read_case_file(path, kind, mode, samples)?;
+            let case = read_case_file(path, kind, mode, samples, request.snapping)?;
             samples = case.samples;
             Some(case)
         }
@@ -231,6 +232,7 @@ fn read_case_file(
     kind: Kind,
     mode: Mode,
     samples: Option<SamplePattern>,
+    snapping: Snapping,
 ) -> Result<Case> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
         path: path.to_path_buf(),
@@ -275,7 +277,29 @@ fn read_case_file(
         (Some(a), None) => Some(a),
         (_, asked) => asked,
     };
-    Ok(Case { samples, ..case })
+    // A snapping asked for wins over the file's `# snap` line; without
+    // one, the file's (a counterexample's own) stands.
+    let snapping = if snapping == Snapping::default() {
+        case.snapping
+    } else {
+        snapping
+    };
+    for (i, p) in case
+        .triangles
+        .iter()
+        .flat_map(|t| t.iter())
+        .chain(case.lines.iter().flat_map(|l| l.iter()))
+        .enumerate()
+    {
+        snapping
+            .check_exact(*p)
+            .map_err(|e| Error::InvalidArgument(format!("{}: vertex {i}: {e}", path.display())))?;
+    }
+    Ok(Case {
+        samples,
+        snapping,
+        ..case
+    })
 }
 
 /// [`run`] on a subject of the caller's (a closure, a rasterizer in the

@@ -144,6 +144,6 @@ fn small_triangles(rng: &mut fastrand::Rng) -> Case {
         height: 6,
         triangles,
         lines: Vec::new(),
-        samples: None,
+        ..Case::default()
     }
 }

@@ -6,6 +6,7 @@
 use super::lines::x_major;
 use super::{centre, num, px, FailureKind, Finding, LineConvention, Property};
 use crate::check::pixel_index;
+use crate::check::snapping::Snapping;
 use crate::check::Fragment;
 use crate::raster::edge::{FillRule, TriangleSetup};
 use crate::raster::fixed::FixedPoint;
@@ -161,8 +162,12 @@ fn shared_place(
 fn off_edge(finding: &Finding, pixel: Fragment, snapped: &[[FixedPoint; 3]]) -> Option<String> {
     let id = pixel.id as usize;
     if snapped.get(id).map(|v| TriangleSetup::signed_area(*v)) == Some(0) {
+        let snapped = match finding.case.snapping {
+            Snapping::AsGiven => "zero area".to_string(),
+            s => format!("zero area once snapped to {s} px"),
+        };
         return Some(format!(
-            "triangle {id} has zero area once snapped to 1/256 px: it covers no pixel, yet pixel ({}, {}) is drawn for it",
+            "triangle {id} has {snapped}: it covers no pixel, yet pixel ({}, {}) is drawn for it",
             pixel.x, pixel.y
         ));
     }
@@ -200,17 +205,16 @@ fn off_edge(finding: &Finding, pixel: Fragment, snapped: &[[FixedPoint; 3]]) -> 
     } else {
         sides.iter().map(|s| s.1).fold(f64::MAX, f64::min)
     };
-    let on_grid = t
-        .iter()
-        .all(|p| (p.0 * 256.0).fract() == 0.0 && (p.1 * 256.0).fract() == 0.0);
-    if distance < 1.0 / 256.0 && !on_grid {
+    let snapping = finding.case.snapping;
+    let on_grid = t.iter().all(|&p| snapping.apply(p) == p);
+    if distance < snapping.step() && !on_grid {
         let k = if outside {
             violated[0]
         } else {
             sides.iter().min_by(|a, b| a.1.total_cmp(&b.1))?.0
         };
         return Some(format!(
-            "pixel ({}, {})'s centre is within 1/256 px of edge {} of triangle {id} as given: snap the vertices to 1/256 px (ties to even) before testing",
+            "pixel ({}, {})'s centre is within {snapping} px of edge {} of triangle {id} as given: snap the vertices to {snapping} px (ties to even) before testing",
             pixel.x,
             pixel.y,
             edge(k)
