@@ -13,8 +13,8 @@ mod common;
 use common::{part_missing, rasterlab};
 use rasterlab::check::triangle_fragments;
 use rasterlab::check::{
-    run_with, Builtin, Case, CheckReport, CheckRequest, Fragment, Origin, RuleChoice, Snapping,
-    Subject, SubjectError, SubjectSpec, VerdictWord,
+    preset, run_with, Builtin, Case, CheckReport, CheckRequest, Fragment, Origin, RuleChoice,
+    Snapping, Subject, SubjectError, SubjectSpec, VerdictWord,
 };
 use rasterlab::raster::{triangle_backend, FillRule};
 use std::process::Command;
@@ -354,6 +354,33 @@ fn a_coarser_grid_is_judged_on_its_own_grid_and_wrong_grids_are_refused() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("1/256") && err.contains("none"), "{err}");
+}
+
+/// The presets: Scotty3D's triangles (y up, nothing snapped) pass the
+/// y-up subject; CS184's and CS248's (the inclusive rule, nothing
+/// snapped) pass the inclusive rule in `f64` on the vertices as given;
+/// an unknown preset is refused with the names.
+#[test]
+fn the_presets_pass_the_subjects_of_their_courses() {
+    let under = |name: &str, make: &(dyn Fn() -> Box<dyn Subject + Send> + Sync)| {
+        let mut request = CheckRequest::new(SubjectSpec::Backend(String::new()));
+        preset(name).unwrap().config.apply(&mut request).unwrap();
+        request.cases = 1000;
+        run_with(&request, name, make).unwrap()
+    };
+    let scotty = under("opengl-window", &|| Box::new(y_up));
+    assert_eq!(scotty.verdict, VerdictWord::Pass, "{scotty}");
+    let cs184 = under("inclusive-float", &|| Box::new(float_rule::<f64, true>));
+    assert_eq!(cs184.verdict, VerdictWord::Pass, "{cs184}");
+    let d3d = under("inclusive-float", &|| Box::new(float_top_left::<f64>));
+    assert_eq!(d3d.verdict, VerdictWord::Fail);
+    let out = rasterlab(&["check", "--backend", "bbox", "--preset", "cs184"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("opengl-window") && err.contains("inclusive-float"),
+        "{err}"
+    );
 }
 
 /// Scotty3D's lines: the diamond rule with the ends moved by (e, e^2).

@@ -76,6 +76,7 @@ mod grader;
 pub(crate) mod judge;
 mod persistent;
 mod pixel_index;
+mod preset;
 mod process;
 // Some of it only the program calls: unused without the `cli` feature.
 #[cfg_attr(not(feature = "cli"), allow(dead_code))]
@@ -97,6 +98,7 @@ pub use engine::{run, run_with, Progress, CONFIRMING_CASES};
 pub use generate::{families, family, generate_case, generate_case_snapped};
 pub use grader::{gradescope, junit};
 pub use judge::{judge, FailureKind, Finding, Provenance};
+pub use preset::{preset, presets, Preset};
 pub use process::parse_fragments;
 pub use program::{shell_words, Program};
 pub use property::{LineConvention, Property};

@@ -83,6 +83,12 @@ pub struct CheckArgs {
     /// then multiples of 1/256 px, exact in floating point).
     #[arg(long, value_name = "GRID")]
     snap: Option<Snapping>,
+    /// A well-known assignment's conventions, by what they are:
+    /// direct3d (the default), opengl-window (Scotty3D A1's triangles),
+    /// inclusive-float (CS184 HW1, CS248 A1), opengl-window-lines
+    /// (Scotty3D A1's lines). --config and the options given win over it.
+    #[arg(long, value_name = "NAME")]
+    preset: Option<String>,
     /// A teacher's configuration (JSON): the rule or convention, the
     /// cases, the seed, the time limit and each family's weight in the
     /// grader formats (docs/check.md). An option given on the command
@@ -141,6 +147,9 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         }
     };
     let mut request = CheckRequest::new(subject);
+    if let Some(name) = &args.preset {
+        check::preset(name)?.config.apply(&mut request)?;
+    }
     if let Some(path) = &args.config {
         CheckConfig::read(path)?.apply(&mut request)?;
     }
