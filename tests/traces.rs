@@ -56,10 +56,25 @@ bresenham (midpoint) from pixel (0, 0) to pixel (7, 3) (pixel indices: the line 
    5      2    5,2       -0.500  d < 0: the line passes on the midpoint's y + 1 side, y = y + 1
    6      3    6,3        3.500  d >= 0: the line meets the midpoint or passes on its y side, keep y
    7      3    7,3        0.500  d >= 0: the line meets the midpoint or passes on its y side, keep y
-d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame
+d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame, in px² (the back-end keeps it as a whole number of 1/65536 px²)
 ";
     let ends = LineEnds::pixels([0.0, 0.0, 7.0, 3.0]).unwrap();
     assert_eq!(line_trace("bresenham", &ends).unwrap(), expected);
+    // Walked the other way, the walking frame is mirrored: its columns are
+    // u and v, not read as screen coordinates, beside the screen pixel.
+    let reversed = line_trace(
+        "bresenham",
+        &LineEnds::pixels([7.0, 3.0, 0.0, 0.0]).unwrap(),
+    )
+    .unwrap();
+    let lines: Vec<&str> = reversed.lines().collect();
+    assert!(lines[0].ends_with("walked in the first octant (major axis mirrored, minor axis mirrored) as u along the major axis and v along the minor one, pixels mapped back"), "{reversed}");
+    assert_eq!(lines[1], "   u      v  pixel            d  choice");
+    assert!(lines[2].starts_with("  -7     -3    7,3        0.500  d >= 0: the line meets the midpoint or passes on its v side, keep v"), "{reversed}");
+    assert!(
+        lines.last().unwrap().starts_with("d = f(u + 1, v + 1/2)"),
+        "{reversed}"
+    );
     // The same line in screen coordinates draws the same table, and its
     // first line says how the endpoints were read.
     let screen = line_trace(

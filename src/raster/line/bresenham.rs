@@ -87,7 +87,7 @@ impl AliasedLine for Bresenham {
     const DESCRIPTOR: LineDescriptor = LineDescriptor {
         name: "bresenham",
         description:
-            "midpoint / Bresenham: integer decision variable d = f(x+1, y+0.5), additions only",
+            "midpoint / Bresenham: decision variable d = f(x+1, y+0.5), a whole number of 1/65536 px², additions only",
         walk: LineWalk::Midpoint,
         role: Role::Default,
         cost: CostClass::FollowsSize,

@@ -76,6 +76,18 @@ impl LineEnds {
     }
 }
 
+/// The names of the walking frame's column and row: `x` and `y` in the
+/// first octant, where the frame is the screen; `u` and `v` elsewhere, so
+/// that they are not read as screen coordinates (the pixel column gives
+/// those).
+fn frame_axes(frame: &OctantFrame) -> (&'static str, &'static str) {
+    if frame.swap || frame.flip_major || frame.flip_minor {
+        ("u", "v")
+    } else {
+        ("x", "y")
+    }
+}
+
 fn frame_note(frame: &OctantFrame) -> String {
     let mut notes = Vec::new();
     if frame.swap {
@@ -91,7 +103,7 @@ fn frame_note(frame: &OctantFrame) -> String {
         "first octant: no symmetry needed".to_string()
     } else {
         format!(
-            "walked in the first octant ({}), pixels mapped back",
+            "walked in the first octant ({}) as u along the major axis and v along the minor one, pixels mapped back",
             notes.join(", ")
         )
     }
@@ -106,21 +118,22 @@ fn bresenham(ends: &LineEnds) -> Trace {
         ends.describe(),
         frame_note(&frame)
     ));
+    let (u, v) = frame_axes(&frame);
     out.columns = vec![
-        Column::right("x", 4, 0),
-        Column::right("y", 6, 1),
+        Column::right(u, 4, 0),
+        Column::right(v, 6, 1),
         Column::right("pixel", 6, 1),
         Column::right("d", 12, 1),
         Column::left("choice", 0, 2),
     ];
+    let (step_up, keep) = (
+        format!("d < 0: the line passes on the midpoint's {v} + 1 side, {v} = {v} + 1"),
+        format!("d >= 0: the line meets the midpoint or passes on its {v} side, keep {v}"),
+    );
     for step in Bresenham::steps(&frame) {
         let (px, py) = frame.to_screen(step.i, step.k);
         let d = step.d as f64 / AREA_UNIT;
-        let choice = if step.step_up {
-            "d < 0: the line passes on the midpoint's y + 1 side, y = y + 1"
-        } else {
-            "d >= 0: the line meets the midpoint or passes on its y side, keep y"
-        };
+        let choice = if step.step_up { &step_up } else { &keep };
         out.rows.push(TraceRow::at_pixel(
             vec![
                 step.i.to_string(),
@@ -133,9 +146,9 @@ fn bresenham(ends: &LineEnds) -> Trace {
             py,
         ));
     }
-    out.footer.push(
-        "d = f(x + 1, y + 1/2) with f(x, y) = (y0 - y1) x + (x1 - x0) y + x0 y1 - x1 y0, in the walking frame".to_string(),
-    );
+    out.footer.push(format!(
+        "d = f({u} + 1, {v} + 1/2) with f({u}, {v}) = ({v}0 - {v}1) {u} + ({u}1 - {u}0) {v} + {u}0 {v}1 - {u}1 {v}0, in the walking frame, in px² (the back-end keeps it as a whole number of 1/65536 px²)"
+    ));
     out
 }
 
@@ -181,10 +194,11 @@ fn column_trace(backend: &dyn LineRasterizer, ends: &LineEnds) -> Result<Trace> 
         ends.describe(),
         frame_note(&frame)
     ));
+    let (u, v) = frame_axes(&frame);
     out.columns = vec![
-        Column::right("x", 4, 0),
-        Column::right("exact y", 10, 1),
-        Column::right("y", 6, 1),
+        Column::right(u, 4, 0),
+        Column::right(&format!("exact {v}"), 10, 1),
+        Column::right(v, 6, 1),
         Column::right("pixel", 6, 1),
     ];
     // The columns the back-end itself walks, as it walks them.
