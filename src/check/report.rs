@@ -439,7 +439,9 @@ impl Finding {
         }
         let to_svg = |(x, y): P| format!("{:.2},{:.2}", x * s, y * s);
         let mut labels = Markup::new();
-        let label = |out: &mut Markup, (x, y): P, text: &str, colour: &str, class: &str| {
+        // The labels placed so far: centre and half width.
+        let mut placed: Vec<(f64, f64, f64)> = Vec::new();
+        let mut label = |out: &mut Markup, (x, y): P, text: &str, colour: &str, class: &str| {
             // Kept inside the view (bold DejaVu Sans at 14 px: about 9 px
             // a character), on a white halo.
             let half = text.chars().count() as f64 * 4.5 + 2.0;
@@ -449,7 +451,23 @@ impl Finding {
             } else {
                 (lo + hi) / 2.0
             };
-            let y = y.clamp(view.y0 * s + 14.0, view.y1 * s - 4.0);
+            let (top, bottom) = (view.y0 * s + 14.0, view.y1 * s - 4.0);
+            let mut y = y.clamp(top, bottom.max(top));
+            // A small view clamps several labels to one place: move each
+            // one line down (up, at the bottom) until it overlaps none.
+            let overlaps = |y: f64, placed: &[(f64, f64, f64)]| {
+                placed
+                    .iter()
+                    .any(|&(px, py, ph)| (px - x).abs() < ph + half && (py - y).abs() < 16.0)
+            };
+            let step = if y + 16.0 <= bottom { 16.0 } else { -16.0 };
+            for _ in 0..placed.len() {
+                if !overlaps(y, &placed) {
+                    break;
+                }
+                y += step;
+            }
+            placed.push((x, y, half));
             out.halo_label(class, (x, y), colour, text).newline();
         };
         for (i, p) in primitives.iter().enumerate() {
