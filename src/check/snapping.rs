@@ -26,11 +26,13 @@
 //! assert!("1/3".parse::<Snapping>().is_err());
 //! ```
 
-use super::case::Point;
 use crate::error::{Error, Result};
 use crate::raster::fixed::SUBPIXEL_BITS;
 use std::fmt;
 use std::str::FromStr;
+
+/// A point in screen pixels, as a case writes it.
+type Point = (f64, f64);
 
 /// How a case's coordinates are snapped before they are judged.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
