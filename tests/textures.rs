@@ -3,56 +3,22 @@
 //! level mode, derivative method and anisotropy by every triangle
 //! back-end.
 
-use glam::{Mat4, Vec2, Vec3, Vec4};
-use rasterlab::geometry::{
-    draw, process_triangles, ClipVertex, PipelineOptions, Transform, Viewport,
-};
+use glam::Vec4;
+use rasterlab::geometry::{draw, Floor};
 use rasterlab::raster::{
     quad_helpers, triangle_backends, DepthState, Derivatives, Filter, FragmentList, Interpolation,
-    LevelMode, Mipmapped, PixelRect, RenderTarget, Sampler, Texture, UvPlanes, Varyings, Wrap,
+    LevelMode, Mipmapped, PixelRect, RenderTarget, Sampler, Texture, Wrap,
 };
 
 const SIZE: (u32, u32) = (96, 64);
 
-/// The floor y = 0, x in [-4, 4], z in [-1, -60], seen from one unit above
-/// it; its uv repeats the texture 4 times across and 30 times along.
+/// The bundled receding floor (`render --scene floor`), at 96 x 64.
 fn floor() -> rasterlab::geometry::Geometry {
-    let (w, h) = SIZE;
-    let projection = Mat4::perspective_rh_gl(60f32.to_radians(), w as f32 / h as f32, 0.5, 100.0);
-    let view = Mat4::look_at_rh(Vec3::new(0., 1., 0.), Vec3::new(0., 0.3, -10.), Vec3::Y);
-    let transform = Transform::new(Mat4::IDENTITY, view, projection);
-    let corners = [(-4., -1.), (4., -1.), (4., -60.), (-4., -60.)];
-    let vertices: Vec<(Vec3, Vec2)> = corners
-        .iter()
-        .map(|&(x, z)| {
-            (
-                Vec3::new(x, 0., z),
-                Vec2::new((x + 4.) / 2., (z + 1.) / -2.),
-            )
-        })
-        .collect();
-    let shader = |v: &(Vec3, Vec2)| ClipVertex {
-        position: transform.mvp * v.0.extend(1.0),
-        varyings: Varyings {
-            uv: v.1,
-            ..Varyings::default()
-        },
-    };
-    process_triangles(
-        &vertices,
-        &[[0, 1, 2], [0, 2, 3]],
-        &shader,
-        Viewport {
-            width: w,
-            height: h,
-        },
-        &PipelineOptions::default(),
-    )
-    .unwrap()
+    Floor::new(SIZE.0, SIZE.1).unwrap().geometry().clone()
 }
 
 fn checkerboard() -> Texture {
-    Texture::checkerboard(8, 4, Vec4::ONE, Vec4::new(0.1, 0.2, 0.6, 1.0))
+    Floor::checkerboard()
 }
 
 /// Under each of the six filter x level combinations, each derivative
@@ -208,30 +174,10 @@ type Inner = (Vec<(u32, u32)>, Vec<Vec4>);
 /// printed (`cargo test --test textures -- --nocapture`).
 #[test]
 fn mipmapping_comes_closer_to_the_ground_truth_than_level_zero() {
-    let geometry = floor();
+    let whole = Floor::new(SIZE.0, SIZE.1).unwrap();
+    let geometry = whole.geometry().clone();
     let texture = checkerboard();
-    let setup = &geometry.setups[0];
-    let t = &geometry.shaded.triangles[setup.id as usize];
-    let planes = UvPlanes::new(
-        setup,
-        t.vertices.map(|i| geometry.shaded.vertices[i as usize]),
-        true,
-    );
-    let truth = |x: u32, y: u32| {
-        let n = 16;
-        let mut sum = Vec4::ZERO;
-        for j in 0..n {
-            for i in 0..n {
-                let (px, py) = (
-                    f64::from(x) + (f64::from(i) + 0.5) / f64::from(n),
-                    f64::from(y) + (f64::from(j) + 0.5) / f64::from(n),
-                );
-                let uv = planes.uv_at_point(px, py).unwrap().as_vec2();
-                sum += texture.levels()[0].sample(uv, Filter::Bilinear, Wrap::Repeat);
-            }
-        }
-        sum / (n * n) as f32
-    };
+    let truth = |x: u32, y: u32| whole.ground_truth(x, y, 16).unwrap().unwrap();
     // The floor's inner pixels and their ground truth, found on the first render.
     let mut reference: Option<Inner> = None;
     let mut rms_of = Vec::new();
@@ -362,6 +308,36 @@ fn mipmapping_comes_closer_to_the_ground_truth_than_level_zero() {
         rms_of[3],
         rms_of[1]
     );
+}
+
+/// `render --scene floor`: the bundled receding floor at 320 x 200, level
+/// 0 by default and trilinear with `--mip linear`; options it cannot take
+/// are refused by name.
+#[test]
+fn the_floor_renders_from_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+            .args(["render", "--scene", "floor"])
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    for (file, mip) in [("zero.png", "zero"), ("linear.png", "linear")] {
+        let out = run(&["--mip", mip, "--derivatives", "quad", "--out", file]);
+        assert!(out.status.success(), "{out:?}");
+    }
+    let zero = image::open(dir.path().join("zero.png")).unwrap().to_rgba8();
+    let linear = image::open(dir.path().join("linear.png"))
+        .unwrap()
+        .to_rgba8();
+    assert_eq!(zero.dimensions(), (320, 200));
+    assert_ne!(zero, linear);
+    let refused = run(&["--zoom", "2", "--out", "z.png"]);
+    assert!(!refused.status.success());
+    let why = String::from_utf8_lossy(&refused.stderr);
+    assert!(why.contains("--zoom") && why.contains("--mip"), "{why}");
 }
 
 /// `render --shading texture --mip linear --anisotropy 4 --derivatives

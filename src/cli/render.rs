@@ -35,8 +35,9 @@ pub struct RenderArgs {
     /// buffer: nothing read or written, the fastest colour-only fill).
     #[arg(long, default_value = "less", value_parser = DepthState::from_name)]
     depth_test: DepthState,
-    /// Built-in 2D scene instead of a file: depth-example, split-square,
-    /// pinwheel, fan, transparent, cycle.
+    /// Built-in scene instead of a file: depth-example, split-square,
+    /// pinwheel, fan, transparent, cycle (2D), or floor (a checkerboard
+    /// receding to the horizon, 320x200, for the texture options).
     #[arg(long, conflicts_with = "input")]
     scene: Option<String>,
     /// Output PNG file.

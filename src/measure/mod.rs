@@ -47,6 +47,7 @@ pub(crate) mod context;
 mod cpu;
 pub(crate) mod data;
 mod fast_lines;
+mod render_floor;
 pub(crate) mod render_request;
 pub(crate) mod rounds;
 mod table;

@@ -28,6 +28,7 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::{CullMode, FrontFace, GeometryStats, PipelineOptions};
 use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::geometry::scene::Scene2D;
+use crate::geometry::Floor;
 use crate::geometry::{milliseconds, optional_milliseconds, FrameTimes};
 use crate::measure::workload::LineWorkload;
 use crate::raster::derivatives::Derivatives;
@@ -63,7 +64,8 @@ pub enum RenderInput {
     /// A file: a mesh (`.ply`, `.ply.gz`, `.obj`), or a triangle soup or
     /// line set in the text format of `rasterlab fragments`.
     File(PathBuf),
-    /// A built-in 2D scene by name (see [`Scene2D::built_in`]).
+    /// A built-in scene by name: a 2D one (see [`Scene2D::built_in`]), or
+    /// the receding floor ([`Floor::NAME`]).
     Scene(String),
 }
 
@@ -227,6 +229,9 @@ impl RenderRequest {
             return Err(Error::InvalidArgument("--frames must be at least 1".into()));
         }
         match &self.input {
+            RenderInput::Scene(name) if name == Floor::NAME => {
+                self.render_floor(frame_done).map(RenderReport::Drawing)
+            }
             RenderInput::File(path) if Mesh::is_mesh_path(path) => {
                 self.render_mesh(path, frame_done).map(RenderReport::Mesh)
             }
