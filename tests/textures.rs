@@ -5,6 +5,7 @@
 
 use glam::Vec4;
 use rasterlab::geometry::{draw, Floor};
+use rasterlab::measure::compare_textures;
 use rasterlab::raster::{
     quad_helpers, triangle_backends, DepthState, Derivatives, Filter, FragmentList, Interpolation,
     LevelMode, Mipmapped, PixelRect, RenderTarget, Sampler, Texture, Wrap,
@@ -163,151 +164,79 @@ fn quads_bring_helper_pixels_along_the_edges() {
     );
 }
 
-/// Pixels, and the ground truth at each.
-type Inner = (Vec<(u32, u32)>, Vec<Vec4>);
-
-/// The RMS and worst error of each method against the ground truth: the
-/// texture over each pixel's square, as 16x16 bilinear samples of level 0
-/// box-filtered, on the floor's pixels whose neighbours are all floor.
-/// Mipmapping must come closer to it than level 0 does, and anisotropic
-/// filtering closer than trilinear; the figures are
-/// printed (`cargo test --test textures -- --nocapture`).
+/// The comparison of `compare --textures` on the 96 x 64 floor: every
+/// method's RMS and worst error against the ground truth (the texture over
+/// each pixel, 16x16 bilinear samples of level 0, box-filtered).
+/// Mipmapping comes closer to it than level 0, anisotropic filtering
+/// closer than trilinear, and under each level mode the three derivative
+/// methods land near each other. The table is printed
+/// (`cargo test --release --test textures -- --nocapture`).
 #[test]
 fn mipmapping_comes_closer_to_the_ground_truth_than_level_zero() {
-    let whole = Floor::new(SIZE.0, SIZE.1).unwrap();
-    let geometry = whole.geometry().clone();
-    let texture = checkerboard();
-    let truth = |x: u32, y: u32| whole.ground_truth(x, y, 16).unwrap().unwrap();
-    // The floor's inner pixels and their ground truth, found on the first render.
-    let mut reference: Option<Inner> = None;
-    let mut rms_of = Vec::new();
-    let configs = [
-        (
-            "level 0, nearest",
-            Filter::Nearest,
-            LevelMode::Zero,
-            Derivatives::Analytic,
-            1,
-        ),
-        (
-            "level 0, bilinear",
-            Filter::Bilinear,
-            LevelMode::Zero,
-            Derivatives::Analytic,
-            1,
-        ),
-        (
-            "nearest level, bilinear",
-            Filter::Bilinear,
-            LevelMode::Nearest,
-            Derivatives::Analytic,
-            1,
-        ),
-        (
-            "trilinear, analytic",
-            Filter::Bilinear,
-            LevelMode::Linear,
-            Derivatives::Analytic,
-            1,
-        ),
-        (
-            "trilinear, quad",
-            Filter::Bilinear,
-            LevelMode::Linear,
-            Derivatives::Quad,
-            1,
-        ),
-        (
-            "trilinear, forward",
-            Filter::Bilinear,
-            LevelMode::Linear,
-            Derivatives::Forward,
-            1,
-        ),
-        (
-            "anisotropic 4x",
-            Filter::Bilinear,
-            LevelMode::Linear,
-            Derivatives::Analytic,
-            4,
-        ),
-        (
-            "anisotropic 16x",
-            Filter::Bilinear,
-            LevelMode::Linear,
-            Derivatives::Analytic,
-            16,
-        ),
-    ];
-    for (name, filter, levels, method, anisotropy) in configs {
-        let sampler = Sampler {
-            filter,
-            levels,
-            wrap: Wrap::Repeat,
-            anisotropy,
-        };
-        let shader = Mipmapped::new(
-            texture.clone(),
-            sampler,
-            method,
-            &geometry.setups,
-            &geometry.shaded,
-            true,
+    let floor = Floor::new(SIZE.0, SIZE.1).unwrap();
+    let c = compare_textures(&floor, 16, None, 1).unwrap();
+    eprint!("{c}");
+    assert_eq!(c.rows.len(), 26);
+    let rms = |name: &str| {
+        c.rows
+            .iter()
+            .find(|r| r.method.to_string() == name)
+            .unwrap_or_else(|| panic!("{name}"))
+            .rms
+    };
+    let level0 = rms("bilinear, level 0");
+    let trilinear = rms("bilinear, linear levels, analytic");
+    let anisotropic = rms("bilinear, linear levels, analytic, 16x");
+    assert!(
+        trilinear < level0,
+        "trilinear {trilinear}, level 0 {level0}"
+    );
+    assert!(
+        anisotropic < trilinear,
+        "16x {anisotropic}, trilinear {trilinear}"
+    );
+    for d in ["quad", "forward"] {
+        let other = rms(&format!("bilinear, linear levels, {d}"));
+        assert!(
+            (other - trilinear).abs() < 0.02,
+            "{d}: {other}, analytic {trilinear}"
         );
-        let mut target = RenderTarget::new(SIZE.0, SIZE.1).unwrap();
-        draw(
-            &geometry,
-            triangle_backends()[0],
-            &shader,
-            DepthState::DEFAULT,
-            Interpolation::PerspectiveCorrect,
-            &mut target,
-        );
-        let (pixels, truths) = reference.get_or_insert_with(|| {
-            let covered = |x: i64, y: i64| {
-                x >= 0
-                    && y >= 0
-                    && x < i64::from(SIZE.0)
-                    && y < i64::from(SIZE.1)
-                    && target.coverage[target.index(x as u32, y as u32)] > 0
-            };
-            let pixels: Vec<(u32, u32)> = (0..SIZE.1)
-                .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
-                .filter(|&(x, y)| {
-                    (-1..=1).all(|j| (-1..=1).all(|i| covered(i64::from(x) + i, i64::from(y) + j)))
-                })
-                .collect();
-            let truths = pixels.iter().map(|&(x, y)| truth(x, y)).collect();
-            (pixels, truths)
-        });
-        let (mut squares, mut worst) = (0.0f64, 0.0f32);
-        for (&(x, y), want) in pixels.iter().zip(truths.iter()) {
-            let got = target.color[target.index(x, y)];
-            for c in 0..3 {
-                let e = (f32::from(got[c]) / 255.0 - want[c]).abs();
-                squares += f64::from(e * e);
-                worst = worst.max(e);
-            }
-        }
-        let rms = (squares / (3 * pixels.len()) as f64).sqrt();
-        eprintln!(
-            "{name:>24}: RMS {rms:.4}, worst {worst:.3} over {} pixels",
-            pixels.len()
-        );
-        rms_of.push(rms);
     }
-    assert!(
-        rms_of[7] < rms_of[3],
-        "anisotropic {} vs trilinear {}",
-        rms_of[7],
-        rms_of[3]
+}
+
+/// The ground truth is itself an estimate: on a 32 x 12 crop of the
+/// 160 x 100 floor just below the horizon, where a pixel's square spans
+/// the most texels, 32x32 samples a pixel instead of 16x16 move every
+/// method's RMS and worst error by the bounds asserted here (docs/teaching.md
+/// quotes the figures this prints).
+#[test]
+fn the_ground_truth_moves_little_from_16_to_32_samples_a_side() {
+    let floor = Floor::new(160, 100).unwrap();
+    let top = (0..100)
+        .find(|&y| (0..160).all(|x| floor.uv_at(x, y).is_some()))
+        .unwrap();
+    let crop = PixelRect {
+        x0: 64,
+        y0: i64::from(top),
+        x1: 95,
+        y1: i64::from(top) + 11,
+    };
+    let c16 = compare_textures(&floor, 16, Some(crop), 1).unwrap();
+    let c32 = compare_textures(&floor, 32, Some(crop), 1).unwrap();
+    assert_eq!(c16.pixels, 32 * 12);
+    let (mut rms_move, mut worst_move, mut largest) = (0.0f64, 0.0f64, 0.0f64);
+    for (a, b) in c16.rows.iter().zip(&c32.rows) {
+        rms_move = rms_move.max((a.rms - b.rms).abs());
+        worst_move = worst_move.max((a.worst - b.worst).abs());
+        largest = largest.max(a.rms);
+    }
+    eprintln!(
+        "rows {top} to {}: from 16x16 to 32x32 samples, RMS moves at most {rms_move:.4} \
+         (the largest RMS is {largest:.4}), the worst error at most {worst_move:.4}",
+        top + 11
     );
-    assert!(
-        rms_of[3] < rms_of[1],
-        "trilinear {} vs level 0 {}",
-        rms_of[3],
-        rms_of[1]
-    );
+    assert!(rms_move < 0.01, "{rms_move}");
+    assert!(worst_move < 0.05, "{worst_move}");
 }
 
 /// `render --scene floor`: the bundled receding floor at 320 x 200, level

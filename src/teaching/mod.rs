@@ -37,12 +37,16 @@ pub(crate) mod grid_picture;
 pub(crate) mod palette;
 pub(crate) mod report;
 pub(crate) mod sample_trace;
+pub(crate) mod texture_chart;
 pub(crate) mod trace;
 pub(crate) mod trace_table;
 
 pub use antialias_chart::{antialias_chart_svg, ChartPoint};
 pub use ascii::{ascii_count, ascii_framed, ascii_mark, ascii_rows};
-pub use compare::{compare, default_compare_size, CompareRequest, CompareSummary};
+pub use compare::{
+    compare, compare_texture_filters, default_compare_size, CompareRequest, CompareSummary,
+    TextureSummary,
+};
 pub use demo::{bundled_assets, run_demo, DemoReport, DemoRow};
 pub use explain::{
     explain, Blending, ExplainRequest, Explanation, BLEND, BLEND_SCENE, DEFAULT_GRID, DEPTH_BUFFER,
@@ -59,5 +63,6 @@ pub use report::{
     MAX_REPORT_BYTES, REPORT_BYTES_PER_PIXEL,
 };
 pub use sample_trace::trace_samples;
+pub use texture_chart::texture_chart_svg;
 pub use trace::{trace_blend, trace_depth_buffer, trace_line, trace_triangle, LineEnds};
 pub use trace_table::{Column, Trace, TraceRow};
