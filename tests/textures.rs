@@ -342,3 +342,46 @@ fn textures_load_from_png_files_or_say_why_not() {
     let refused = Texture::load(&wide).unwrap_err().to_string();
     assert!(refused.contains("longer than 16384"), "{refused}");
 }
+
+/// Helper pixels in the work counters: a textured frame whose derivatives
+/// are taken in quads counts them, the same on every back-end; with
+/// analytic derivatives there are none.
+#[test]
+fn quad_frames_count_their_helper_pixels() {
+    use rasterlab::geometry::{Mesh, MeshRenderer, RenderSettings, Shading};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bunny.ply");
+    let mesh = Mesh::load(&path).unwrap();
+    let settings = RenderSettings {
+        width: 160,
+        height: 120,
+        shading: Shading::Texture,
+        mip: LevelMode::Linear,
+        derivatives: Derivatives::Quad,
+        ..RenderSettings::default()
+    };
+    let quad = MeshRenderer::new(&mesh, settings).unwrap();
+    let first = quad.render(triangle_backends()[0]).unwrap().stats.work;
+    assert!(
+        first.helpers > 0 && first.helpers < 3 * first.fragments,
+        "{first:?}"
+    );
+    assert!(first.helper_share() > 0.0 && first.helper_share() < 0.75);
+    for backend in triangle_backends() {
+        let work = quad.render(*backend).unwrap().stats.work;
+        assert_eq!(work.helpers, first.helpers, "{}", backend.name());
+    }
+    let analytic = RenderSettings {
+        derivatives: Derivatives::Analytic,
+        ..settings
+    };
+    let plain = MeshRenderer::new(&mesh, analytic).unwrap();
+    assert_eq!(
+        plain
+            .render(triangle_backends()[0])
+            .unwrap()
+            .stats
+            .work
+            .helpers,
+        0
+    );
+}

@@ -7,6 +7,8 @@
 use super::render_request::{DrawingReport, RenderRequest};
 use crate::error::{Error, Result};
 use crate::geometry::{Floor, FrameTimes};
+use crate::raster::derivatives::{count_quad_helpers, Derivatives};
+use crate::raster::edge::PixelRect;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::registry::{backend, default_triangle_backend, Backend};
 use crate::raster::stage::Blend;
@@ -79,6 +81,10 @@ impl RenderRequest {
             let raster = start.elapsed();
             times.push(FrameTimes::new(raster, None, Default::default(), raster));
             frame_done();
+        }
+        if m.derivatives == Some(Derivatives::Quad) {
+            let rect = PixelRect::of_target(width, height);
+            work.helpers = count_quad_helpers(&floor.geometry().setups, chosen, rect);
         }
         target.save_png(&self.out)?;
         Ok(DrawingReport {

@@ -636,13 +636,14 @@ impl fmt::Display for RenderReport {
                 )?;
                 writeln!(
                     f,
-                    "{} at {}x{}{}: {} samples tested, {} fragments",
+                    "{} at {}x{}{}: {} samples tested, {} fragments{}",
                     r.backend,
                     r.width,
                     r.height,
                     multisampled(r.samples),
                     r.work.samples_tested,
-                    r.work.fragments
+                    r.work.fragments,
+                    helpers(&r.work)
                 )?;
                 writeln!(f, "time per frame (median of {}): {}", r.frames, r.median)?;
                 writeln!(f, "wrote {}", r.out.display())
@@ -650,12 +651,13 @@ impl fmt::Display for RenderReport {
             RenderReport::Drawing(r) => {
                 writeln!(
                     f,
-                    "{}{}: {} primitives, {} samples tested, {} fragments -> {}",
+                    "{}{}: {} primitives, {} samples tested, {} fragments{} -> {}",
                     r.backend,
                     multisampled(r.samples),
                     r.work.primitives,
                     r.work.samples_tested,
                     r.work.fragments,
+                    helpers(&r.work),
                     r.out.display()
                 )?;
                 if r.frames > 1 {
@@ -664,6 +666,19 @@ impl fmt::Display for RenderReport {
                 Ok(())
             }
         }
+    }
+}
+
+/// ", N helper pixels (S% of those shaded)" where quads shaded helpers.
+fn helpers(work: &WorkCounters) -> String {
+    if work.helpers > 0 {
+        format!(
+            ", {} helper pixels ({:.1}% of those shaded)",
+            work.helpers,
+            100.0 * work.helper_share()
+        )
+    } else {
+        String::new()
     }
 }
 
