@@ -385,3 +385,59 @@ fn quad_frames_count_their_helper_pixels() {
         0
     );
 }
+
+/// `explain --backend texture X Y`: the trace's colour is the one the
+/// floor's frame stores at the pixel (within one step of 255: the trace
+/// takes the coordinate from the planes in f64, the stage interpolates
+/// it in f32); a pixel of the sky is refused with the reason.
+#[test]
+fn the_texture_trace_ends_at_the_stored_colour() {
+    use rasterlab::teaching::trace_texture;
+    let floor = Floor::new(160, 100).unwrap();
+    for (sampler, method) in [
+        (Sampler::default(), Derivatives::Analytic),
+        (
+            Sampler {
+                filter: Filter::Nearest,
+                levels: LevelMode::Nearest,
+                ..Sampler::default()
+            },
+            Derivatives::Forward,
+        ),
+        (
+            Sampler {
+                levels: LevelMode::Linear,
+                ..Sampler::default()
+            },
+            Derivatives::Quad,
+        ),
+        (
+            Sampler {
+                levels: LevelMode::Linear,
+                anisotropy: 8,
+                ..Sampler::default()
+            },
+            Derivatives::Quad,
+        ),
+    ] {
+        for pixel in [(80, 60), (17, 99), (131, 50)] {
+            let text = trace_texture(&floor, pixel, sampler, method).unwrap();
+            let last = text.lines().last().unwrap();
+            let numbers = |part: &str| -> Vec<i32> {
+                part.split(|c: char| !c.is_ascii_digit())
+                    .filter(|s| !s.is_empty())
+                    .map(|s| s.parse().unwrap())
+                    .collect()
+            };
+            let (traced, stored) = last.split_once("stored by the frame").unwrap();
+            let traced = numbers(traced.rsplit_once("rgba8").unwrap().1);
+            let stored = numbers(stored);
+            assert_eq!(traced.len(), 4, "{last}");
+            for (a, b) in traced.iter().zip(&stored) {
+                assert!((a - b).abs() <= 1, "{text}");
+            }
+        }
+    }
+    let sky = trace_texture(&floor, (80, 2), Sampler::default(), Derivatives::Quad);
+    assert!(sky.unwrap_err().to_string().contains("below the horizon"));
+}
