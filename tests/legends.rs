@@ -486,7 +486,7 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
     let floor = Floor::new(48, 32).unwrap();
     let comparison = compare_textures(&floor, 2, None, 1).unwrap();
     let entries = legend_entries(&texture_chart_svg(&comparison));
-    assert_eq!(entries.len(), 5);
+    assert_eq!(entries.len(), 6);
     checked("the texture chart", &entries, &mut closest);
     let big = Floor::new(160, 100).unwrap();
     let levels = LevelPicture::new(&big, Sampler::default(), Derivatives::Quad, Some((80, 60)));

@@ -7,8 +7,8 @@ use glam::Vec4;
 use rasterlab::geometry::{draw, Floor};
 use rasterlab::measure::compare_textures;
 use rasterlab::raster::{
-    quad_helpers, triangle_backends, DepthState, Derivatives, Filter, FragmentList, Interpolation,
-    LevelMode, Mipmapped, PixelRect, RenderTarget, Sampler, Texture, Wrap,
+    quad_helpers, triangle_backends, Anisotropic, DepthState, Derivatives, Filter, FragmentList,
+    Interpolation, LevelMode, Mipmapped, PixelRect, RenderTarget, Sampler, Texture, Wrap,
 };
 
 const SIZE: (u32, u32) = (96, 64);
@@ -37,12 +37,22 @@ fn every_backend_draws_the_mipmapped_floor_alike() {
                 Derivatives::Quad,
                 Derivatives::Forward,
             ] {
-                for anisotropy in [1, 4, 16] {
+                for (anisotropy, anisotropic) in [
+                    (1, Anisotropic::Probes),
+                    (4, Anisotropic::Probes),
+                    (16, Anisotropic::Probes),
+                    (8, Anisotropic::Ewa),
+                ] {
+                    // EWA reads the pyramid; on level 0 alone it is refused.
+                    if anisotropic == Anisotropic::Ewa && levels == LevelMode::Zero {
+                        continue;
+                    }
                     let sampler = Sampler {
                         filter,
                         levels,
                         wrap: Wrap::Repeat,
                         anisotropy,
+                        anisotropic,
                     };
                     let shader = Mipmapped::new(
                         checkerboard(),
@@ -67,7 +77,7 @@ fn every_backend_draws_the_mipmapped_floor_alike() {
                             None => first = Some(target.color.clone()),
                             Some(f) => assert!(
                                 *f == target.color,
-                                "{} differs under {filter} {levels} {method} x{anisotropy}",
+                                "{} differs under {filter} {levels} {method} x{anisotropy} {anisotropic}",
                                 backend.name()
                             ),
                         }
@@ -176,7 +186,7 @@ fn mipmapping_comes_closer_to_the_ground_truth_than_level_zero() {
     let floor = Floor::new(SIZE.0, SIZE.1).unwrap();
     let c = compare_textures(&floor, 16, None, 1).unwrap();
     eprint!("{c}");
-    assert_eq!(c.rows.len(), 26);
+    assert_eq!(c.rows.len(), 38);
     let rms = |name: &str| {
         c.rows
             .iter()
@@ -187,6 +197,8 @@ fn mipmapping_comes_closer_to_the_ground_truth_than_level_zero() {
     let level0 = rms("bilinear, level 0");
     let trilinear = rms("bilinear, linear levels, analytic");
     let anisotropic = rms("bilinear, linear levels, analytic, 16x");
+    let ewa = rms("ewa, linear levels, analytic, 16x");
+    assert!(ewa < trilinear, "EWA 16x {ewa}, trilinear {trilinear}");
     assert!(
         trilinear < level0,
         "trilinear {trilinear}, level 0 {level0}"
@@ -241,7 +253,7 @@ fn the_ground_truth_moves_little_from_16_to_32_samples_a_side() {
 
 /// `render --scene floor`: the bundled receding floor at 320 x 200, level
 /// 0 by default and trilinear with `--mip linear`; options it cannot take
-/// are refused by name.
+/// are refused by name, and EWA on level 0 alone with the reason.
 #[test]
 fn the_floor_renders_from_the_command_line() {
     let dir = tempfile::tempdir().unwrap();
@@ -267,6 +279,12 @@ fn the_floor_renders_from_the_command_line() {
     assert!(!refused.status.success());
     let why = String::from_utf8_lossy(&refused.stderr);
     assert!(why.contains("--zoom") && why.contains("--mip"), "{why}");
+    let ewa = run(&["--anisotropic", "ewa", "--out", "e.png"]);
+    let why = String::from_utf8_lossy(&ewa.stderr);
+    assert!(
+        !ewa.status.success() && why.contains("--mip nearest or linear"),
+        "{why}"
+    );
 }
 
 /// `render --shading texture --mip linear --anisotropy 4 --derivatives
@@ -418,6 +436,15 @@ fn the_texture_trace_ends_at_the_stored_colour() {
                 ..Sampler::default()
             },
             Derivatives::Quad,
+        ),
+        (
+            Sampler {
+                levels: LevelMode::Linear,
+                anisotropy: 8,
+                anisotropic: Anisotropic::Ewa,
+                ..Sampler::default()
+            },
+            Derivatives::Analytic,
         ),
     ] {
         for pixel in [(80, 60), (17, 99), (131, 50)] {

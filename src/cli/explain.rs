@@ -3,8 +3,8 @@
 use super::args::{fill_rule, msaa, rule_for_lines, Size};
 use clap::Args;
 use rasterlab::raster::{
-    backend, Backend, Blend, BlendMode, DepthState, Derivatives, FillRule, Filter, LevelMode,
-    MixSpace, SamplePattern,
+    backend, Anisotropic, Backend, Blend, BlendMode, DepthState, Derivatives, FillRule, Filter,
+    LevelMode, MixSpace, SamplePattern,
 };
 use rasterlab::teaching::{explain, Blending, ExplainRequest, GridPicture, Texturing};
 use rasterlab::Result;
@@ -70,6 +70,9 @@ pub struct ExplainArgs {
     /// The texture trace's most anisotropic probes, 1 (default) to 16.
     #[arg(long, value_name = "N")]
     anisotropy: Option<u32>,
+    /// The texture trace's anisotropic filter: probes (default) or ewa.
+    #[arg(long)]
+    anisotropic: Option<Anisotropic>,
     /// The texture trace's derivative method: analytic (default), quad,
     /// forward.
     #[arg(long)]
@@ -126,6 +129,7 @@ fn texturing(args: &ExplainArgs) -> Texturing {
             filter: args.filter.unwrap_or(d.sampler.filter),
             levels: args.mip.unwrap_or(d.sampler.levels),
             anisotropy: args.anisotropy.unwrap_or(d.sampler.anisotropy),
+            anisotropic: args.anisotropic.unwrap_or(d.sampler.anisotropic),
             ..d.sampler
         },
         derivatives: args.derivatives.unwrap_or(d.derivatives),

@@ -8,8 +8,8 @@ use clap::Args;
 use rasterlab::geometry::{CullMode, FrontFace, Shading};
 use rasterlab::measure::{MeshOverrides, RenderInput, RenderRequest};
 use rasterlab::raster::{
-    Blend, BlendMode, DepthState, Derivatives, FillRule, Filter, Interpolation, LevelMode,
-    MixSpace, SamplePattern, Wrap, WriteMask,
+    Anisotropic, Blend, BlendMode, DepthState, Derivatives, FillRule, Filter, Interpolation,
+    LevelMode, MixSpace, SamplePattern, Wrap, WriteMask,
 };
 use rasterlab::{Error, Result};
 use std::path::PathBuf;
@@ -105,6 +105,10 @@ pub struct MeshArgs {
     /// The most anisotropic probes along the footprint, 1 (default) to 16.
     #[arg(long, value_name = "N")]
     anisotropy: Option<u32>,
+    /// How anisotropy is filtered: probes (the extension's example,
+    /// default) or ewa (Heckbert's elliptical weighted average).
+    #[arg(long)]
+    anisotropic: Option<Anisotropic>,
     /// Texture coordinate derivatives for --mip and --anisotropy: analytic
     /// (default), quad (2x2 quads, fine), forward (CS184).
     #[arg(long)]
@@ -163,6 +167,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             mip: m.mip,
             wrap: m.wrap,
             anisotropy: m.anisotropy,
+            anisotropic: m.anisotropic,
             derivatives: m.derivatives,
             interpolation: m.interpolation,
             cull: m.cull,

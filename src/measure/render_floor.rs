@@ -1,6 +1,7 @@
 //! `render --scene floor`: the receding checkerboard floor ([`Floor`])
 //! drawn with the texture options a mesh takes (`--filter`, `--mip`,
-//! `--wrap`, `--anisotropy`, `--derivatives`, `--texture`), each frame
+//! `--wrap`, `--anisotropy`, `--anisotropic`, `--derivatives`,
+//! `--texture`), each frame
 //! timed whole. Level 0 alone by default, so that the first picture a
 //! newcomer draws shows the aliasing the other options remove.
 
@@ -39,7 +40,7 @@ impl RenderRequest {
         if !refused.is_empty() {
             return Err(Error::InvalidArgument(format!(
                 "the floor takes the texture options (--filter, --mip, --wrap, --anisotropy, \
-                 --derivatives, --texture) and --size; not {}",
+                 --anisotropic, --derivatives, --texture) and --size; not {}",
                 refused.join(", ")
             )));
         }
@@ -54,14 +55,9 @@ impl RenderRequest {
             levels: m.mip.unwrap_or(defaults.levels),
             wrap: m.wrap.unwrap_or(defaults.wrap),
             anisotropy: m.anisotropy.unwrap_or(defaults.anisotropy),
+            anisotropic: m.anisotropic.unwrap_or(defaults.anisotropic),
         };
-        if !(1..=crate::raster::texture::MAX_ANISOTROPY).contains(&sampler.anisotropy) {
-            return Err(Error::InvalidArgument(format!(
-                "anisotropy must be between 1 and {}, not {}",
-                crate::raster::texture::MAX_ANISOTROPY,
-                sampler.anisotropy
-            )));
-        }
+        sampler.check()?;
         let name = self
             .backend
             .as_deref()

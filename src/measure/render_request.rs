@@ -44,7 +44,7 @@ use crate::raster::registry::{
 use crate::raster::shader::{Filter, Flat};
 use crate::raster::stage::{Blend, Interpolation};
 use crate::raster::target::{DepthState, RenderTarget, MAX_TARGET_SIDE};
-use crate::raster::texture::{LevelMode, Texture, Wrap};
+use crate::raster::texture::{Anisotropic, LevelMode, Texture, Wrap};
 use serde::Serialize;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -86,6 +86,8 @@ pub struct MeshOverrides {
     pub wrap: Option<Wrap>,
     /// The most anisotropic probes of [`Shading::Texture`].
     pub anisotropy: Option<u32>,
+    /// How [`Shading::Texture`]'s anisotropy is filtered.
+    pub anisotropic: Option<Anisotropic>,
     /// How [`Shading::Texture`]'s derivatives are computed.
     pub derivatives: Option<Derivatives>,
     /// Perspective-correct or linear varyings.
@@ -114,6 +116,7 @@ impl MeshOverrides {
             ("--mip", self.mip.is_some()),
             ("--wrap", self.wrap.is_some()),
             ("--anisotropy", self.anisotropy.is_some()),
+            ("--anisotropic", self.anisotropic.is_some()),
             ("--derivatives", self.derivatives.is_some()),
             ("--interpolation", self.interpolation.is_some()),
             ("--cull", self.cull.is_some()),
@@ -146,6 +149,7 @@ impl MeshOverrides {
             mip: self.mip.unwrap_or(settings.mip),
             wrap: self.wrap.unwrap_or(settings.wrap),
             anisotropy: self.anisotropy.unwrap_or(settings.anisotropy),
+            anisotropic: self.anisotropic.unwrap_or(settings.anisotropic),
             derivatives: self.derivatives.unwrap_or(settings.derivatives),
             interpolation: self.interpolation.unwrap_or(settings.interpolation),
             pipeline,

@@ -15,6 +15,7 @@
 //! | nearest, bilinear | zero (CS184's `L_ZERO`) | not read | 1 |
 //! | nearest, bilinear | nearest, linear (OpenGL 3.3, section 3.8.11) | analytic, quad, forward | 1 |
 //! | bilinear | linear | analytic, quad, forward | 2, 4, 8, 16 (the EXT_texture_filter_anisotropic example) |
+//! | none (EWA reads texels) | linear | analytic, quad, forward | 2, 4, 8, 16 (Heckbert's elliptical weighted average) |
 //!
 //! The error is in the stored colour's channels (0 to 1, red, green and
 //! blue alike): the root mean square and the worst over the compared
@@ -41,7 +42,7 @@ use crate::raster::derivatives::Derivatives;
 use crate::raster::edge::PixelRect;
 use crate::raster::registry::default_triangle_backend;
 use crate::raster::target::RenderTarget;
-use crate::raster::texture::{Filter, LevelMode, Sampler, Wrap};
+use crate::raster::texture::{Anisotropic, Filter, LevelMode, Sampler, Wrap};
 use glam::Vec4;
 use serde::Serialize;
 use std::fmt;
@@ -55,8 +56,10 @@ pub struct TextureMethod {
     pub levels: LevelMode,
     /// The derivative method (`None`: level 0 reads none).
     pub derivatives: Option<Derivatives>,
-    /// The most anisotropic probes (1: isotropic).
+    /// The most anisotropy (1: isotropic).
     pub anisotropy: u32,
+    /// How the anisotropy is filtered: the extension's probes or EWA.
+    pub anisotropic: Anisotropic,
 }
 
 impl TextureMethod {
@@ -67,12 +70,14 @@ impl TextureMethod {
             levels: self.levels,
             wrap: Wrap::Repeat,
             anisotropy: self.anisotropy,
+            anisotropic: self.anisotropic,
         }
     }
 
     /// Every method compared: the six filter and level combinations, those
     /// that read derivatives under each method, then anisotropic filtering
-    /// from 2x to 16x under each method.
+    /// from 2x to 16x under each method, by the extension's probes and by
+    /// EWA.
     pub fn all() -> Vec<TextureMethod> {
         let methods = [
             Derivatives::Analytic,
@@ -92,18 +97,22 @@ impl TextureMethod {
                         levels,
                         derivatives,
                         anisotropy: 1,
+                        anisotropic: Anisotropic::Probes,
                     });
                 }
             }
         }
-        for anisotropy in [2, 4, 8, 16] {
-            for m in methods {
-                all.push(TextureMethod {
-                    filter: Filter::Bilinear,
-                    levels: LevelMode::Linear,
-                    derivatives: Some(m),
-                    anisotropy,
-                });
+        for anisotropic in [Anisotropic::Probes, Anisotropic::Ewa] {
+            for anisotropy in [2, 4, 8, 16] {
+                for m in methods {
+                    all.push(TextureMethod {
+                        filter: Filter::Bilinear,
+                        levels: LevelMode::Linear,
+                        derivatives: Some(m),
+                        anisotropy,
+                        anisotropic,
+                    });
+                }
             }
         }
         all
@@ -117,7 +126,10 @@ impl fmt::Display for TextureMethod {
             LevelMode::Nearest => "nearest level",
             LevelMode::Linear => "linear levels",
         };
-        write!(f, "{}, {levels}", self.filter)?;
+        match self.anisotropic {
+            Anisotropic::Probes => write!(f, "{}, {levels}", self.filter)?,
+            Anisotropic::Ewa => write!(f, "ewa, {levels}")?,
+        }
         if let Some(d) = self.derivatives {
             write!(f, ", {d}")?;
         }

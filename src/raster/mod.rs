@@ -103,8 +103,8 @@ pub use stage::{Blend, BlendMode, FragmentStage, Interpolation, WriteMask};
 pub use supersample::{supersample, SampleCount};
 pub use target::{Clear, DepthState, DepthTest, RenderTarget, TargetRows, MAX_TARGET_SIDE};
 pub use texture::{
-    Filter, Footprint, Image, LevelMode, Sampler, Texture, Wrap, MAX_ANISOTROPY, MAX_TEXTURE_SIDE,
-    MAX_TEXTURE_TEXELS,
+    Anisotropic, Ellipse, Filter, Footprint, Image, LevelMode, Sampler, Texture, Wrap,
+    MAX_ANISOTROPY, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS,
 };
 // What only the `rasterlab` program uses; absent without the `cli` feature.
 #[cfg(feature = "cli")]

@@ -24,7 +24,7 @@ use crate::raster::multisample::SamplePattern;
 use crate::raster::registry::{all_backends, backend, triangle_backend, Backend};
 use crate::raster::stage::{Blend, BlendMode};
 use crate::raster::target::{DepthState, RenderTarget};
-use crate::raster::texture::{LevelMode, Sampler, MAX_ANISOTROPY};
+use crate::raster::texture::{LevelMode, Sampler};
 use crate::teaching::grid_picture::GridPicture;
 use crate::teaching::level_picture::LevelPicture;
 use crate::teaching::trace::{self, LineEnds};
@@ -242,7 +242,8 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     }
     if request.texturing != Texturing::default() {
         return Err(Error::InvalidArgument(
-            "--filter, --mip, --anisotropy and --derivatives are for the texture trace (--backend texture)"
+            "--filter, --mip, --anisotropy, --anisotropic and --derivatives are for the texture trace \
+             (--backend texture)"
                 .into(),
         ));
     }
@@ -351,7 +352,7 @@ fn explain_texture(request: &ExplainRequest) -> Result<Explanation> {
     if request.msaa.is_some() || request.blending != Blending::default() {
         return Err(Error::InvalidArgument(
             "the texture trace takes a pixel of the floor, --size and the texture options \
-             (--filter, --mip, --anisotropy, --derivatives)"
+             (--filter, --mip, --anisotropy, --anisotropic, --derivatives)"
                 .into(),
         ));
     }
@@ -359,12 +360,7 @@ fn explain_texture(request: &ExplainRequest) -> Result<Explanation> {
     let floor = Floor::new(width, height)?;
     let pixel = request.pixel("one pixel's texture lookup (x y, a pixel of the floor)")?;
     let t = request.texturing;
-    if !(1..=MAX_ANISOTROPY).contains(&t.sampler.anisotropy) {
-        return Err(Error::InvalidArgument(format!(
-            "anisotropy must be between 1 and {MAX_ANISOTROPY}, not {}",
-            t.sampler.anisotropy
-        )));
-    }
+    t.sampler.check()?;
     let text = super::trace_texture(&floor, pixel, t.sampler, t.derivatives)?;
     let levels = request
         .picture

@@ -4,7 +4,7 @@
 //! per pixel across, so the table's trade-off is seen at a glance.
 //!
 //! The colour is the level mode (level 0, the nearest level, the two
-//! levels around lambda, and those with anisotropic probes); a filled dot
+//! levels around lambda, and those with anisotropic probes or EWA); a filled dot
 //! is the bilinear pixel filter, an open ring the nearest. The three
 //! derivative methods of one filter and level mode lie close together;
 //! the anisotropic points are named by their probes.
@@ -21,21 +21,32 @@
 
 use crate::measure::{TextureComparison, TextureMethod};
 use crate::raster::derivatives::Derivatives;
-use crate::raster::texture::{Filter, LevelMode};
+use crate::raster::texture::{Anisotropic, Filter, LevelMode};
 use crate::teaching::antialias_chart::{error_cost_svg, Labels, Plotted};
-use crate::teaching::palette::{Legend, LegendEntry, Mark, TRIANGLE_COLOURS};
+use crate::teaching::palette::{Legend, LegendEntry, Mark, LEVEL_COLOURS, TRIANGLE_COLOURS};
 
 /// The groups of methods by colour, in legend order.
-const GROUPS: [(&str, &str); 4] = [
+const GROUPS: [(&str, &str); 5] = [
     ("level-zero", "level 0 only"),
     ("level-nearest", "nearest level"),
     ("level-linear", "linear levels (trilinear when filled)"),
-    ("anisotropic", "anisotropic, linear levels"),
+    ("anisotropic", "anisotropic probes, linear levels"),
+    ("ewa", "EWA, linear levels"),
+];
+
+/// The groups' colours, from the palette.
+const COLOURS: [[u8; 3]; 5] = [
+    TRIANGLE_COLOURS[0],
+    TRIANGLE_COLOURS[1],
+    TRIANGLE_COLOURS[2],
+    TRIANGLE_COLOURS[3],
+    LEVEL_COLOURS[2],
 ];
 
 /// The index in [`GROUPS`] of `method`.
 fn group(method: &TextureMethod) -> usize {
     match (method.levels, method.anisotropy) {
+        _ if method.anisotropic == Anisotropic::Ewa => 4,
         (_, a) if a > 1 => 3,
         (LevelMode::Zero, _) => 0,
         (LevelMode::Nearest, _) => 1,
@@ -48,7 +59,10 @@ fn group(method: &TextureMethod) -> usize {
 /// one filter and level mode lie close together).
 fn name(method: &TextureMethod) -> String {
     if method.anisotropy > 1 && method.derivatives == Some(Derivatives::Analytic) {
-        format!("{}x", method.anisotropy)
+        match method.anisotropic {
+            Anisotropic::Probes => format!("{}x", method.anisotropy),
+            Anisotropic::Ewa => format!("EWA {}x", method.anisotropy),
+        }
     } else {
         String::new()
     }
@@ -63,7 +77,7 @@ pub fn texture_chart_svg(comparison: &TextureComparison) -> String {
             name: name(&r.method),
             cost: r.ns_per_pixel,
             error: r.rms,
-            rgb: TRIANGLE_COLOURS[group(&r.method)],
+            rgb: COLOURS[group(&r.method)],
             filled: r.method.filter == Filter::Bilinear,
         })
         .collect();
@@ -71,14 +85,14 @@ pub fn texture_chart_svg(comparison: &TextureComparison) -> String {
     for (i, (key, label)) in GROUPS.iter().enumerate() {
         legend.entries.push(LegendEntry {
             key: key.to_string(),
-            rgb: TRIANGLE_COLOURS[i],
+            rgb: COLOURS[i],
             mark: Mark::Fill,
             label: label.to_string(),
         });
     }
     legend.entries.push(LegendEntry {
         key: "nearest-filter".into(),
-        rgb: TRIANGLE_COLOURS[0],
+        rgb: COLOURS[0],
         mark: Mark::Ring,
         label: "open: the nearest pixel filter".into(),
     });

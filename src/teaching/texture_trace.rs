@@ -3,8 +3,9 @@
 //! the pixel centre, its screen-space derivatives by each method
 //! (analytic, quad, forward), `rho` and `lambda` (OpenGL 3.3, section
 //! 3.8.11), the levels the level mode reads (Williams 1983), each level's
-//! bilinear texels and weights, the level weights, and the colour, which
-//! is the colour the floor's frame stores there.
+//! bilinear texels and weights (or, under EWA, Heckbert 1989, the
+//! ellipse and the texels it weighs), the level weights, and the colour,
+//! which is the colour the floor's frame stores there.
 //!
 //! ```
 //! use rasterlab::geometry::Floor;
@@ -22,7 +23,7 @@ use crate::geometry::Floor;
 use crate::raster::derivatives::Derivatives;
 use crate::raster::registry::default_triangle_backend;
 use crate::raster::shader::to_rgba8;
-use crate::raster::texture::{Filter, Footprint, Image, LevelMode, Sampler};
+use crate::raster::texture::{Anisotropic, Ellipse, Filter, Footprint, Image, LevelMode, Sampler};
 use glam::{Vec2, Vec4};
 use std::fmt::Write;
 
@@ -160,14 +161,24 @@ pub fn trace_texture(
     let footprint = Footprint::new(g.dx, g.dy, w, h);
     let probes = footprint.probes(sampler.anisotropy);
     let last = texture.levels().len() - 1;
-    let lambda = probes.lambda;
+    let ellipse = Ellipse::new(footprint.dx, footprint.dy, sampler.anisotropy);
+    let ewa = sampler.anisotropic == Anisotropic::Ewa;
+    let lambda = if ewa { ellipse.lambda() } else { probes.lambda };
     let _ = writeln!(
         out,
         "rho = max(|d(u,v)/dx|, |d(u,v)/dy|) = {:.3}; lambda = log2(rho) = {:.3}",
         footprint.rho(),
         footprint.lambda()
     );
-    if sampler.anisotropy > 1 {
+    if ewa {
+        let _ = writeln!(
+            out,
+            "EWA, at most {}x: the ellipse's axes {} and {} texels, lambda = log2(|minor|) = {lambda:.3}",
+            sampler.anisotropy,
+            pair(ellipse.major),
+            pair(ellipse.minor)
+        );
+    } else if sampler.anisotropy > 1 {
         let _ = writeln!(
             out,
             "anisotropic, at most {}x: N = {} probes along {} texels, each at lambda = log2(rho_max / N) = {lambda:.3}",
@@ -190,7 +201,29 @@ pub fn trace_texture(
         choice.coarse,
         choice.weight
     );
-    let colour = if probes.count > 1 {
+    let colour = if ewa {
+        let levels = texture.levels();
+        let mut at = |level: usize| {
+            let image = &levels[level];
+            let scale = Vec2::new(image.width() as f32, image.height() as f32) / size;
+            let (c, n) = ellipse.filter(image, uv, scale, sampler.wrap);
+            let _ = writeln!(
+                out,
+                "  level {level} ({}x{}): {n} texels inside the ellipse, each weighted \
+                 exp(-2 r^2) - exp(-2): {}",
+                image.width(),
+                image.height(),
+                rgba(c)
+            );
+            c
+        };
+        let fine = at(choice.fine);
+        if choice.coarse == choice.fine {
+            fine
+        } else {
+            fine.lerp(at(choice.coarse), choice.weight)
+        }
+    } else if probes.count > 1 {
         let axis = probes.axis / size;
         let mut sum = Vec4::ZERO;
         for i in 1..=probes.count {
