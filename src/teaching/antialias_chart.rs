@@ -233,10 +233,11 @@ pub(crate) fn error_cost_svg(labels: &Labels, points: &[Plotted], legend: &Legen
     let mut order: Vec<&&Plotted> = shown.iter().collect();
     order.sort_by(|a, b| b.error.total_cmp(&a.error));
     let mut placed: Vec<(f64, f64, f64)> = Vec::new();
+    let mut labels = Vec::new();
     for p in order {
         let (x, y) = (x_of(p.cost), y_of(p.error));
+        dot(&mut m, p, x, y);
         if p.name.is_empty() {
-            dot(&mut m, p, x, y);
             continue;
         }
         let width = p.name.chars().count() as f64 * 7.0;
@@ -247,13 +248,12 @@ pub(crate) fn error_cost_svg(labels: &Labels, points: &[Plotted], legend: &Legen
             label_y = py + 13.0;
         }
         placed.push((x + 8.0, label_y, width));
-        dot(&mut m, p, x, y);
-        m.element(
-            "text",
-            &[("x", &one(x + 8.0)), ("y", &one(label_y))],
-            &p.name,
-        )
-        .newline();
+        labels.push((x + 8.0, label_y, &p.name));
+    }
+    // The names over every dot, so that no dot hides one.
+    for (x, y, name) in labels {
+        m.element("text", &[("x", &one(x)), ("y", &one(y))], name)
+            .newline();
     }
     m.raw(&legend_svg);
     m.close("svg");
