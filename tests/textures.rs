@@ -468,3 +468,39 @@ fn the_texture_trace_ends_at_the_stored_colour() {
     let sky = trace_texture(&floor, (80, 2), Sampler::default(), Derivatives::Quad);
     assert!(sky.unwrap_err().to_string().contains("below the horizon"));
 }
+
+/// `compare --textures`: a ground truth of no samples is refused before
+/// anything is written; a small run writes its chart and prints every
+/// method's row.
+#[test]
+fn compare_textures_writes_its_chart_or_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let compare = |truth: &str, out: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+            .args(["compare", "--textures", "--size", "48x32", "--samples", "1"])
+            .args(["--truth", truth, "--out", out])
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    let refused = compare("0", "none");
+    let why = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        !refused.status.success() && why.contains("1 to 256"),
+        "{why}"
+    );
+    assert!(!dir.path().join("none").exists());
+    let ran = compare("4", "out");
+    assert!(ran.status.success(), "{ran:?}");
+    let table = String::from_utf8_lossy(&ran.stdout);
+    let rows = table
+        .lines()
+        .filter(|l| {
+            ["nearest, ", "bilinear, ", "ewa, "]
+                .iter()
+                .any(|m| l.starts_with(m))
+        })
+        .count();
+    assert_eq!(rows, 38, "{table}");
+    assert!(dir.path().join("out/textures.svg").exists());
+}

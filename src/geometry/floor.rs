@@ -65,6 +65,22 @@ impl Floor {
     /// The name of the floor among the built-in scenes (`render --scene floor`).
     pub const NAME: &'static str = "floor";
 
+    /// The most ground truth samples a pixel side, 256 (65,536 a pixel).
+    pub const MAX_TRUTH_SAMPLES: u32 = 256;
+
+    /// An error unless `n` samples a side are 1 to
+    /// [`MAX_TRUTH_SAMPLES`](Self::MAX_TRUTH_SAMPLES).
+    pub fn check_truth_samples(n: u32) -> Result<()> {
+        if (1..=Floor::MAX_TRUTH_SAMPLES).contains(&n) {
+            Ok(())
+        } else {
+            Err(Error::InvalidArgument(format!(
+                "the ground truth takes 1 to {} samples a side, not {n}",
+                Floor::MAX_TRUTH_SAMPLES
+            )))
+        }
+    }
+
     /// The size `render --scene floor` draws when none is given.
     pub const SIZE: (u32, u32) = (320, 200);
 
@@ -210,13 +226,10 @@ impl Floor {
     /// `n` x `n` bilinear samples of level 0 on a regular grid (each at
     /// the centre of its cell), box-filtered. `None` where the floor does
     /// not cover the pixel's centre, or the plane does not reach a
-    /// sample (past the horizon). `n` is 1 to 256.
+    /// sample (past the horizon). `n` is 1 to
+    /// [`MAX_TRUTH_SAMPLES`](Self::MAX_TRUTH_SAMPLES).
     pub fn ground_truth(&self, x: u32, y: u32, n: u32) -> Result<Option<Vec4>> {
-        if !(1..=256).contains(&n) {
-            return Err(Error::InvalidArgument(format!(
-                "the ground truth takes 1 to 256 samples a side, not {n}"
-            )));
-        }
+        Floor::check_truth_samples(n)?;
         let Some(planes) = self.planes_at(x, y) else {
             return Ok(None);
         };

@@ -187,7 +187,9 @@ pub fn compare_texture_filters(
     samples: usize,
     out: &Path,
 ) -> Result<TextureSummary> {
+    // Bad input first: it leaves no output directory behind.
     let floor = crate::geometry::Floor::new(width, height)?;
+    crate::geometry::Floor::check_truth_samples(truth_samples)?;
     crate::output::check_dir(out)?;
     let comparison = crate::measure::compare_textures(&floor, truth_samples, None, samples)?;
     let chart = out.join("textures.svg");
