@@ -69,6 +69,16 @@ backends='["naive","bbox","scanline","incremental","tiled"]'
 "$bin" render --scene cycle --blend over-straight --depth-test off --sort --scale 6 --out docs/cycle-sorted.png >/dev/null
 "$bin" render --scene cycle --scale 6 --out docs/cycle-opaque.png >/dev/null
 cargo run --release --quiet --example alpha_fringe -- docs/alpha-fringe.png >/dev/null
+# The floor of docs/teaching.md's texture section, filter by filter, the
+# level each pixel reads, and the texture comparison's chart.
+"$bin" render --scene floor --filter nearest --out docs/floor-nearest.png >/dev/null
+"$bin" render --scene floor --out docs/floor-bilinear.png >/dev/null
+"$bin" render --scene floor --mip nearest --derivatives quad --out docs/floor-nearest-level.png >/dev/null
+"$bin" render --scene floor --mip linear --derivatives quad --out docs/floor-trilinear.png >/dev/null
+"$bin" render --scene floor --mip linear --anisotropy 16 --derivatives quad --out docs/floor-anisotropic.png >/dev/null
+"$bin" explain --backend texture --derivatives quad 160 120 --picture docs/floor-levels.png >/dev/null
+"$bin" compare --textures --samples 3 --out "$tmp/textures" >/dev/null
+cp "$tmp/textures/textures.svg" docs/textures-chart.svg
 
 # The screenshots, by headless Chromium.
 if command -v chromium >/dev/null 2>&1; then

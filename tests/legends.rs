@@ -16,11 +16,16 @@
 //! edge and every cell colour they draw is in their legend.
 
 use rasterlab::check::{judge, reference, Case, Fragment, Property};
+use rasterlab::geometry::Floor;
 use rasterlab::geometry::Scene2D;
 use rasterlab::lab::{answer, LabRequest};
+use rasterlab::measure::compare_textures;
 use rasterlab::raster::line::LineOptions;
 use rasterlab::raster::{line_backend, triangle_backend, FillRule};
-use rasterlab::teaching::{CompareInput, GridPicture, LineEnds, Report};
+use rasterlab::raster::{Derivatives, Sampler};
+use rasterlab::teaching::{
+    texture_chart_svg, CompareInput, GridPicture, LevelPicture, LineEnds, Report,
+};
 use std::collections::BTreeSet;
 
 /// The least CIE76 distance between two colours that only their colour
@@ -475,6 +480,19 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
         let entries = legend_entries(&html[start..end]);
         checked("compare, the anti-aliasing chart", &entries, &mut closest);
     }
+
+    // The texture pictures: the comparison's chart (from a small run)
+    // and the floor coloured by mip level, with the traced pixel framed.
+    let floor = Floor::new(48, 32).unwrap();
+    let comparison = compare_textures(&floor, 2, None, 1).unwrap();
+    let entries = legend_entries(&texture_chart_svg(&comparison));
+    assert_eq!(entries.len(), 6);
+    checked("the texture chart", &entries, &mut closest);
+    let big = Floor::new(160, 100).unwrap();
+    let levels = LevelPicture::new(&big, Sampler::default(), Derivatives::Quad, Some((80, 60)));
+    let entries = legend_entries(&levels.to_svg());
+    assert!(entries.len() >= 6, "{entries:?}");
+    checked("the mip level picture", &entries, &mut closest);
 
     // check's report: the counterexample picture and its page. Two
     // triangles sharing a diagonal, one fragment missing, one drawn off

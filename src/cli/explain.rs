@@ -3,9 +3,10 @@
 use super::args::{fill_rule, msaa, rule_for_lines, Size};
 use clap::Args;
 use rasterlab::raster::{
-    backend, Backend, Blend, BlendMode, DepthState, FillRule, MixSpace, SamplePattern,
+    backend, Anisotropic, Backend, Blend, BlendMode, DepthState, Derivatives, FillRule, Filter,
+    LevelMode, MixSpace, SamplePattern,
 };
-use rasterlab::teaching::{explain, Blending, ExplainRequest, GridPicture};
+use rasterlab::teaching::{explain, Blending, ExplainRequest, GridPicture, Texturing};
 use rasterlab::Result;
 use std::path::PathBuf;
 
@@ -17,7 +18,9 @@ pub struct ExplainArgs {
     /// coordinates); depth-buffer (triangles of 7
     /// numbers each, x0 y0 x1 y1 x2 y2 z, or none for the course's
     /// depth-buffer example); blend (one pixel's fragments and blends:
-    /// x y, a pixel of --scene). Any other back-end: --picture only.
+    /// x y, a pixel of --scene); texture (one pixel's texture lookup on
+    /// the receding floor of `render --scene floor`: x y). Any other
+    /// back-end: --picture only.
     #[arg(long)]
     backend: String,
     /// The blend trace's built-in scene (default transparent; see
@@ -58,6 +61,22 @@ pub struct ExplainArgs {
     /// sample by sample.
     #[arg(long, value_name = "N", value_parser = msaa, allow_negative_numbers = true)]
     msaa: Option<SamplePattern>,
+    /// The texture trace's pixel filter: nearest, bilinear (default).
+    #[arg(long)]
+    filter: Option<Filter>,
+    /// The texture trace's level mode: zero, nearest, linear (default).
+    #[arg(long)]
+    mip: Option<LevelMode>,
+    /// The texture trace's most anisotropic probes, 1 (default) to 16.
+    #[arg(long, value_name = "N")]
+    anisotropy: Option<u32>,
+    /// The texture trace's anisotropic filter: probes (default) or ewa.
+    #[arg(long)]
+    anisotropic: Option<Anisotropic>,
+    /// The texture trace's derivative method: analytic (default), quad,
+    /// forward.
+    #[arg(long)]
+    derivatives: Option<Derivatives>,
     /// The coordinates.
     #[arg(allow_negative_numbers = true)]
     coordinates: Vec<f64>,
@@ -88,10 +107,31 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
             depth: args.depth_test,
             sort: args.sort,
         },
+        texturing: texturing(args),
     })?;
     if let (Some(path), Some(picture)) = (&args.picture, &explanation.picture) {
         picture.save(path)?;
         eprintln!("picture: {}", path.display());
     }
+    if let (Some(path), Some(picture)) = (&args.picture, &explanation.levels) {
+        picture.save(path)?;
+        eprintln!("picture: {}", path.display());
+    }
     super::print::out(explanation.text)
+}
+
+/// The texture trace's choices: those given, the others trilinear with
+/// analytic derivatives.
+fn texturing(args: &ExplainArgs) -> Texturing {
+    let d = Texturing::default();
+    Texturing {
+        sampler: rasterlab::raster::Sampler {
+            filter: args.filter.unwrap_or(d.sampler.filter),
+            levels: args.mip.unwrap_or(d.sampler.levels),
+            anisotropy: args.anisotropy.unwrap_or(d.sampler.anisotropy),
+            anisotropic: args.anisotropic.unwrap_or(d.sampler.anisotropic),
+            ..d.sampler
+        },
+        derivatives: args.derivatives.unwrap_or(d.derivatives),
+    }
 }

@@ -8,8 +8,8 @@ use clap::Args;
 use rasterlab::geometry::{CullMode, FrontFace, Shading};
 use rasterlab::measure::{MeshOverrides, RenderInput, RenderRequest};
 use rasterlab::raster::{
-    Blend, BlendMode, DepthState, Derivatives, FillRule, Filter, Interpolation, LevelMode,
-    MixSpace, SamplePattern, Wrap, WriteMask,
+    Anisotropic, Blend, BlendMode, DepthState, Derivatives, FillRule, Filter, Interpolation,
+    LevelMode, MixSpace, SamplePattern, Wrap, WriteMask,
 };
 use rasterlab::{Error, Result};
 use std::path::PathBuf;
@@ -36,8 +36,9 @@ pub struct RenderArgs {
     /// buffer: nothing read or written, the fastest colour-only fill).
     #[arg(long, default_value = "less", value_parser = DepthState::from_name)]
     depth_test: DepthState,
-    /// Built-in 2D scene instead of a file: depth-example, split-square,
-    /// pinwheel, fan, transparent, cycle.
+    /// Built-in scene instead of a file: depth-example, split-square,
+    /// pinwheel, fan, transparent, cycle (2D), or floor (a checkerboard
+    /// receding to the horizon, 320x200, for the texture options).
     #[arg(long, conflicts_with = "input")]
     scene: Option<String>,
     /// Output PNG file.
@@ -105,6 +106,10 @@ pub struct MeshArgs {
     /// The most anisotropic probes along the footprint, 1 (default) to 16.
     #[arg(long, value_name = "N")]
     anisotropy: Option<u32>,
+    /// How anisotropy is filtered: probes (the extension's example,
+    /// default) or ewa (Heckbert's elliptical weighted average).
+    #[arg(long)]
+    anisotropic: Option<Anisotropic>,
     /// Texture coordinate derivatives for --mip and --anisotropy: analytic
     /// (default), quad (2x2 quads, fine), forward (CS184).
     #[arg(long)]
@@ -165,6 +170,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             mip: m.mip,
             wrap: m.wrap,
             anisotropy: m.anisotropy,
+            anisotropic: m.anisotropic,
             derivatives: m.derivatives,
             interpolation: m.interpolation,
             cull: m.cull,

@@ -17,7 +17,9 @@
 //! * the text inputs of the command line (triangle soups, polygons, line
 //!   sets: [`read_shapes`]), small 2D scenes of screen-space triangles
 //!   ([`Scene2D`]: the course's examples), and the fragments a back-end
-//!   emits for a text file's shapes ([`list_fragments`]).
+//!   emits for a text file's shapes ([`list_fragments`]);
+//! * the receding checkerboard floor that texture filtering is taught
+//!   on, with each pixel's ground truth ([`Floor`]).
 //!
 //! ```
 //! use rasterlab::geometry::{process_triangles, ClipVertex, PipelineOptions, Viewport};
@@ -34,6 +36,7 @@
 //! assert!(!geometry.setups.is_empty());
 //! ```
 
+pub(crate) mod floor;
 mod frame_times;
 pub(crate) mod input;
 // Some of it only the program calls: unused without the `cli` feature.
@@ -45,6 +48,7 @@ pub(crate) mod polygon;
 pub(crate) mod render;
 pub(crate) mod scene;
 
+pub use floor::{Floor, SKY};
 pub use frame_times::FrameTimes;
 pub(crate) use frame_times::{milliseconds, optional_milliseconds};
 pub use input::{parse_shapes, read_shapes, Look, Shapes};

@@ -17,8 +17,10 @@
 //! ```
 
 mod settings;
+mod vertex_order;
 
 pub use settings::{RenderSettings, Shading};
+use vertex_order::first_use_order;
 
 use crate::error::{Error, Result};
 use crate::geometry::frame_times::FrameTimes;
@@ -28,6 +30,8 @@ use crate::geometry::pipeline::Camera;
 use crate::geometry::pipeline::{
     self, BatchDraw, DrawInput, Geometry, GeometryInParts, GeometryStats, PipelineOptions, Viewport,
 };
+use crate::raster::derivatives::{count_quad_helpers, Derivatives};
+use crate::raster::edge::PixelRect;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::multisample_stage::{draw_multisampled, MultisampleTarget};
@@ -73,34 +77,6 @@ pub struct Frame {
     pub target: RenderTarget,
     /// The pipeline's and the back-end's work, and the times.
     pub stats: FrameStats,
-}
-
-/// New vertex numbers in the order the triangles first use the vertices
-/// (unused vertices after them, in their order): `new_index[old]`.
-///
-/// Drawing then reads the vertex data nearly in order: the vertex shader
-/// pass as before, and the fragment stage, which fetches a fragment's
-/// three vertices, finds those of consecutive triangles side by side
-/// instead of scattered over the mesh. Nothing computed changes (each
-/// vertex is shaded by itself, the triangles keep their order), so the
-/// image is the same bits. `None` when an index is out of range: the
-/// pipeline then reports it as it stands.
-fn first_use_order(vertex_count: usize, triangles: &[[u32; 3]]) -> Option<Vec<u32>> {
-    const UNSEEN: u32 = u32::MAX;
-    let mut new_index = vec![UNSEEN; vertex_count];
-    let mut next = 0u32;
-    for &i in triangles.iter().flatten() {
-        let slot = new_index.get_mut(i as usize)?;
-        if *slot == UNSEEN {
-            *slot = next;
-            next += 1;
-        }
-    }
-    for slot in new_index.iter_mut().filter(|s| **s == UNSEEN) {
-        *slot = next;
-        next += 1;
-    }
-    Some(new_index)
 }
 
 /// The fragment shader of each [`Shading`], kept as its own type (not
@@ -406,7 +382,7 @@ impl MeshRenderer {
         shader.light = textured.light;
         let geometry_time = frame_start.elapsed();
         let start = Instant::now();
-        let work = pipeline::draw_clearing(
+        let mut work = pipeline::draw_clearing(
             &geometry,
             backend,
             &shader,
@@ -415,6 +391,10 @@ impl MeshRenderer {
             Clear::all(self.settings.background),
             target,
         );
+        if self.settings.derivatives == Derivatives::Quad {
+            let rect = PixelRect::of_target(target.width(), target.height());
+            work.helpers = count_quad_helpers(&geometry.setups, backend, rect);
+        }
         if let Some(line_backend) = self.settings.wireframe {
             let lines = pipeline::process_lines(
                 &self.vertices,
@@ -722,13 +702,6 @@ mod tests {
             "{:?}",
             result.err()
         );
-    }
-
-    #[test]
-    fn first_use_order_is_a_permutation_in_order_of_use() {
-        let order = first_use_order(6, &[[4, 2, 4], [0, 2, 3]]).unwrap();
-        assert_eq!(order, vec![2, 4, 1, 3, 0, 5]);
-        assert_eq!(first_use_order(3, &[[0, 1, 3]]), None);
     }
 
     /// The renderer's vertex renumbering changes no bit: each back-end

@@ -323,7 +323,11 @@ impl Scene2D {
             _ => Err(Error::UnknownName {
                 what: "scene",
                 name: name.to_string(),
-                known: Scene2D::BUILT_IN.join(", "),
+                known: format!(
+                    "{}, {}",
+                    Scene2D::BUILT_IN.join(", "),
+                    crate::geometry::Floor::NAME
+                ),
             }),
         }
     }

@@ -17,7 +17,7 @@
 use crate::error::Result;
 use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::CullMode;
-use crate::geometry::render::{MeshRenderer, RenderSettings};
+use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::markup::Markup;
 use crate::measure::context::Context;
 use crate::measure::cpu::CpuUse;
@@ -25,9 +25,11 @@ use crate::measure::table::significant;
 use crate::measure::table::Table;
 use crate::measure::timing::{time_runs, Spread, Timing};
 use crate::measure::workload::{self, LineWorkload};
+use crate::raster::derivatives::Derivatives;
 use crate::raster::descriptor::{within_budget, WorkBudget};
-use crate::raster::registry::{line_backends, triangle_backends};
+use crate::raster::registry::{default_triangle_backend, line_backends, triangle_backends};
 use crate::raster::target::RenderTarget;
+use crate::raster::texture::LevelMode;
 use serde::Serialize;
 use std::fmt;
 use std::path::Path;
@@ -67,6 +69,10 @@ pub struct Measurement {
     /// CPU time per run of each working thread, and time spent waiting
     /// for a core (`None` where the system does not tell).
     pub cpu: Option<CpuUse>,
+    /// The helper pixels a run shaded beside its `pixels`, where its
+    /// texture's derivatives are taken in 2x2 quads (the meshes'
+    /// `-textured` workloads); `None` elsewhere.
+    pub helpers: Option<u64>,
 }
 
 /// A whole `rasterlab bench` run: its context and its figures. Its
@@ -174,6 +180,7 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
             gpixels_per_s: pixels as f64 / s / 1e9,
             vs_fastest: 1.0,
             cpu: timing.cpu,
+            helpers: None,
         });
     };
     let mut triangle_workloads = vec![workload::fill(w, h, 1)];
@@ -219,7 +226,7 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
         })
         .sum::<usize>()
         + line_workloads.len() * (line_backends().len() + 1)
-        + meshes.len() * mesh_backends.len();
+        + meshes.len() * (mesh_backends.len() + 1);
     let mut done = 0;
     let mut step = |workload: &str, backend: &str| {
         progress(Progress {
@@ -257,6 +264,7 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
         measure(&work.name, "fast-bresenham", count, timing, pixels);
     }
 
+    let mut helpers = Vec::new();
     for (name, mesh) in &meshes {
         let mut settings = RenderSettings {
             width: w,
@@ -283,6 +291,35 @@ pub fn run(options: &BenchOptions, progress: &mut dyn FnMut(Progress)) -> Result
                 return Err(e);
             }
             measure(name, b.name(), mesh.triangles.len() as u64, timing, pixels);
+        }
+        // Textured, trilinear, the derivatives in 2x2 quads as GPUs take
+        // them: the helper pixels the quads shade beside the fragments.
+        let textured = RenderSettings {
+            shading: Shading::Texture,
+            mip: LevelMode::Linear,
+            derivatives: Derivatives::Quad,
+            ..settings
+        };
+        let renderer = MeshRenderer::new(mesh, textured)?;
+        let backend = default_triangle_backend();
+        let workload = format!("{name}-textured");
+        step(&workload, backend.name());
+        let (timing, work) = time_runs(options.samples, || {
+            renderer.render_into(backend, &mut target)
+        });
+        let work = work?.work;
+        measure(
+            &workload,
+            backend.name(),
+            mesh.triangles.len() as u64,
+            timing,
+            work.fragments,
+        );
+        helpers.push((workload, work.helpers));
+    }
+    for (workload, count) in helpers {
+        for m in results.iter_mut().filter(|m| m.workload == workload) {
+            m.helpers = Some(count);
         }
     }
 
@@ -348,6 +385,18 @@ impl fmt::Display for BenchReport {
     /// The context, the table, and what "vs fastest" means.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}{}", self.context, self.table())?;
+        for m in &self.results {
+            if let Some(helpers) = m.helpers {
+                let shaded = (m.pixels + helpers).max(1);
+                writeln!(
+                    f,
+                    "{} (trilinear, quad derivatives): {} fragments and {helpers} helper pixels shaded, helpers {:.1}% of them",
+                    m.workload,
+                    m.pixels,
+                    100.0 * helpers as f64 / shaded as f64
+                )?;
+            }
+        }
         writeln!(
             f,
             "vs fastest: the median time over that of {} (1x = fastest; the chart's baseline too)",

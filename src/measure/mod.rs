@@ -22,7 +22,10 @@
 //!   skipped row when they are not: [`find`], [`Skipped`];
 //! * plain-text tables with aligned columns: [`Table`];
 //! * anti-aliasing compared: each sampling method's coverage against the
-//!   exact area ([`compare_antialiasing`], [`Method`]).
+//!   exact area ([`compare_antialiasing`], [`Method`]);
+//! * texture filtering compared: each filter, level mode, derivative
+//!   method and anisotropy on the receding floor against the texture over
+//!   each pixel, and its cost ([`compare_textures`]).
 //!
 //! ```
 //! use rasterlab::measure::{sized, time_runs};
@@ -47,9 +50,11 @@ pub(crate) mod context;
 mod cpu;
 pub(crate) mod data;
 mod fast_lines;
+mod render_floor;
 pub(crate) mod render_request;
 pub(crate) mod rounds;
 mod table;
+pub(crate) mod texture_compare;
 mod timing;
 pub(crate) mod workload;
 
@@ -69,6 +74,7 @@ pub use rounds::{
     ratio_header, Contender, Figure, Ratio, Side, WarmRatio, Workload, WorkloadResult,
 };
 pub use table::{significant, Table};
+pub use texture_compare::{compare_textures, TextureComparison, TextureMethod, TextureRow};
 pub use timing::{time_runs, Spread, Timing};
 pub use workload::{fill, long_lines, short_lines, sized, slivers, LineWorkload, TriangleWorkload};
 // What only the `rasterlab` program uses; absent without the `cli` feature.

@@ -28,6 +28,7 @@ use crate::geometry::mesh::Mesh;
 use crate::geometry::pipeline::{CullMode, FrontFace, GeometryStats, PipelineOptions};
 use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::geometry::scene::Scene2D;
+use crate::geometry::Floor;
 use crate::geometry::{milliseconds, optional_milliseconds, FrameTimes};
 use crate::measure::workload::LineWorkload;
 use crate::raster::derivatives::Derivatives;
@@ -43,7 +44,7 @@ use crate::raster::registry::{
 use crate::raster::shader::{Filter, Flat};
 use crate::raster::stage::{Blend, Interpolation};
 use crate::raster::target::{DepthState, RenderTarget, MAX_TARGET_SIDE};
-use crate::raster::texture::{LevelMode, Texture, Wrap};
+use crate::raster::texture::{Anisotropic, LevelMode, Texture, Wrap};
 use serde::Serialize;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -63,7 +64,8 @@ pub enum RenderInput {
     /// A file: a mesh (`.ply`, `.ply.gz`, `.obj`), or a triangle soup or
     /// line set in the text format of `rasterlab fragments`.
     File(PathBuf),
-    /// A built-in 2D scene by name (see [`Scene2D::built_in`]).
+    /// A built-in scene by name: a 2D one (see [`Scene2D::built_in`]), or
+    /// the receding floor ([`Floor::NAME`]).
     Scene(String),
 }
 
@@ -84,6 +86,8 @@ pub struct MeshOverrides {
     pub wrap: Option<Wrap>,
     /// The most anisotropic probes of [`Shading::Texture`].
     pub anisotropy: Option<u32>,
+    /// How [`Shading::Texture`]'s anisotropy is filtered.
+    pub anisotropic: Option<Anisotropic>,
     /// How [`Shading::Texture`]'s derivatives are computed.
     pub derivatives: Option<Derivatives>,
     /// Perspective-correct or linear varyings.
@@ -112,6 +116,7 @@ impl MeshOverrides {
             ("--mip", self.mip.is_some()),
             ("--wrap", self.wrap.is_some()),
             ("--anisotropy", self.anisotropy.is_some()),
+            ("--anisotropic", self.anisotropic.is_some()),
             ("--derivatives", self.derivatives.is_some()),
             ("--interpolation", self.interpolation.is_some()),
             ("--cull", self.cull.is_some()),
@@ -144,6 +149,7 @@ impl MeshOverrides {
             mip: self.mip.unwrap_or(settings.mip),
             wrap: self.wrap.unwrap_or(settings.wrap),
             anisotropy: self.anisotropy.unwrap_or(settings.anisotropy),
+            anisotropic: self.anisotropic.unwrap_or(settings.anisotropic),
             derivatives: self.derivatives.unwrap_or(settings.derivatives),
             interpolation: self.interpolation.unwrap_or(settings.interpolation),
             pipeline,
@@ -227,6 +233,9 @@ impl RenderRequest {
             return Err(Error::InvalidArgument("--frames must be at least 1".into()));
         }
         match &self.input {
+            RenderInput::Scene(name) if name == Floor::NAME => {
+                self.render_floor(frame_done).map(RenderReport::Drawing)
+            }
             RenderInput::File(path) if Mesh::is_mesh_path(path) => {
                 self.render_mesh(path, frame_done).map(RenderReport::Mesh)
             }
@@ -631,13 +640,14 @@ impl fmt::Display for RenderReport {
                 )?;
                 writeln!(
                     f,
-                    "{} at {}x{}{}: {} samples tested, {} fragments",
+                    "{} at {}x{}{}: {} samples tested, {} fragments{}",
                     r.backend,
                     r.width,
                     r.height,
                     multisampled(r.samples),
                     r.work.samples_tested,
-                    r.work.fragments
+                    r.work.fragments,
+                    helpers(&r.work)
                 )?;
                 writeln!(f, "time per frame (median of {}): {}", r.frames, r.median)?;
                 writeln!(f, "wrote {}", r.out.display())
@@ -645,12 +655,13 @@ impl fmt::Display for RenderReport {
             RenderReport::Drawing(r) => {
                 writeln!(
                     f,
-                    "{}{}: {} primitives, {} samples tested, {} fragments -> {}",
+                    "{}{}: {} primitives, {} samples tested, {} fragments{} -> {}",
                     r.backend,
                     multisampled(r.samples),
                     r.work.primitives,
                     r.work.samples_tested,
                     r.work.fragments,
+                    helpers(&r.work),
                     r.out.display()
                 )?;
                 if r.frames > 1 {
@@ -659,6 +670,19 @@ impl fmt::Display for RenderReport {
                 Ok(())
             }
         }
+    }
+}
+
+/// ", N helper pixels (S% of those shaded)" where quads shaded helpers.
+fn helpers(work: &WorkCounters) -> String {
+    if work.helpers > 0 {
+        format!(
+            ", {} helper pixels ({:.1}% of those shaded)",
+            work.helpers,
+            100.0 * work.helper_share()
+        )
+    } else {
+        String::new()
     }
 }
 

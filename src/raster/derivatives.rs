@@ -49,9 +49,11 @@
 //! }
 //! ```
 
-use crate::raster::edge::TriangleSetup;
+use crate::raster::edge::{PixelRect, TriangleSetup};
 use crate::raster::fixed::SUBPIXEL_SCALE;
+use crate::raster::fragment::FragmentList;
 use crate::raster::primitive::ShadedVertex;
+use crate::raster::triangle::TriangleRasterizer;
 use glam::{DVec2, Vec2};
 
 /// How the screen-space derivatives of a fragment's texture coordinate
@@ -217,13 +219,31 @@ impl UvPlanes {
 /// less the fragments (quad overshading). `pixels` are one triangle's
 /// fragments, each pixel once.
 pub fn quad_helpers(pixels: impl IntoIterator<Item = (u32, u32)>) -> u64 {
-    let mut quads = std::collections::HashSet::new();
-    let mut count = 0u64;
-    for (x, y) in pixels {
-        quads.insert((x / 2, y / 2));
-        count += 1;
-    }
+    let mut quads: Vec<(u32, u32)> = pixels.into_iter().map(|(x, y)| (y / 2, x / 2)).collect();
+    let count = quads.len() as u64;
+    quads.sort_unstable();
+    quads.dedup();
     4 * quads.len() as u64 - count
+}
+
+/// The helper pixels of drawing `setups` with `backend` on the pixels of
+/// `rect`: each triangle rasterized on its own and its fragments counted
+/// by [`quad_helpers`]. A triangle's fragments are never shaded twice,
+/// and two triangles never share a quad's helpers, as on a GPU, where
+/// each triangle's quads are shaded apart.
+pub fn count_quad_helpers(
+    setups: &[TriangleSetup],
+    backend: &dyn TriangleRasterizer,
+    rect: PixelRect,
+) -> u64 {
+    let mut list = FragmentList::default();
+    let mut helpers = 0;
+    for setup in setups {
+        list.triangles.clear();
+        backend.rasterize(std::slice::from_ref(setup), rect, &mut list);
+        helpers += quad_helpers(list.triangles.iter().map(|f| (f.x, f.y)));
+    }
+    helpers
 }
 
 #[cfg(test)]

@@ -119,6 +119,12 @@ pub struct WorkCounters {
     /// Rows (scanline) or blocks (tiled) visited (on several threads, a
     /// block row cut by a band's edge once per band).
     pub spans: u64,
+    /// Helper pixels: where a texture's derivatives are taken in 2x2 quads
+    /// ([`Derivatives::Quad`](crate::raster::Derivatives)), the pixels of
+    /// the quads each triangle's fragments touch that the triangle does
+    /// not cover, shaded only to take differences (quad overshading; see
+    /// [`quad_helpers`](crate::raster::quad_helpers)). 0 otherwise.
+    pub helpers: u64,
 }
 
 impl WorkCounters {
@@ -128,6 +134,18 @@ impl WorkCounters {
         self.samples_tested += other.samples_tested;
         self.fragments += other.fragments;
         self.spans += other.spans;
+        self.helpers += other.helpers;
+    }
+
+    /// The share of the shaded pixels (fragments and helpers) that are
+    /// helpers: 0 without quads, 3/4 for triangles of one pixel each.
+    pub fn helper_share(&self) -> f64 {
+        let shaded = self.fragments + self.helpers;
+        if shaded == 0 {
+            0.0
+        } else {
+            self.helpers as f64 / shaded as f64
+        }
     }
 
     /// Samples tested per fragment emitted (0 when nothing was emitted).

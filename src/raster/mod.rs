@@ -76,7 +76,7 @@ pub(crate) mod vector;
 
 pub use area::{area_coverage, AreaFragment};
 pub use compact::{SmallTriangle, MAX_SPAN};
-pub use derivatives::{quad_helpers, Derivatives, Gradient, UvPlanes};
+pub use derivatives::{count_quad_helpers, quad_helpers, Derivatives, Gradient, UvPlanes};
 pub use descriptor::{within_budget, CostClass, Descriptor, Role, WorkBudget};
 pub use edge::{
     EdgeFunction, EdgeKind, FillRule, PixelRect, TriangleSetup, OFFSCREEN_POINT,
@@ -103,8 +103,8 @@ pub use stage::{Blend, BlendMode, FragmentStage, Interpolation, WriteMask};
 pub use supersample::{supersample, SampleCount};
 pub use target::{Clear, DepthState, DepthTest, RenderTarget, TargetRows, MAX_TARGET_SIDE};
 pub use texture::{
-    Filter, Footprint, Image, LevelMode, Sampler, Texture, Wrap, MAX_ANISOTROPY, MAX_TEXTURE_SIDE,
-    MAX_TEXTURE_TEXELS,
+    Anisotropic, Ellipse, Filter, Footprint, Image, LevelMode, Sampler, Texture, Wrap,
+    MAX_ANISOTROPY, MAX_TEXTURE_SIDE, MAX_TEXTURE_TEXELS,
 };
 // What only the `rasterlab` program uses; absent without the `cli` feature.
 #[cfg(feature = "cli")]

@@ -46,14 +46,71 @@ const PLOT_H: f64 = 300.0;
 /// The chart of `points` as an SVG picture, titled `title`, with its axes
 /// and a legend. Points whose cost is not a positive number are left out.
 pub fn antialias_chart_svg(title: &str, points: &[ChartPoint]) -> String {
-    let shown: Vec<&ChartPoint> = points
+    let method = Role::Drawn.rgb();
+    let peer = Role::Geometry.rgb();
+    let mut legend = Legend::default().with_mark(Role::Drawn, Mark::Fill, "rasterlab's methods");
+    if points.iter().any(|p| p.peer) {
+        legend = legend.with_mark(
+            Role::Geometry,
+            Mark::Ring,
+            "2D libraries' anti-aliased fills",
+        );
+    }
+    let plotted: Vec<Plotted> = points
         .iter()
-        .filter(|p| p.ns_per_pair > 0.0 && p.ns_per_pair.is_finite() && p.rms.is_finite())
+        .map(|p| Plotted {
+            name: p.name.clone(),
+            cost: p.ns_per_pair,
+            error: p.rms,
+            rgb: if p.peer { peer } else { method },
+            filled: !p.peer,
+        })
+        .collect();
+    let labels = Labels {
+        heading: format!("Anti-aliasing: error against cost ({title})"),
+        cost: "cost: ns per (pixel, triangle) pair, log scale",
+        error: "error: RMS per triangle against the exact area",
+    };
+    error_cost_svg(&labels, &plotted, &legend)
+}
+
+/// A point of an error-against-cost chart, drawn as it says.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Plotted {
+    /// Written beside the point.
+    pub name: String,
+    /// Across, on a log scale.
+    pub cost: f64,
+    /// Up the page.
+    pub error: f64,
+    /// Its colour, one of the palette's.
+    pub rgb: [u8; 3],
+    /// A filled dot, or an open ring.
+    pub filled: bool,
+}
+
+/// The texts of an error-against-cost chart.
+pub(crate) struct Labels {
+    /// The title.
+    pub heading: String,
+    /// Under the cost axis.
+    pub cost: &'static str,
+    /// Beside the error axis.
+    pub error: &'static str,
+}
+
+/// The chart of `points`, error up and cost across on a log scale, with
+/// `legend` under it. Points whose cost is not a positive number are left
+/// out.
+pub(crate) fn error_cost_svg(labels: &Labels, points: &[Plotted], legend: &Legend) -> String {
+    let shown: Vec<&Plotted> = points
+        .iter()
+        .filter(|p| p.cost > 0.0 && p.cost.is_finite() && p.error.is_finite())
         .collect();
     let plot_w = WIDTH - LEFT - RIGHT;
     // Whole decades around the costs, the error from 0 to a round top.
     let (lo, hi) = shown.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
-        (lo.min(p.ns_per_pair), hi.max(p.ns_per_pair))
+        (lo.min(p.cost), hi.max(p.cost))
     });
     let (d0, d1) = if shown.is_empty() {
         (1.0, 3.0)
@@ -63,21 +120,11 @@ pub fn antialias_chart_svg(title: &str, points: &[ChartPoint]) -> String {
             hi.log10().ceil().max(lo.log10().floor() + 1.0),
         )
     };
-    let top_error = shown.iter().map(|p| p.rms).fold(0.0, f64::max);
+    let top_error = shown.iter().map(|p| p.error).fold(0.0, f64::max);
     let y_max = (top_error * 10.0).ceil().max(1.0) / 10.0;
     let x_of = |ns: f64| LEFT + (ns.log10() - d0) / (d1 - d0) * plot_w;
     let y_of = |e: f64| TOP + PLOT_H - e / y_max * PLOT_H;
     let one = |v: f64| format!("{v:.1}");
-    let method = Role::Drawn.rgb();
-    let peer = Role::Geometry.rgb();
-    let mut legend = Legend::default().with_mark(Role::Drawn, Mark::Fill, "rasterlab's methods");
-    if shown.iter().any(|p| p.peer) {
-        legend = legend.with_mark(
-            Role::Geometry,
-            Mark::Ring,
-            "2D libraries' anti-aliased fills",
-        );
-    }
     let (legend_svg, legend_h) = legend.to_svg(LEFT, TOP + PLOT_H + 48.0, WIDTH - LEFT - 10.0);
     let height = TOP + PLOT_H + 52.0 + legend_h;
     let mut m = Markup::new();
@@ -105,7 +152,7 @@ pub fn antialias_chart_svg(title: &str, points: &[ChartPoint]) -> String {
             ("font-size", &15),
             ("font-weight", &"bold"),
         ],
-        &format!("Anti-aliasing: error against cost ({title})"),
+        &labels.heading,
     )
     .newline();
     // The grid: decades across, tenths of the error up.
@@ -165,7 +212,7 @@ pub fn antialias_chart_svg(title: &str, points: &[ChartPoint]) -> String {
             ("y", &one(bottom + 36.0)),
             ("text-anchor", &"middle"),
         ],
-        "cost: ns per (pixel, triangle) pair, log scale",
+        labels.cost,
     );
     m.element(
         "text",
@@ -178,16 +225,21 @@ pub fn antialias_chart_svg(title: &str, points: &[ChartPoint]) -> String {
                 &format_args!("rotate(-90 16 {})", one(TOP + PLOT_H / 2.0)),
             ),
         ],
-        "error: RMS per triangle against the exact area",
+        labels.error,
     )
     .newline();
     // Labels are placed from the top down, each moved down below any
     // earlier one it would overwrite.
-    let mut order: Vec<&&ChartPoint> = shown.iter().collect();
-    order.sort_by(|a, b| b.rms.total_cmp(&a.rms));
+    let mut order: Vec<&&Plotted> = shown.iter().collect();
+    order.sort_by(|a, b| b.error.total_cmp(&a.error));
     let mut placed: Vec<(f64, f64, f64)> = Vec::new();
+    let mut labels = Vec::new();
     for p in order {
-        let (x, y) = (x_of(p.ns_per_pair), y_of(p.rms));
+        let (x, y) = (x_of(p.cost), y_of(p.error));
+        dot(&mut m, p, x, y);
+        if p.name.is_empty() {
+            continue;
+        }
         let width = p.name.chars().count() as f64 * 7.0;
         let mut label_y = y + 4.0;
         while let Some(&(_, py, _)) = placed.iter().find(|&&(px, py, pw)| {
@@ -196,32 +248,36 @@ pub fn antialias_chart_svg(title: &str, points: &[ChartPoint]) -> String {
             label_y = py + 13.0;
         }
         placed.push((x + 8.0, label_y, width));
-        let colour = crate::teaching::palette::colour_hex(if p.peer { peer } else { method });
-        let (fill, stroke) = if p.peer {
-            ("white", colour.as_str())
-        } else {
-            (colour.as_str(), colour.as_str())
-        };
-        m.empty(
-            "circle",
-            &[
-                ("class", &"point"),
-                ("cx", &one(x)),
-                ("cy", &one(y)),
-                ("r", &5),
-                ("fill", &fill),
-                ("stroke", &stroke),
-                ("stroke-width", &2),
-            ],
-        );
-        m.element(
-            "text",
-            &[("x", &one(x + 8.0)), ("y", &one(label_y))],
-            &p.name,
-        )
-        .newline();
+        labels.push((x + 8.0, label_y, &p.name));
+    }
+    // The names over every dot, so that no dot hides one.
+    for (x, y, name) in labels {
+        m.element("text", &[("x", &one(x)), ("y", &one(y))], name)
+            .newline();
     }
     m.raw(&legend_svg);
     m.close("svg");
     m.finish()
+}
+
+/// Point `p`'s dot at `(x, y)`: filled, or an open ring.
+fn dot(m: &mut Markup, p: &Plotted, x: f64, y: f64) {
+    let colour = crate::teaching::palette::colour_hex(p.rgb);
+    let (fill, stroke) = if p.filled {
+        (colour.as_str(), colour.as_str())
+    } else {
+        ("white", colour.as_str())
+    };
+    m.empty(
+        "circle",
+        &[
+            ("class", &"point"),
+            ("cx", &format!("{x:.1}")),
+            ("cy", &format!("{y:.1}")),
+            ("r", &5),
+            ("fill", &fill),
+            ("stroke", &stroke),
+            ("stroke-width", &2),
+        ],
+    );
 }

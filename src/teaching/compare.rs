@@ -167,3 +167,40 @@ impl fmt::Display for CompareSummary {
         writeln!(f, "report: {}", self.path.display())
     }
 }
+
+/// The texture filters compared on the receding floor (`compare
+/// --textures`): the table, and where its chart was written.
+pub struct TextureSummary {
+    /// Every method's error and cost.
+    pub comparison: crate::measure::TextureComparison,
+    /// The chart (`textures.svg` in the output folder).
+    pub chart: PathBuf,
+}
+
+/// [`compare_textures`](crate::measure::compare_textures) on the floor at
+/// `width` x `height`, the ground truth `truth_samples` a side, each frame
+/// timed `samples` times; the chart written to `out/textures.svg`.
+pub fn compare_texture_filters(
+    width: u32,
+    height: u32,
+    truth_samples: u32,
+    samples: usize,
+    out: &Path,
+) -> Result<TextureSummary> {
+    // Bad input first: it leaves no output directory behind.
+    let floor = crate::geometry::Floor::new(width, height)?;
+    crate::geometry::Floor::check_truth_samples(truth_samples)?;
+    crate::output::check_dir(out)?;
+    let comparison = crate::measure::compare_textures(&floor, truth_samples, None, samples)?;
+    let chart = out.join("textures.svg");
+    let svg = crate::teaching::texture_chart::texture_chart_svg(&comparison);
+    crate::output::write_file(&chart, svg.as_bytes())?;
+    Ok(TextureSummary { comparison, chart })
+}
+
+impl fmt::Display for TextureSummary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.comparison)?;
+        writeln!(f, "chart: {}", self.chart.display())
+    }
+}

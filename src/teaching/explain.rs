@@ -15,6 +15,8 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
+use crate::geometry::Floor;
+use crate::raster::derivatives::Derivatives;
 use crate::raster::edge::FillRule;
 use crate::raster::fixed::FixedPoint;
 use crate::raster::line::LineOptions;
@@ -22,7 +24,9 @@ use crate::raster::multisample::SamplePattern;
 use crate::raster::registry::{all_backends, backend, triangle_backend, Backend};
 use crate::raster::stage::{Blend, BlendMode};
 use crate::raster::target::{DepthState, RenderTarget};
+use crate::raster::texture::{LevelMode, Sampler};
 use crate::teaching::grid_picture::GridPicture;
+use crate::teaching::level_picture::LevelPicture;
 use crate::teaching::trace::{self, LineEnds};
 
 /// The name that asks for the depth buffer's trace instead of a back-end's.
@@ -31,6 +35,10 @@ pub const DEPTH_BUFFER: &str = "depth-buffer";
 /// The name that asks for one pixel's blends ([`trace_blend`](super::trace_blend))
 /// instead of a back-end's trace.
 pub const BLEND: &str = "blend";
+
+/// The name that asks for one pixel's texture lookup on the receding
+/// floor ([`trace_texture`](super::trace_texture)).
+pub const TEXTURE: &str = "texture";
 
 /// The scene the blend trace draws unless told otherwise.
 pub const BLEND_SCENE: &str = "transparent";
@@ -62,6 +70,30 @@ pub struct ExplainRequest {
     /// `None`), its blend state and depth state, and whether its
     /// triangles are sorted back to front first.
     pub blending: Blending,
+    /// The texture trace: the sampler and the derivative method.
+    pub texturing: Texturing,
+}
+
+/// How the texture trace samples: trilinear, analytic derivatives, unless
+/// told otherwise.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Texturing {
+    /// Pixel filter, level mode, wrap and anisotropy.
+    pub sampler: Sampler,
+    /// How the derivatives are computed.
+    pub derivatives: Derivatives,
+}
+
+impl Default for Texturing {
+    fn default() -> Self {
+        Texturing {
+            sampler: Sampler {
+                levels: LevelMode::Linear,
+                ..Sampler::default()
+            },
+            derivatives: Derivatives::Analytic,
+        }
+    }
 }
 
 /// What the blend trace draws, and how.
@@ -104,6 +136,7 @@ impl ExplainRequest {
             picture: false,
             msaa: None,
             blending: Blending::default(),
+            texturing: Texturing::default(),
         }
     }
 
@@ -123,6 +156,21 @@ impl ExplainRequest {
                 self.backend
             )))
         }
+    }
+
+    /// The pixel `x y` of the coordinates, whole numbers from 0.
+    fn pixel(&self, what: &str) -> Result<(u32, u32)> {
+        self.want(2, what)?;
+        let index = |v: f64| {
+            (v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&v))
+                .then_some(v as u32)
+                .ok_or_else(|| {
+                    Error::InvalidArgument(format!(
+                        "a pixel index is a whole number from 0, not {v}"
+                    ))
+                })
+        };
+        Ok((index(self.coordinates[0])?, index(self.coordinates[1])?))
     }
 
     fn triangle(&self) -> Result<[(f64, f64); 3]> {
@@ -161,6 +209,8 @@ pub struct Explanation {
     pub text: String,
     /// The grid picture of the same input.
     pub picture: Option<GridPicture>,
+    /// The texture trace's picture: the floor by mip level.
+    pub levels: Option<LevelPicture>,
 }
 
 /// Traces the request's algorithm on its input.
@@ -178,10 +228,24 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
             .picture
             .then(|| GridPicture::depth_buffer(&scene, rule))
             .transpose()?;
-        return Ok(Explanation { text, picture });
+        return Ok(Explanation {
+            text,
+            picture,
+            levels: None,
+        });
     }
     if request.backend == BLEND {
         return explain_blend(request);
+    }
+    if request.backend == TEXTURE {
+        return explain_texture(request);
+    }
+    if request.texturing != Texturing::default() {
+        return Err(Error::InvalidArgument(
+            "--filter, --mip, --anisotropy, --anisotropic and --derivatives are for the texture trace \
+             (--backend texture)"
+                .into(),
+        ));
     }
     if request.blending != Blending::default() {
         return Err(Error::InvalidArgument(
@@ -197,7 +261,8 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
             .map(|b| b.name)
             .collect::<Vec<_>>()
             .join(", ")
-            + "; or depth-buffer, the depth buffer's trace; or blend, one pixel's blends",
+            + "; or depth-buffer, the depth buffer's trace; or blend, one pixel's blends; \
+               or texture, one pixel's texture lookup",
     })?;
     let (width, height) = request.size(DEFAULT_GRID)?;
     let (text, picture) = match chosen {
@@ -240,7 +305,11 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
             (text, picture)
         }
     };
-    Ok(Explanation { text, picture })
+    Ok(Explanation {
+        text,
+        picture,
+        levels: None,
+    })
 }
 
 /// The blend trace of the request's pixel (`x y`) in its scene.
@@ -260,18 +329,10 @@ fn explain_blend(request: &ExplainRequest) -> Result<Explanation> {
     if blending.sort {
         scene = scene.sorted_back_to_front();
     }
-    request.want(2, "one pixel's blends (x y, a pixel index)")?;
-    let [x, y] = [request.coordinates[0], request.coordinates[1]];
-    let index = |v: f64| {
-        (v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&v))
-            .then_some(v as u32)
-            .ok_or_else(|| {
-                Error::InvalidArgument(format!("a pixel index is a whole number from 0, not {v}"))
-            })
-    };
+    let (x, y) = request.pixel("one pixel's blends (x y, a pixel index)")?;
     let text = super::trace_blend(
         &scene,
-        (index(x)?, index(y)?),
+        (x, y),
         triangle_backend("bbox")?,
         request.rule,
         blending.depth,
@@ -281,5 +342,32 @@ fn explain_blend(request: &ExplainRequest) -> Result<Explanation> {
     Ok(Explanation {
         text,
         picture: None,
+        levels: None,
+    })
+}
+
+/// The texture trace of the request's pixel (`x y`) on the receding
+/// floor, and the floor by mip level when a picture is asked for.
+fn explain_texture(request: &ExplainRequest) -> Result<Explanation> {
+    if request.msaa.is_some() || request.blending != Blending::default() {
+        return Err(Error::InvalidArgument(
+            "the texture trace takes a pixel of the floor, --size and the texture options \
+             (--filter, --mip, --anisotropy, --anisotropic, --derivatives)"
+                .into(),
+        ));
+    }
+    let (width, height) = request.size(Floor::SIZE)?;
+    let floor = Floor::new(width, height)?;
+    let pixel = request.pixel("one pixel's texture lookup (x y, a pixel of the floor)")?;
+    let t = request.texturing;
+    t.sampler.check()?;
+    let text = super::trace_texture(&floor, pixel, t.sampler, t.derivatives)?;
+    let levels = request
+        .picture
+        .then(|| LevelPicture::new(&floor, t.sampler, t.derivatives, Some(pixel)));
+    Ok(Explanation {
+        text,
+        picture: None,
+        levels,
     })
 }

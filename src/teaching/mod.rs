@@ -34,30 +34,41 @@ pub(crate) mod compare;
 pub(crate) mod demo;
 pub(crate) mod explain;
 pub(crate) mod grid_picture;
+pub(crate) mod level_picture;
 pub(crate) mod palette;
 pub(crate) mod report;
 pub(crate) mod sample_trace;
+pub(crate) mod texture_chart;
+pub(crate) mod texture_trace;
 pub(crate) mod trace;
 pub(crate) mod trace_table;
 
 pub use antialias_chart::{antialias_chart_svg, ChartPoint};
 pub use ascii::{ascii_count, ascii_framed, ascii_mark, ascii_rows};
-pub use compare::{compare, default_compare_size, CompareRequest, CompareSummary};
+pub use compare::{
+    compare, compare_texture_filters, default_compare_size, CompareRequest, CompareSummary,
+    TextureSummary,
+};
 pub use demo::{bundled_assets, run_demo, DemoReport, DemoRow};
 pub use explain::{
-    explain, Blending, ExplainRequest, Explanation, BLEND, BLEND_SCENE, DEFAULT_GRID, DEPTH_BUFFER,
+    explain, Blending, ExplainRequest, Explanation, Texturing, BLEND, BLEND_SCENE, DEFAULT_GRID,
+    DEPTH_BUFFER, TEXTURE,
 };
 pub use grid_picture::{
     for_people, is_fragment_green, scale_for_people, DepthCells, GridPicture, AS_REFERENCE, GAP,
     INSIDE, MAX_LABELLED_CELLS, MIN_SHORT_SIDE, OVERDRAWN, OVERDRAWN_MORE, TESTED_OUTSIDE,
 };
+pub use level_picture::LevelPicture;
 pub use palette::{
-    colour_hex, triangle_colour, triangle_mark, Legend, LegendEntry, Mark, Role, MAX_TRIANGLES,
+    colour_hex, triangle_colour, triangle_mark, Legend, LegendEntry, Mark, Role, LEVEL_COLOURS,
+    MAX_TRIANGLES,
 };
 pub use report::{
     Antialiasing, BackendRun, CompareInput, Report, RulePicture, ANTIALIAS_PIXELS,
     MAX_REPORT_BYTES, REPORT_BYTES_PER_PIXEL,
 };
 pub use sample_trace::trace_samples;
+pub use texture_chart::texture_chart_svg;
+pub use texture_trace::trace_texture;
 pub use trace::{trace_blend, trace_depth_buffer, trace_line, trace_triangle, LineEnds};
 pub use trace_table::{Column, Trace, TraceRow};

@@ -337,6 +337,17 @@ pub const MAX_TRIANGLES: usize = 16;
 /// and red triangles of the depth-buffer example.
 pub const TRIANGLE_COLOURS: [[u8; 3]; 4] = [BLUE, VERMILLION, REDDISH_PURPLE, ORANGE];
 
+/// The mip levels' colours on the level picture, level 0 first.
+pub const LEVEL_COLOURS: [[u8; 3]; 7] = [
+    BLUE,
+    ORANGE,
+    BLUISH_GREEN,
+    VERMILLION,
+    SKY_BLUE,
+    YELLOW,
+    REDDISH_PURPLE,
+];
+
 /// The triangles' line patterns.
 pub const TRIANGLE_MARKS: [Mark; 4] = [Mark::Line, Mark::Dashed, Mark::Dotted, Mark::DashDot];
 

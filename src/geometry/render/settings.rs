@@ -10,7 +10,7 @@ use crate::raster::line::LineRasterizer;
 use crate::raster::shader::{DirectionalLight, Filter};
 use crate::raster::stage::{Blend, Interpolation};
 use crate::raster::target::{DepthState, RenderTarget};
-use crate::raster::texture::{LevelMode, Sampler, Wrap, MAX_ANISOTROPY};
+use crate::raster::texture::{Anisotropic, LevelMode, Sampler, Wrap};
 use glam::Vec4;
 
 /// How a mesh is coloured.
@@ -62,8 +62,12 @@ pub struct RenderSettings {
     /// Wrap mode for [`Shading::Texture`].
     pub wrap: Wrap,
     /// The most anisotropic probes for [`Shading::Texture`], 1 (the
-    /// default, isotropic) to [`MAX_ANISOTROPY`].
+    /// default, isotropic) to
+    /// [`MAX_ANISOTROPY`](crate::raster::texture::MAX_ANISOTROPY).
     pub anisotropy: u32,
+    /// How [`Shading::Texture`]'s anisotropy is filtered: the extension's
+    /// probes (the default) or EWA.
+    pub anisotropic: Anisotropic,
     /// How the texture coordinate's derivatives are computed where the
     /// level mode or the anisotropy reads them.
     pub derivatives: Derivatives,
@@ -98,6 +102,7 @@ impl Default for RenderSettings {
             mip: LevelMode::Zero,
             wrap: Wrap::Repeat,
             anisotropy: 1,
+            anisotropic: Anisotropic::Probes,
             derivatives: Derivatives::Analytic,
             interpolation: Interpolation::PerspectiveCorrect,
             pipeline: PipelineOptions::default(),
@@ -118,7 +123,7 @@ pub const MAX_ZOOM: f32 = 1e6;
 impl RenderSettings {
     /// Errors unless the settings can frame a mesh: a zero-size or
     /// oversized target, a non-finite angle, a zoom that is not in
-    /// `(0, MAX_ZOOM]`.
+    /// `(0, MAX_ZOOM]`, a sampler [`Sampler::check`] refuses.
     pub(super) fn check(&self) -> Result<()> {
         RenderTarget::check_size(self.width, self.height)?;
         for (name, value) in [("azimuth", self.azimuth), ("elevation", self.elevation)] {
@@ -128,12 +133,8 @@ impl RenderSettings {
                 )));
             }
         }
-        if !(1..=MAX_ANISOTROPY).contains(&self.anisotropy) {
-            return Err(Error::InvalidArgument(format!(
-                "anisotropy must be between 1 and {MAX_ANISOTROPY}, not {}",
-                self.anisotropy
-            )));
-        }
+        // The anisotropy, and EWA only on the mip levels.
+        self.sampler().check()?;
         // NaN fails this test too.
         if !(self.zoom > 0.0 && self.zoom <= MAX_ZOOM) {
             return Err(Error::InvalidArgument(format!(
@@ -151,6 +152,7 @@ impl RenderSettings {
             levels: self.mip,
             wrap: self.wrap,
             anisotropy: self.anisotropy,
+            anisotropic: self.anisotropic,
         }
     }
 

@@ -20,11 +20,13 @@
 //!   See [`lod`].
 //! * Anisotropic filtering takes several probes along the footprint's
 //!   longer axis, as the EXT_texture_filter_anisotropic extension's
-//!   example does ([`Footprint::probes`]).
+//!   example does ([`Footprint::probes`]), or weighs every texel of the
+//!   footprint's ellipse, Heckbert's elliptical weighted average
+//!   ([`ewa`]); [`Anisotropic`] chooses.
 //!
 //! ```
 //! use glam::{Vec2, Vec4};
-//! use rasterlab::raster::{Filter, LevelMode, Sampler, Texture, Wrap};
+//! use rasterlab::raster::{Anisotropic, Filter, LevelMode, Sampler, Texture, Wrap};
 //!
 //! // A 4x4 checkerboard of single texels: its 1x1 level is their average.
 //! let (black, white) = (Vec4::new(0.0, 0.0, 0.0, 1.0), Vec4::ONE);
@@ -35,6 +37,7 @@
 //!     levels: LevelMode::Linear,
 //!     wrap: Wrap::Repeat,
 //!     anisotropy: 1,
+//!     anisotropic: Anisotropic::Probes,
 //! };
 //! // Four texels a pixel: lambda = 2, the last level, grey.
 //! let d = 4.0 / 4.0;
@@ -42,10 +45,12 @@
 //! assert!((grey - Vec4::new(0.5, 0.5, 0.5, 1.0)).abs().max_element() < 1e-6);
 //! ```
 
+pub mod ewa;
 pub mod lod;
 pub mod pyramid;
 
 use crate::error::{Error, Result};
+pub use ewa::Ellipse;
 use glam::{Vec2, Vec4};
 pub use lod::{Footprint, LevelChoice, LevelMode, Probes, MAX_ANISOTROPY};
 
@@ -115,8 +120,27 @@ impl Wrap {
     }
 }
 
+/// How a footprint longer than it is wide is filtered.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Anisotropic {
+    /// Up to `anisotropy` probes along the longer axis, each filtered as
+    /// the level mode and pixel filter say (the extension's example).
+    #[default]
+    Probes,
+    /// The elliptical weighted average ([`ewa`]): every texel of the
+    /// ellipse, Gaussian-weighted, on the levels of its minor axis.
+    Ewa,
+}
+
+crate::names::named_enum!(
+    Anisotropic,
+    "anisotropic filter",
+    Probes = "probes",
+    Ewa = "ewa"
+);
+
 /// How [`Texture::sample_grad`] samples: the pixel filter, the level mode,
-/// the wrap mode and the most anisotropic probes.
+/// the wrap mode, the most anisotropy and how it is filtered.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct Sampler {
     /// Nearest or bilinear, within a level.
@@ -128,6 +152,29 @@ pub struct Sampler {
     /// The most probes of the anisotropic filter, 1 (isotropic) to
     /// [`MAX_ANISOTROPY`].
     pub anisotropy: u32,
+    /// The extension's probes, or EWA (which reads no pixel filter).
+    pub anisotropic: Anisotropic,
+}
+
+impl Sampler {
+    /// An error unless the sampler is one the commands draw with: an
+    /// anisotropy of 1 to [`MAX_ANISOTROPY`], and EWA only on the mip
+    /// levels (not with [`LevelMode::Zero`]; see [`ewa`]).
+    pub fn check(&self) -> Result<()> {
+        if !(1..=MAX_ANISOTROPY).contains(&self.anisotropy) {
+            return Err(Error::InvalidArgument(format!(
+                "anisotropy must be between 1 and {MAX_ANISOTROPY}, not {}",
+                self.anisotropy
+            )));
+        }
+        if self.anisotropic == Anisotropic::Ewa && self.levels == LevelMode::Zero {
+            return Err(Error::InvalidArgument(
+                "--anisotropic ewa filters from the mip pyramid: give --mip nearest or linear"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
 }
 
 impl Default for Sampler {
@@ -139,6 +186,7 @@ impl Default for Sampler {
             levels: LevelMode::Zero,
             wrap: Wrap::Repeat,
             anisotropy: 1,
+            anisotropic: Anisotropic::Probes,
         }
     }
 }
@@ -370,9 +418,14 @@ impl Texture {
     /// The texture sampled at `uv` whose screen-space derivatives are
     /// `duv_dx` and `duv_dy` (GLSL's `textureGrad`): the level of detail
     /// from them, and with an anisotropy above 1, the extension's probes
-    /// along the longer one, averaged.
+    /// along the longer one, averaged; or the elliptical weighted average
+    /// of the footprint ([`Anisotropic::Ewa`]).
     pub fn sample_grad(&self, uv: Vec2, duv_dx: Vec2, duv_dy: Vec2, sampler: &Sampler) -> Vec4 {
         let footprint = Footprint::new(duv_dx, duv_dy, self.width(), self.height());
+        if sampler.anisotropic == Anisotropic::Ewa {
+            let axes = (footprint.dx, footprint.dy);
+            return self.sample_ewa(uv, axes, sampler.anisotropy, sampler.levels, sampler.wrap);
+        }
         let probes = footprint.probes(sampler.anisotropy);
         if probes.count == 1 {
             return self.sample_lod(uv, probes.lambda, sampler);

@@ -71,6 +71,7 @@ fn trilinear() -> Sampler {
         levels: LevelMode::Linear,
         wrap: Wrap::ClampToEdge,
         anisotropy: 1,
+        anisotropic: Anisotropic::Probes,
     }
 }
 
@@ -343,14 +344,20 @@ fn the_default_sampler_reads_level_zero_whatever_the_derivatives() {
 }
 
 fn samplers() -> impl Strategy<Value = Sampler> {
-    (0..2usize, 0..3usize, 0..3usize, 0..=MAX_ANISOTROPY).prop_map(|(f, l, w, anisotropy)| {
-        Sampler {
+    (
+        0..2usize,
+        0..3usize,
+        0..3usize,
+        0..=MAX_ANISOTROPY,
+        0..2usize,
+    )
+        .prop_map(|(f, l, w, anisotropy, a)| Sampler {
             filter: [Filter::Nearest, Filter::Bilinear][f],
             levels: [LevelMode::Zero, LevelMode::Nearest, LevelMode::Linear][l],
             wrap: [Wrap::Repeat, Wrap::ClampToEdge, Wrap::MirroredRepeat][w],
             anisotropy,
-        }
-    })
+            anisotropic: [Anisotropic::Probes, Anisotropic::Ewa][a],
+        })
 }
 
 proptest! {
