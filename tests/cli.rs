@@ -32,13 +32,16 @@ fn backends_lists_name_kind_and_description() {
         .lines()
         .map(|l| l.split_whitespace().next().unwrap())
         .collect();
-    for expected in ["naive", "bbox", "scanline", "incremental"] {
+    for expected in ["naive", "bbox", "scanline", "incremental", "edge-table"] {
         assert!(names.contains(&expected), "{expected} missing from {text}");
     }
     for line in text.lines() {
         let fields: Vec<&str> = line.split_whitespace().collect();
         assert!(fields.len() >= 3, "{line}");
-        assert!(fields[1] == "triangle" || fields[1] == "line", "{line}");
+        assert!(
+            ["triangle", "line", "polygon"].contains(&fields[1]),
+            "{line}"
+        );
     }
 }
 
