@@ -297,3 +297,114 @@ fn fragments_fill_polygons_with_the_edge_table() {
     ]);
     assert_eq!(fill_for_triangles.status.code(), Some(2));
 }
+
+/// `explain --backend edge-table`: the edge table, then each row's active
+/// edges sorted by x with their windings, and the spans, for a square
+/// whose corners are pixel centres (left and top edges in, right and
+/// bottom out).
+#[test]
+fn explain_walks_the_edge_table_row_by_row() {
+    let out = rasterlab(&[
+        "explain",
+        "--backend",
+        "edge-table",
+        "--size",
+        "8x8",
+        "1.5",
+        "1.5",
+        "4.5",
+        "1.5",
+        "4.5",
+        "3.5",
+        "1.5",
+        "3.5",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("ET[1]: e0 (4.5, 1.5)-(4.5, 3.5) down"),
+        "{text}"
+    );
+    let rows: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("   1 ") || l.starts_with("   2 "))
+        .collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    for row in &rows {
+        assert!(
+            row.contains("e1 1 -1, e0 4 +1") && row.ends_with("1..=3 (3 px)"),
+            "{row}"
+        );
+    }
+    assert!(rows[0].contains("e0 e1"), "{}", rows[0]);
+    assert!(
+        text.ends_with("2 rows, 4 edges visited, 2 spans, 6 fragments\n"),
+        "{text}"
+    );
+    let nonzero = rasterlab(&[
+        "explain",
+        "--backend",
+        "edge-table",
+        "--fill",
+        "nonzero",
+        "0",
+        "0",
+        "4",
+        "4",
+        "4",
+        "0",
+        "0",
+        "4",
+    ]);
+    assert!(nonzero.status.success());
+    assert!(String::from_utf8_lossy(&nonzero.stdout).contains("edge-table, nonzero"));
+    for refused in [
+        rasterlab(&[
+            "explain",
+            "--backend",
+            "edge-table",
+            "0",
+            "0",
+            "4",
+            "4",
+            "4",
+        ]),
+        rasterlab(&[
+            "explain",
+            "--backend",
+            "edge-table",
+            "--msaa",
+            "4",
+            "0",
+            "0",
+            "4",
+            "4",
+            "4",
+            "0",
+        ]),
+        rasterlab(&[
+            "explain",
+            "--backend",
+            "scanline",
+            "--fill",
+            "nonzero",
+            "0",
+            "0",
+            "4",
+            "4",
+            "4",
+            "0",
+        ]),
+    ] {
+        assert_eq!(
+            refused.status.code(),
+            Some(2),
+            "{}",
+            String::from_utf8_lossy(&refused.stderr)
+        );
+    }
+}

@@ -62,5 +62,7 @@ pub use report::{
 };
 pub use sample_trace::trace_samples;
 pub use scan_or_triangulate::{MethodRow, ScanOrTriangulate};
-pub use trace::{trace_blend, trace_depth_buffer, trace_line, trace_triangle, LineEnds};
+pub use trace::{
+    trace_blend, trace_depth_buffer, trace_line, trace_polygon, trace_triangle, LineEnds,
+};
 pub use trace_table::{Column, Trace, TraceRow};
