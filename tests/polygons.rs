@@ -8,12 +8,17 @@
 mod common;
 
 use common::*;
+use glam::Vec4;
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
+use rasterlab::geometry::Scene2D;
 use rasterlab::geometry::{Outline, Polygon};
 use rasterlab::raster::polygon::{edge_table::EdgeTable, PolygonRasterizer, WindingRule};
 use rasterlab::raster::triangle::scanline::Scanline;
-use rasterlab::raster::{polygon_backends, FillRule, FixedPoint, FragmentList};
+use rasterlab::raster::{
+    polygon_backends, FillRule, FixedPoint, Flat, FragmentList, FragmentStage, RenderTarget,
+    ShadedVertex, TriangleData,
+};
 
 /// How many times each pixel of the target each back-end fills `outlines`
 /// (each with its index as id) under `rule`, one count per pixel.
@@ -150,8 +155,36 @@ fn check_shared_edges((quads, boundary): &(Vec<Outline>, Outline)) -> Result<(),
     Ok(())
 }
 
+/// The polygon filled by the edge table through the shared fragment stage
+/// gives the image, depth and coverage buffers of its triangulation drawn
+/// by `scanline` in the polygon's colour, bit for bit.
+fn check_stage_image(polygon: &Polygon) -> Result<(), TestCaseError> {
+    let look = [ShadedVertex::flat(0.25, Vec4::new(0.9, 0.4, 0.1, 1.0)); 3];
+    let triangles = triangulation(polygon);
+    let scene = Scene2D {
+        width: SIZE,
+        height: SIZE,
+        vertices: vec![look; triangles.len()],
+        triangles,
+    };
+    let (expected, _) = scene.render(&Scanline, FillRule::TopLeft, &Flat).unwrap();
+    let mut target = RenderTarget::new(SIZE, SIZE).unwrap();
+    let data = TriangleData::of_triangles(&[], &[look]);
+    let mut stage = FragmentStage::new(&mut target, &Flat).with_triangles(&data);
+    let setup = Outline::of_polygon(polygon).setup(0);
+    EdgeTable.rasterize(&[setup], WindingRule::EvenOdd, viewport(), &mut stage);
+    prop_assert!(target == expected, "the images differ");
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(crate::common::proptest_config(1000, "tests/proptest-regressions/polygons.txt"))]
+
+    /// Through the shared stage, the same image as the triangulation's.
+    #[test]
+    fn through_the_stage_the_image_is_the_triangulations(polygon in polygon()) {
+        check_stage_image(&polygon)?;
+    }
 
     /// On simple polygons with and without a hole, scan conversion fills
     /// exactly the pixels of spade's triangulation under the top-left rule.
