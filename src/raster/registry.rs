@@ -14,7 +14,7 @@ use crate::raster::descriptor::{within_budget, Role, WorkBudget};
 use crate::raster::line::{
     bresenham::Bresenham, dda::Dda, diamond::Diamond, direct::Direct, wu::Wu, LineRasterizer,
 };
-use crate::raster::polygon::{edge_table::EdgeTable, PolygonRasterizer};
+use crate::raster::polygon::{crossings::Crossings, edge_table::EdgeTable, PolygonRasterizer};
 use crate::raster::triangle::{
     bbox::BoundingBox, incremental::Incremental, naive::Naive, scanline::Scanline, tiled::Tiled,
     TriangleRasterizer,
@@ -133,7 +133,7 @@ pub fn line_backend(name: &str) -> Result<&'static dyn LineRasterizer> {
         .ok_or_else(|| unknown(name, "line"))
 }
 
-static POLYGON_BACKENDS: [&dyn PolygonRasterizer; 1] = [&EdgeTable];
+static POLYGON_BACKENDS: [&dyn PolygonRasterizer; 2] = [&EdgeTable, &Crossings];
 
 /// Every polygon back-end (they fill polygons without triangulating them).
 pub fn polygon_backends() -> &'static [&'static dyn PolygonRasterizer] {

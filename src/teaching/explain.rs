@@ -19,7 +19,8 @@ use crate::raster::edge::FillRule;
 use crate::raster::fixed::FixedPoint;
 use crate::raster::line::LineOptions;
 use crate::raster::multisample::SamplePattern;
-use crate::raster::polygon::WindingRule;
+use crate::raster::polygon::edge_table::EdgeTable;
+use crate::raster::polygon::{PolygonRasterizer, WindingRule};
 use crate::raster::registry::{
     all_backends, backend, polygon_backend, polygon_backends, triangle_backend, Backend,
 };
@@ -196,7 +197,13 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
                 .into(),
         ));
     }
-    if polygon_backend(&request.backend).is_ok() {
+    if let Ok(polygon) = polygon_backend(&request.backend) {
+        if polygon.name() != EdgeTable.name() {
+            return Err(Error::InvalidArgument(format!(
+                "`{}` has no step-by-step trace; explain --backend edge-table traces the book's walk",
+                polygon.name()
+            )));
+        }
         return explain_polygon(request);
     }
     if request.fill.is_some() {

@@ -40,7 +40,7 @@
 //! zero. Spans that meet are handed to the sink as one run.
 
 use super::{
-    emit_run, PolygonDescriptor, PolygonEdge, PolygonRasterizer, PolygonSetup, PolygonWork,
+    fill_runs, PolygonDescriptor, PolygonEdge, PolygonRasterizer, PolygonSetup, PolygonWork,
     WindingRule,
 };
 use crate::raster::descriptor::{CostClass, Role};
@@ -218,7 +218,9 @@ fn fill(
         active.sort_by_key(|a| a.x);
         work.work.spans += 1;
         work.edges_visited += active.len() as u64;
-        fill_row(&active, rule, y, viewport, p.id, sink, work, row.as_mut());
+        let crossings = active.iter().map(|a| (a.x, a.winding));
+        let spans = row.as_mut().map(|r| &mut r.spans);
+        fill_runs(crossings, rule, y, viewport, p.id, sink, work, spans);
         if let (Some(trace), Some(mut row)) = (trace.as_deref_mut(), row) {
             row.active = active.iter().map(|a| (a.edge, a.x, a.winding)).collect();
             trace.push(row);
@@ -226,44 +228,6 @@ fn fill(
         y += 1;
         for a in &mut active {
             a.step();
-        }
-    }
-}
-
-/// Fills row `y` between the sorted crossings of `active` whose winding
-/// number `rule` puts inside, one run per stretch of inside spans.
-#[allow(clippy::too_many_arguments)]
-#[inline]
-fn fill_row(
-    active: &[ActiveEdge],
-    rule: WindingRule,
-    y: i64,
-    viewport: PixelRect,
-    id: u32,
-    sink: &mut dyn FragmentSink,
-    work: &mut PolygonWork,
-    mut row: Option<&mut ScanRow>,
-) {
-    let mut winding = 0i64;
-    let mut run_start: Option<i64> = None;
-    for a in active {
-        let was_inside = rule.fills(winding);
-        winding += i64::from(a.winding);
-        match (was_inside, rule.fills(winding)) {
-            (false, true) => run_start = Some(a.x),
-            (true, false) => {
-                let first = run_start.take().unwrap_or(a.x).max(viewport.x0);
-                let last = (a.x - 1).min(viewport.x1);
-                if first <= last {
-                    work.runs += 1;
-                    work.work.fragments += (last - first + 1) as u64;
-                    emit_run(sink, id, y, first, last);
-                    if let Some(row) = row.as_deref_mut() {
-                        row.spans.push((first, last));
-                    }
-                }
-            }
-            _ => {}
         }
     }
 }

@@ -28,7 +28,10 @@
 //! * the polygon's edges, directed for the scan ([`PolygonEdge`]) with
 //!   their exact crossing of a row's sample line, and a polygon's set-up
 //!   ([`PolygonSetup`]);
-//! * the trait every polygon back-end is ([`PolygonRasterizer`]).
+//! * the trait every polygon back-end is ([`PolygonRasterizer`]): the
+//!   book's algorithm with its edge table and active edge table
+//!   ([`edge_table`]), and the same fill without them, every edge asked on
+//!   every row ([`crossings`]).
 //!
 //! A back-end hands its runs of pixels to the same [`FragmentSink`] as
 //! every other, as spans of the polygon's id: its look is flat, so a
@@ -51,6 +54,7 @@
 //! assert!(count(WindingRule::EvenOdd) < count(WindingRule::Nonzero));
 //! ```
 
+pub mod crossings;
 pub mod edge_table;
 
 use crate::raster::descriptor::Descriptor;
@@ -254,6 +258,46 @@ pub trait PolygonRasterizer: Send + Sync {
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> PolygonWork;
+}
+
+/// Fills row `y` between `crossings` (each the first pixel at or right of
+/// an edge's crossing, and the edge's winding), sorted by x, where `rule`
+/// puts the winding number inside: one run per stretch of inside spans,
+/// clipped to the viewport, each recorded in `spans` when given.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn fill_runs(
+    crossings: impl IntoIterator<Item = (i64, i8)>,
+    rule: WindingRule,
+    y: i64,
+    viewport: PixelRect,
+    id: u32,
+    sink: &mut dyn FragmentSink,
+    work: &mut PolygonWork,
+    mut spans: Option<&mut Vec<(i64, i64)>>,
+) {
+    let mut winding = 0i64;
+    let mut run_start: Option<i64> = None;
+    for (x, direction) in crossings {
+        let was_inside = rule.fills(winding);
+        winding += i64::from(direction);
+        match (was_inside, rule.fills(winding)) {
+            (false, true) => run_start = Some(x),
+            (true, false) => {
+                let first = run_start.take().unwrap_or(x).max(viewport.x0);
+                let last = (x - 1).min(viewport.x1);
+                if first <= last {
+                    work.runs += 1;
+                    work.work.fragments += (last - first + 1) as u64;
+                    emit_run(sink, id, y, first, last);
+                    if let Some(spans) = spans.as_deref_mut() {
+                        spans.push((first, last));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
 }
 
 /// Emits pixels `first..=last` of row `y` (inside the viewport) of polygon
