@@ -106,6 +106,15 @@ fn crossing_rings() -> impl Strategy<Value = Outline> {
     })
 }
 
+/// 1 to 3 rings of 3 to 6 vertices up to the guard band's edge (32,000 px
+/// out): long edges of every slope across the small target, where an
+/// overflow or a rounded crossing would show.
+fn huge_rings() -> impl Strategy<Value = Outline> {
+    let ring = proptest::collection::vec(point(-32_000.0, 32_000.0, None), 3..7);
+    proptest::collection::vec(ring, 1..=3)
+        .prop_map(|rings| Outline::new(rings).expect("rings of 3 or more"))
+}
+
 /// A grid of `n x n` quadrilaterals whose shared corners are jittered by up
 /// to a quarter of a cell (so every quadrilateral stays simple), partly
 /// off the target, and the ring around the whole grid.
@@ -196,6 +205,12 @@ proptest! {
     /// On rings that cross, every pixel agrees with the winding number.
     #[test]
     fn crossing_rings_fill_as_the_winding_number_says(outline in crossing_rings()) {
+        check_winding(&outline)?;
+    }
+
+    /// Rings reaching the guard band: still exactly the winding number.
+    #[test]
+    fn rings_up_to_the_guard_band_fill_as_the_winding_number_says(outline in huge_rings()) {
         check_winding(&outline)?;
     }
 
