@@ -180,7 +180,11 @@ fn unknown(name: &str, kind: &'static str) -> Error {
         "triangle" => triangle_backends().iter().map(|b| b.name()).collect(),
         "line" => line_backends().iter().map(|b| b.name()).collect(),
         "polygon" => polygon_backends().iter().map(|b| b.name()).collect(),
-        _ => all_backends().iter().map(|b| b.name).collect(),
+        _ => all_backends()
+            .iter()
+            .map(|b| b.name)
+            .chain(polygon_backends().iter().map(|b| b.name()))
+            .collect(),
     };
     Error::UnknownBackend {
         name: name.to_string(),
