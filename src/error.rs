@@ -56,7 +56,7 @@ pub enum Error {
     UnknownBackend {
         /// The name asked for.
         name: String,
-        /// `triangle`, `line`, or `rasterizer` when either would do.
+        /// `triangle`, `line`, `polygon`, or `rasterizer` when any would do.
         kind: &'static str,
         /// Comma-separated list of the names that exist.
         known: String,

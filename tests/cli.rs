@@ -32,13 +32,16 @@ fn backends_lists_name_kind_and_description() {
         .lines()
         .map(|l| l.split_whitespace().next().unwrap())
         .collect();
-    for expected in ["naive", "bbox", "scanline", "incremental"] {
+    for expected in ["naive", "bbox", "scanline", "incremental", "edge-table"] {
         assert!(names.contains(&expected), "{expected} missing from {text}");
     }
     for line in text.lines() {
         let fields: Vec<&str> = line.split_whitespace().collect();
         assert!(fields.len() >= 3, "{line}");
-        assert!(fields[1] == "triangle" || fields[1] == "line", "{line}");
+        assert!(
+            ["triangle", "line", "polygon"].contains(&fields[1]),
+            "{line}"
+        );
     }
 }
 
@@ -494,7 +497,19 @@ fn compare_writes_a_self_contained_report_for_polygons_lines_and_meshes() {
         } else {
             0
         };
-        assert_eq!(table.lines().count(), rows + 3 + antialias, "{table}");
+        // For a polygon file, the scan-convert or triangulate table: its
+        // title, header, a row per polygon back-end and one per triangle
+        // back-end.
+        let scan = if two_d {
+            2 + rasterlab::raster::polygon_backends().len() + rows
+        } else {
+            0
+        };
+        assert_eq!(
+            table.lines().count(),
+            rows + 3 + antialias + scan,
+            "{table}"
+        );
         assert!(table.starts_with("reference: "), "{table}");
         let html = std::fs::read_to_string(out_dir.join("index.html")).unwrap();
         assert!(html.contains("<table id=\"work\">"));

@@ -3,6 +3,7 @@
 use clap::builder::TypedValueParser;
 use clap::Args;
 use rasterlab::raster::line::{Connectivity, Endpoints, LineOptions};
+use rasterlab::raster::polygon::WindingRule;
 use rasterlab::raster::{FillRule, SamplePattern};
 
 /// A `WxH` size.
@@ -79,6 +80,13 @@ pub fn msaa(text: &str) -> Result<SamplePattern, String> {
 pub fn fill_rule() -> impl TypedValueParser<Value = FillRule> {
     clap::builder::PossibleValuesParser::new(FillRule::ALL.map(FillRule::name))
         .try_map(|name| name.parse::<FillRule>())
+}
+
+/// `--fill` of the commands that fill polygons: one of
+/// [`WindingRule::ALL`], which `--help` lists as the possible values.
+pub fn winding_rule() -> impl TypedValueParser<Value = WindingRule> {
+    clap::builder::PossibleValuesParser::new(WindingRule::ALL.map(WindingRule::name))
+        .try_map(|name| name.parse::<WindingRule>())
 }
 
 /// `--rule` given with a line back-end, which draws by its own

@@ -1,7 +1,8 @@
 //! `rasterlab explain`: one algorithm traced step by step, and its grid picture.
 
-use super::args::{fill_rule, msaa, rule_for_lines, Size};
+use super::args::{fill_rule, msaa, rule_for_lines, winding_rule, Size};
 use clap::Args;
+use rasterlab::raster::polygon::WindingRule;
 use rasterlab::raster::{
     backend, Anisotropic, Backend, Blend, BlendMode, DepthState, Derivatives, FillRule, Filter,
     LevelMode, MixSpace, SamplePattern,
@@ -19,8 +20,9 @@ pub struct ExplainArgs {
     /// numbers each, x0 y0 x1 y1 x2 y2 z, or none for the course's
     /// depth-buffer example); blend (one pixel's fragments and blends:
     /// x y, a pixel of --scene); texture (one pixel's texture lookup on
-    /// the receding floor of `render --scene floor`: x y). Any other
-    /// back-end: --picture only.
+    /// the receding floor of `render --scene floor`: x y); edge-table (a
+    /// polygon: x y pairs, in screen coordinates). Any other back-end:
+    /// --picture only.
     #[arg(long)]
     backend: String,
     /// The blend trace's built-in scene (default transparent; see
@@ -43,6 +45,9 @@ pub struct ExplainArgs {
     /// Triangle fill rule (default: top-left; not for a line back-end).
     #[arg(long, value_parser = fill_rule())]
     rule: Option<FillRule>,
+    /// Winding rule of edge-table: even-odd (default) or nonzero.
+    #[arg(long, value_parser = winding_rule())]
+    fill: Option<WindingRule>,
     /// Grid size, `WxH` (16x16 for one triangle, 14x9 for the course's
     /// depth-buffer example).
     #[arg(long)]
@@ -97,6 +102,7 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
         coordinates: args.coordinates.clone(),
         picture: args.picture.is_some(),
         msaa: args.msaa,
+        fill: args.fill,
         blending: Blending {
             scene: args.scene.clone(),
             blend: Blend {

@@ -32,10 +32,17 @@
 //! (triangles and polygons may be mixed) or lines. A polygon's triangles
 //! all carry the polygon line's number. Every coordinate is snapped when read, so NaN, infinities and
 //! coordinates beyond the guard band are reported with the file and line.
+//!
+//! [`read_shapes`] triangulates each polygon (spade takes simple ones
+//! only); [`read_polygons`] keeps them whole for a polygon back-end, which
+//! fills them directly, and, given a winding rule, takes rings that cross
+//! themselves or each other too.
 
 use crate::error::{Error, Result};
+use crate::geometry::outline::Outline;
 use crate::geometry::polygon::Polygon;
 use crate::raster::fixed::FixedPoint;
+use crate::raster::polygon::WindingRule;
 use glam::Vec4;
 use std::path::Path;
 
@@ -134,15 +141,127 @@ impl Shapes {
     }
 }
 
+/// One primitive of a file, as read: a triangle, a segment, or a
+/// polygon's rings (the outer ring first), each with its 1-based line.
+enum Record {
+    Triangle([FixedPoint; 3], usize, Look),
+    Segment([FixedPoint; 2], usize),
+    Polygon(PolygonRings, Look),
+}
+
+/// A polygon being read: its rings (the outer ring first, then the holes),
+/// each with its line.
+type PolygonRings = Vec<(usize, Vec<FixedPoint>)>;
+
 /// Parses the text of a triangle soup or line set. `path` is used in
 /// error messages only.
 pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
-    let mut triangles = Vec::new();
-    let mut segments = Vec::new();
-    let mut lines = Vec::new();
-    let mut polygon: Option<PolygonRings> = None;
-    let mut looks = Vec::new();
-    let mut polygon_look = Look::default();
+    let (mut triangles, mut segments, mut lines, mut looks) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for record in parse_records(text, path)? {
+        match record {
+            Record::Triangle(t, line, look) => {
+                triangles.push(t);
+                lines.push(line);
+                looks.push(look);
+            }
+            Record::Segment(s, line) => {
+                segments.push(s);
+                lines.push(line);
+            }
+            Record::Polygon(rings, look) => {
+                let line_no = rings[0].0;
+                let pieces = simple_polygon(rings, path)?
+                    .triangulate()
+                    .map_err(|e| e.at_line(path, line_no))?;
+                lines.extend(std::iter::repeat_n(line_no, pieces.len()));
+                looks.extend(std::iter::repeat_n(look, pieces.len()));
+                triangles.extend(pieces);
+            }
+        }
+    }
+    Ok(if segments.is_empty() {
+        Shapes::Triangles {
+            triangles,
+            lines,
+            looks,
+        }
+    } else {
+        Shapes::Lines { segments, lines }
+    })
+}
+
+/// The polygons of a file, to be filled directly by a polygon back-end.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PolygonFile {
+    /// Each polygon's rings, its holes wound against its outer ring; a
+    /// triangle line is a polygon of one ring of 3 vertices.
+    pub outlines: Vec<Outline>,
+    /// The 1-based line each polygon came from.
+    pub lines: Vec<usize>,
+    /// Each polygon's look.
+    pub looks: Vec<Look>,
+}
+
+/// Parses the text of a polygon file (triangles and polygons) for a
+/// polygon back-end. With a winding rule given (`fill`), any rings are
+/// taken, crossing themselves and each other; without one, each polygon
+/// must be simple, as for triangulation, and is refused with the same
+/// message. A line set is refused.
+pub fn parse_polygons(text: &str, path: &Path, fill: Option<WindingRule>) -> Result<PolygonFile> {
+    let mut file = PolygonFile {
+        outlines: Vec::new(),
+        lines: Vec::new(),
+        looks: Vec::new(),
+    };
+    for record in parse_records(text, path)? {
+        let (outline, line, look) = match record {
+            Record::Triangle(t, line, look) => (Outline::new(vec![t.to_vec()])?, line, look),
+            Record::Segment(_, line) => return Err(Error::Parse {
+                path: path.to_path_buf(),
+                line: Some(line),
+                message:
+                    "a polygon back-end fills triangles and polygons; this file holds line segments"
+                        .into(),
+            }),
+            Record::Polygon(rings, look) => {
+                let line = rings[0].0;
+                let outline = match fill {
+                    Some(_) => {
+                        let mut points = rings.into_iter().map(|r| r.1);
+                        let outer = points.next().unwrap_or_default();
+                        Outline::with_holes(outer, points.collect())
+                            .map_err(|e| e.at_line(path, line))?
+                    }
+                    None => Outline::of_polygon(&simple_polygon(rings, path)?),
+                };
+                (outline, line, look)
+            }
+        };
+        file.outlines.push(outline);
+        file.lines.push(line);
+        file.looks.push(look);
+    }
+    Ok(file)
+}
+
+/// The rings read, checked to be a simple polygon (the error at the
+/// faulty ring's line).
+fn simple_polygon(rings: PolygonRings, path: &Path) -> Result<Polygon> {
+    let ring_lines: Vec<usize> = rings.iter().map(|r| r.0).collect();
+    let mut points = rings.into_iter().map(|r| r.1);
+    let outer = points.next().unwrap_or_default();
+    Polygon::with_faulty_ring(outer, points.collect())
+        .map_err(|(ring, e)| e.at_line(path, ring_lines[ring]))
+}
+
+/// Reads the records of a file: the grammar of triangles, polygons and
+/// segments, and the rule that a file holds either triangles and polygons
+/// or segments.
+fn parse_records(text: &str, path: &Path) -> Result<Vec<Record>> {
+    let mut records = Vec::new();
+    let (mut triangles, mut segments) = (false, false);
+    let mut polygon: Option<(PolygonRings, Look)> = None;
     // A UTF-8 byte-order mark, as some editors write, is not content.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (index, raw_line) in text.lines().enumerate() {
@@ -187,7 +306,7 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
             .collect::<Result<Vec<FixedPoint>>>()
             .map_err(|e| e.at_line(path, line_no))?;
         if let Some(keyword) = keyword {
-            if !segments.is_empty() {
+            if segments {
                 return Err(at(
                     "a file holds either triangles and polygons, or lines, not both".into(),
                 ));
@@ -200,29 +319,34 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
             }
             match (keyword, polygon.as_mut()) {
                 ("hole", None) => return Err(at("`hole` before any `polygon`".into())),
-                ("hole", Some(rings)) => rings.push((line_no, points)),
+                ("hole", Some((rings, _))) => rings.push((line_no, points)),
                 _ => {
-                    finish_polygon(polygon.take(), path, &mut triangles, &mut lines)?;
-                    looks.resize(triangles.len(), polygon_look);
-                    polygon = Some(vec![(line_no, points)]);
-                    polygon_look = look;
+                    records.extend(polygon.take().map(|(r, l)| Record::Polygon(r, l)));
+                    polygon = Some((vec![(line_no, points)], look));
+                    triangles = true;
                 }
             }
             continue;
         }
-        finish_polygon(polygon.take(), path, &mut triangles, &mut lines)?;
-        looks.resize(triangles.len(), polygon_look);
+        records.extend(polygon.take().map(|(r, l)| Record::Polygon(r, l)));
         if has_look && numbers.len() == 4 {
             return Err(at(
                 "`rgba` and `depth` are for triangles and polygons".into()
             ));
         }
         match numbers.len() {
-            6 if segments.is_empty() => {
-                triangles.push([points[0], points[1], points[2]]);
-                looks.push(look);
+            6 if !segments => {
+                records.push(Record::Triangle(
+                    [points[0], points[1], points[2]],
+                    line_no,
+                    look,
+                ));
+                triangles = true;
             }
-            4 if triangles.is_empty() => segments.push([points[0], points[1]]),
+            4 if !triangles => {
+                records.push(Record::Segment([points[0], points[1]], line_no));
+                segments = true;
+            }
             6 | 4 => {
                 return Err(at(
                     "a file holds either triangles (6 numbers) or lines (4 numbers), not both"
@@ -235,46 +359,9 @@ pub fn parse_shapes(text: &str, path: &Path) -> Result<Shapes> {
                 )))
             }
         }
-        lines.push(line_no);
     }
-    finish_polygon(polygon, path, &mut triangles, &mut lines)?;
-    looks.resize(triangles.len(), polygon_look);
-    Ok(if segments.is_empty() {
-        Shapes::Triangles {
-            triangles,
-            lines,
-            looks,
-        }
-    } else {
-        Shapes::Lines { segments, lines }
-    })
-}
-
-/// A polygon being read: its rings (the outer ring first, then the holes),
-/// each with its line.
-type PolygonRings = Vec<(usize, Vec<FixedPoint>)>;
-
-/// Triangulates a polygon read from the file and appends its triangles.
-fn finish_polygon(
-    polygon: Option<PolygonRings>,
-    path: &Path,
-    triangles: &mut Vec<[FixedPoint; 3]>,
-    lines: &mut Vec<usize>,
-) -> Result<()> {
-    let Some(rings) = polygon else {
-        return Ok(());
-    };
-    let ring_lines: Vec<usize> = rings.iter().map(|r| r.0).collect();
-    let line_no = ring_lines[0];
-    let mut points = rings.into_iter().map(|r| r.1);
-    let outer = points.next().unwrap_or_default();
-    let pieces = Polygon::with_faulty_ring(outer, points.collect())
-        .map_err(|(ring, e)| e.at_line(path, ring_lines[ring]))?
-        .triangulate()
-        .map_err(|e| e.at_line(path, line_no))?;
-    lines.extend(std::iter::repeat_n(line_no, pieces.len()));
-    triangles.extend(pieces);
-    Ok(())
+    records.extend(polygon.map(|(r, l)| Record::Polygon(r, l)));
+    Ok(records)
 }
 
 /// Reads and parses a triangle soup or line set file; `-` reads standard
@@ -282,19 +369,7 @@ fn finish_polygon(
 /// file with nothing to draw (only blank lines and comments), as an empty
 /// mesh is.
 pub fn read_shapes(path: &Path) -> Result<Shapes> {
-    if crate::geometry::mesh::Mesh::is_mesh_path(path) {
-        return Err(Error::Parse {
-            path: path.to_path_buf(),
-            line: None,
-            message: "this is a mesh; this command reads triangle soups, polygons and line sets (`render` and `compare` read meshes)".into(),
-        });
-    }
-    let text = if path.as_os_str() == "-" {
-        std::io::read_to_string(std::io::stdin().lock())
-    } else {
-        std::fs::read_to_string(path)
-    }
-    .map_err(|e| Error::io(path, &e))?;
+    let text = read_text(path)?;
     let shapes = parse_shapes(&text, path)?;
     if shapes.is_empty() {
         return Err(Error::Parse {
@@ -305,6 +380,39 @@ pub fn read_shapes(path: &Path) -> Result<Shapes> {
         });
     }
     Ok(shapes)
+}
+
+/// Reads and parses a polygon file for a polygon back-end
+/// ([`parse_polygons`]); `-` reads standard input. A file with no
+/// polygon is refused, as [`read_shapes`] refuses an empty one.
+pub fn read_polygons(path: &Path, fill: Option<WindingRule>) -> Result<PolygonFile> {
+    let text = read_text(path)?;
+    let file = parse_polygons(&text, path, fill)?;
+    if file.outlines.is_empty() {
+        return Err(Error::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            message: "no triangle or polygon in it (only blank lines and comments)".into(),
+        });
+    }
+    Ok(file)
+}
+
+/// The text of a file, or of standard input for `-`; a mesh refused.
+fn read_text(path: &Path) -> Result<String> {
+    if crate::geometry::mesh::Mesh::is_mesh_path(path) {
+        return Err(Error::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            message: "this is a mesh; this command reads triangle soups, polygons and line sets (`render` and `compare` read meshes)".into(),
+        });
+    }
+    if path.as_os_str() == "-" {
+        std::io::read_to_string(std::io::stdin().lock())
+    } else {
+        std::fs::read_to_string(path)
+    }
+    .map_err(|e| Error::io(path, &e))
 }
 
 #[cfg(test)]
@@ -467,6 +575,43 @@ mod tests {
                 "{msg:?} should start with {expected:?}"
             );
         }
+    }
+
+    /// A self-intersecting polygon: filled when a winding rule is given,
+    /// refused for triangulation and without a rule with today's message.
+    #[test]
+    fn polygons_read_for_filling_take_crossing_rings_given_a_rule() {
+        let bowtie = "polygon 0 0 4 4 4 0 0 4\n0 9 3 9 0 12\n";
+        let path = Path::new("soup.txt");
+        let file = parse_polygons(bowtie, path, Some(WindingRule::Nonzero)).unwrap();
+        assert_eq!(file.lines, vec![1, 2]);
+        assert_eq!(
+            file.outlines[1].rings,
+            vec![vec![p(0, 9), p(3, 9), p(0, 12)]]
+        );
+        for refused in [
+            parse(bowtie).unwrap_err(),
+            parse_polygons(bowtie, path, None).unwrap_err(),
+        ] {
+            assert_eq!(
+                refused.to_string(),
+                "soup.txt:1: polygon is not simple: two edges touch or cross"
+            );
+        }
+        let lines = parse_polygons("0 0 7 3\n", path, Some(WindingRule::EvenOdd));
+        assert!(lines
+            .unwrap_err()
+            .to_string()
+            .contains("holds line segments"));
+        // A hole wound as its outer ring is turned against it.
+        let holed = "polygon 0 0 9 0 9 9 0 9\nhole 3 3 6 3 6 6 3 6\n";
+        let file = parse_polygons(holed, path, None).unwrap();
+        let rings = &file.outlines[0].rings;
+        assert_eq!(rings[1], vec![p(3, 6), p(6, 6), p(6, 3), p(3, 3)]);
+    }
+
+    fn p(x: i64, y: i64) -> FixedPoint {
+        FixedPoint::from_raw(x * 256, y * 256).unwrap()
     }
 
     #[test]

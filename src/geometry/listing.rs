@@ -28,12 +28,13 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::geometry::input::{read_shapes, Shapes};
+use crate::geometry::input::{read_polygons, read_shapes, Shapes};
 use crate::geometry::scene::setup_triangles;
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fragment::FragmentList;
 use crate::raster::line::{LineOptions, LineSetup};
 use crate::raster::multisample::{masks_of, MaskFragment, SamplePattern};
+use crate::raster::polygon::{PolygonRasterizer, WindingRule};
 use crate::raster::registry::Backend;
 use crate::raster::target::RenderTarget;
 use std::fmt;
@@ -123,6 +124,45 @@ pub fn list_fragments(request: &FragmentsRequest<'_>, shapes: &Shapes) -> Result
             ))
         }
     }
+    Ok(listing)
+}
+
+/// What to list for a polygon back-end: the back-end, the polygon file it
+/// fills, and by which winding rule.
+#[derive(Clone, Copy)]
+pub struct PolygonFragmentsRequest<'a> {
+    /// The polygon back-end.
+    pub backend: &'static dyn PolygonRasterizer,
+    /// The file of triangles and polygons (see [`crate::geometry::read_polygons`]).
+    pub file: &'a Path,
+    /// Target width in pixels.
+    pub width: u32,
+    /// Target height in pixels.
+    pub height: u32,
+    /// The winding rule; given, rings that cross are taken too; `None`:
+    /// simple polygons only, filled even-odd (on them both rules agree).
+    pub fill: Option<WindingRule>,
+}
+
+/// Reads the request's polygon file and lists the fragments its polygon
+/// back-end fills, `x y p` (`p` the polygon's index), polygon by polygon.
+pub fn list_polygon_fragments_in_file(
+    request: &PolygonFragmentsRequest<'_>,
+) -> Result<FragmentListing> {
+    RenderTarget::check_size(request.width, request.height)?;
+    let file = read_polygons(request.file, request.fill)?;
+    let setups: Vec<_> = file
+        .outlines
+        .iter()
+        .enumerate()
+        .map(|(i, o)| o.setup(i as u32))
+        .collect();
+    let mut listing = FragmentListing::default();
+    let viewport = PixelRect::of_target(request.width, request.height);
+    let rule = request.fill.unwrap_or_default();
+    request
+        .backend
+        .rasterize(&setups, rule, viewport, &mut listing.fragments);
     Ok(listing)
 }
 

@@ -13,7 +13,8 @@
 //! * meshes ([`Mesh`], from PLY with [`load_ply`] or OBJ with
 //!   [`load_obj`]);
 //! * simple polygons with holes and their spade triangulation
-//!   ([`Polygon`]);
+//!   ([`Polygon`]); outlines of any shape filled by a winding rule, with
+//!   the exact winding-number oracle ([`Outline`]);
 //! * the text inputs of the command line (triangle soups, polygons, line
 //!   sets: [`read_shapes`]), small 2D scenes of screen-space triangles
 //!   ([`Scene2D`]: the course's examples), and the fragments a back-end
@@ -43,6 +44,7 @@ pub(crate) mod input;
 #[cfg_attr(not(feature = "cli"), allow(dead_code))]
 pub(crate) mod listing;
 pub(crate) mod mesh;
+pub(crate) mod outline;
 pub(crate) mod pipeline;
 pub(crate) mod polygon;
 pub(crate) mod render;
@@ -51,9 +53,12 @@ pub(crate) mod scene;
 pub use floor::{Floor, SKY};
 pub use frame_times::FrameTimes;
 pub(crate) use frame_times::{milliseconds, optional_milliseconds};
-pub use input::{parse_shapes, read_shapes, Look, Shapes};
+pub use input::{
+    parse_polygons, parse_shapes, read_polygons, read_shapes, Look, PolygonFile, Shapes,
+};
 pub use listing::{list_fragments, FragmentListing, FragmentsRequest};
 pub use mesh::{load_obj, load_ply, parse_obj, read_ply, triangulate_face, Mesh};
+pub use outline::{twice_signed_area, Outline};
 pub use pipeline::{
     assemble, draw, draw_binned, draw_clearing, positions_from_floats, process_triangles,
     process_triangles_into, ClipResult, ClipVertex, ClipVolume, CullMode, FrontFace, Geometry,
@@ -65,4 +70,6 @@ pub use render::{Frame, FrameStats, MeshRenderer, RenderSettings, Shading};
 pub use scene::{collect_fragments, scene_colour, setup_triangles, Scene2D, BLUE, RED};
 // What only the `rasterlab` program uses; absent without the `cli` feature.
 #[cfg(feature = "cli")]
-pub use self::listing::list_fragments_in_file;
+pub use self::listing::{
+    list_fragments_in_file, list_polygon_fragments_in_file, PolygonFragmentsRequest,
+};

@@ -57,7 +57,7 @@ fn orient(a: FixedPoint, b: FixedPoint, c: FixedPoint) -> i128 {
 }
 
 /// Is `p` on the closed segment `a b`?
-fn on_segment(a: FixedPoint, b: FixedPoint, p: FixedPoint) -> bool {
+pub(crate) fn on_segment(a: FixedPoint, b: FixedPoint, p: FixedPoint) -> bool {
     orient(a, b, p) == 0
         && p.x >= a.x.min(b.x)
         && p.x <= a.x.max(b.x)

@@ -11,7 +11,8 @@
 //! * the back-ends, one module each: [`triangle`] (with the
 //!   [`TriangleRasterizer`](triangle::TriangleRasterizer) trait) and
 //!   [`line`](mod@line) (with [`LineRasterizer`](line::LineRasterizer) and
-//!   the line options);
+//!   the line options), and [`polygon`] (polygons filled directly, by
+//!   the edge table, under a [`WindingRule`](polygon::WindingRule));
 //! * what a back-end is, as data ([`Descriptor`]: name, walk, role, cost
 //!   class), the one work budget ([`WorkBudget`]), and the registry by
 //!   name and by role ([`triangle_backends`], [`line_backends`],
@@ -63,6 +64,7 @@ pub(crate) mod fragment;
 pub mod line;
 pub(crate) mod multisample;
 pub(crate) mod multisample_stage;
+pub mod polygon;
 pub(crate) mod primitive;
 pub(crate) mod registry;
 pub(crate) mod shader;
@@ -91,8 +93,8 @@ pub use multisample_stage::{draw_multisampled, MultisampleTarget, MAX_TARGET_SAM
 pub use primitive::{DepthPlane, ShadedLine, ShadedTriangle, ShadedVertex, TriangleData, Varyings};
 pub use registry::{
     backend, default_triangle_backend, fallback_triangle_backend, line_backend, line_backends,
-    reference_triangle_backend, reference_triangle_backend_within, triangle_backend,
-    triangle_backends, Backend,
+    polygon_backend, polygon_backends, reference_triangle_backend,
+    reference_triangle_backend_within, triangle_backend, triangle_backends, Backend,
 };
 pub use shader::{
     to_rgba8, ColorLanes, Constant, Diffuse, DirectionalLight, Flat, FragmentInput, FragmentLanes,

@@ -15,6 +15,7 @@ use crate::raster::line::{
     bresenham::Bresenham, dda::Dda, diamond::Diamond, diamond_nudged::DiamondNudged,
     direct::Direct, wu::Wu, LineRasterizer,
 };
+use crate::raster::polygon::{crossings::Crossings, edge_table::EdgeTable, PolygonRasterizer};
 use crate::raster::triangle::{
     bbox::BoundingBox, incremental::Incremental, naive::Naive, scanline::Scanline, tiled::Tiled,
     TriangleRasterizer,
@@ -134,6 +135,22 @@ pub fn line_backend(name: &str) -> Result<&'static dyn LineRasterizer> {
         .ok_or_else(|| unknown(name, "line"))
 }
 
+static POLYGON_BACKENDS: [&dyn PolygonRasterizer; 2] = [&EdgeTable, &Crossings];
+
+/// Every polygon back-end (they fill polygons without triangulating them).
+pub fn polygon_backends() -> &'static [&'static dyn PolygonRasterizer] {
+    &POLYGON_BACKENDS
+}
+
+/// The polygon back-end called `name`.
+pub fn polygon_backend(name: &str) -> Result<&'static dyn PolygonRasterizer> {
+    polygon_backends()
+        .iter()
+        .copied()
+        .find(|b| b.name() == name)
+        .ok_or_else(|| unknown(name, "polygon"))
+}
+
 /// A back-end of either kind.
 #[derive(Copy, Clone)]
 pub enum Backend {
@@ -164,7 +181,12 @@ fn unknown(name: &str, kind: &'static str) -> Error {
     let names: Vec<&str> = match kind {
         "triangle" => triangle_backends().iter().map(|b| b.name()).collect(),
         "line" => line_backends().iter().map(|b| b.name()).collect(),
-        _ => all_backends().iter().map(|b| b.name).collect(),
+        "polygon" => polygon_backends().iter().map(|b| b.name()).collect(),
+        _ => all_backends()
+            .iter()
+            .map(|b| b.name)
+            .chain(polygon_backends().iter().map(|b| b.name()))
+            .collect(),
     };
     Error::UnknownBackend {
         name: name.to_string(),

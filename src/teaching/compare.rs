@@ -24,6 +24,7 @@ use crate::geometry::scene::Scene2D;
 use crate::raster::line::LineSetup;
 use crate::raster::multisample::SamplePattern;
 use crate::teaching::report::{CompareInput, Report};
+use crate::teaching::scan_or_triangulate::ScanOrTriangulate;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -51,6 +52,9 @@ pub struct CompareSummary {
     pub report: Report,
     /// The report's HTML file.
     pub path: PathBuf,
+    /// For a file of polygons, the same polygons filled directly beside
+    /// their triangulation.
+    pub polygons: Option<ScanOrTriangulate>,
 }
 
 /// The target size a comparison defaults to: for a mesh, 320 x 240,
@@ -89,7 +93,15 @@ pub fn compare(request: &CompareRequest<'_>) -> Result<CompareSummary> {
     let report =
         Report::compare_multisampled(&input, width, height, request.samples, request.msaa)?;
     let path = report.write(request.out)?;
-    Ok(CompareSummary { report, path })
+    let polygons = match Mesh::is_mesh_path(request.input) || request.input.as_os_str() == "-" {
+        true => None,
+        false => ScanOrTriangulate::of_file(request.input, width, height, request.samples)?,
+    };
+    Ok(CompareSummary {
+        report,
+        path,
+        polygons,
+    })
 }
 
 /// A mesh (by its extension), a triangle soup or polygon file, or a line set.
@@ -163,6 +175,9 @@ impl fmt::Display for CompareSummary {
                     r.ns_per_pair
                 )?;
             }
+        }
+        if let Some(polygons) = &self.polygons {
+            write!(f, "{polygons}")?;
         }
         writeln!(f, "report: {}", self.path.display())
     }

@@ -21,7 +21,11 @@ use crate::raster::edge::FillRule;
 use crate::raster::fixed::FixedPoint;
 use crate::raster::line::LineOptions;
 use crate::raster::multisample::SamplePattern;
-use crate::raster::registry::{all_backends, backend, triangle_backend, Backend};
+use crate::raster::polygon::edge_table::EdgeTable;
+use crate::raster::polygon::{PolygonRasterizer, WindingRule};
+use crate::raster::registry::{
+    all_backends, backend, polygon_backend, polygon_backends, triangle_backend, Backend,
+};
 use crate::raster::stage::{Blend, BlendMode};
 use crate::raster::target::{DepthState, RenderTarget};
 use crate::raster::texture::{LevelMode, Sampler};
@@ -66,6 +70,9 @@ pub struct ExplainRequest {
     /// Triangles: also trace their samples on this multisample pattern
     /// ([`trace_samples`](super::trace_samples)).
     pub msaa: Option<SamplePattern>,
+    /// The winding rule of a polygon back-end (`edge-table`); `None`
+    /// for the others (even-odd when a polygon back-end is traced).
+    pub fill: Option<WindingRule>,
     /// The blend trace: the built-in scene drawn ([`BLEND_SCENE`] when
     /// `None`), its blend state and depth state, and whether its
     /// triangles are sorted back to front first.
@@ -135,6 +142,7 @@ impl ExplainRequest {
             coordinates,
             picture: false,
             msaa: None,
+            fill: None,
             blending: Blending::default(),
             texturing: Texturing::default(),
         }
@@ -253,12 +261,27 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
                 .into(),
         ));
     }
+    if let Ok(polygon) = polygon_backend(&request.backend) {
+        if polygon.name() != EdgeTable.name() {
+            return Err(Error::InvalidArgument(format!(
+                "`{}` has no step-by-step trace; explain --backend edge-table traces the book's walk",
+                polygon.name()
+            )));
+        }
+        return explain_polygon(request);
+    }
+    if request.fill.is_some() {
+        return Err(Error::InvalidArgument(
+            "--fill is the winding rule of a polygon back-end (edge-table)".into(),
+        ));
+    }
     let chosen = backend(&request.backend).map_err(|_| Error::UnknownName {
         what: "rasterizer back-end",
         name: request.backend.clone(),
         known: all_backends()
             .iter()
             .map(|b| b.name)
+            .chain(polygon_backends().iter().map(|b| b.name()))
             .collect::<Vec<_>>()
             .join(", ")
             + "; or depth-buffer, the depth buffer's trace; or blend, one pixel's blends; \
@@ -308,6 +331,37 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     Ok(Explanation {
         text,
         picture,
+        levels: None,
+    })
+}
+
+/// The edge table's walk over the polygon the request's numbers give
+/// (`x y` pairs, screen coordinates).
+fn explain_polygon(request: &ExplainRequest) -> Result<Explanation> {
+    if request.msaa.is_some() || request.picture || request.rule != FillRule::TopLeft {
+        return Err(Error::InvalidArgument(
+            "edge-table settles ties by the top-left rule on one sample a pixel, and draws no picture: \
+             --rule, --msaa and --picture are for the triangle back-ends"
+                .into(),
+        ));
+    }
+    if !request.coordinates.len().is_multiple_of(2) {
+        return Err(Error::InvalidArgument(format!(
+            "edge-table traces a polygon: give x y pairs, not {} numbers",
+            request.coordinates.len()
+        )));
+    }
+    let points: Vec<(f64, f64)> = request
+        .coordinates
+        .chunks(2)
+        .map(|c| (c[0], c[1]))
+        .collect();
+    let (width, height) = request.size(DEFAULT_GRID)?;
+    let rule = request.fill.unwrap_or_default();
+    let text = super::trace_polygon(&points, rule, width, height)?.to_text();
+    Ok(Explanation {
+        text,
+        picture: None,
         levels: None,
     })
 }

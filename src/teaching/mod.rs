@@ -11,7 +11,8 @@
 //!   uses, and the legends themselves: [`Role`], [`Legend`];
 //! * the side-by-side HTML comparison of every back-end on one input
 //!   (images, differences, work and time): [`Report`], and the `compare`
-//!   command around it, [`compare()`];
+//!   command around it, [`compare()`]; for polygons, filling them directly
+//!   counted beside triangulating them: [`ScanOrTriangulate`];
 //! * one algorithm traced on a small input, as `explain` prints it:
 //!   [`explain()`];
 //! * every back-end on the bundled scenes and meshes, its images compared
@@ -38,6 +39,7 @@ pub(crate) mod level_picture;
 pub(crate) mod palette;
 pub(crate) mod report;
 pub(crate) mod sample_trace;
+pub(crate) mod scan_or_triangulate;
 pub(crate) mod texture_chart;
 pub(crate) mod texture_trace;
 pub(crate) mod trace;
@@ -68,7 +70,10 @@ pub use report::{
     MAX_REPORT_BYTES, REPORT_BYTES_PER_PIXEL,
 };
 pub use sample_trace::trace_samples;
+pub use scan_or_triangulate::{MethodRow, ScanOrTriangulate};
 pub use texture_chart::texture_chart_svg;
 pub use texture_trace::trace_texture;
-pub use trace::{trace_blend, trace_depth_buffer, trace_line, trace_triangle, LineEnds};
+pub use trace::{
+    trace_blend, trace_depth_buffer, trace_line, trace_polygon, trace_triangle, LineEnds,
+};
 pub use trace_table::{Column, Trace, TraceRow};

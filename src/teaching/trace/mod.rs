@@ -20,6 +20,10 @@
 //!   added per pixel and per row, every pixel the walk tests; on `tiled`:
 //!   every 8 x 8 block of the box and its class from the corner test
 //!   (trivial reject, trivial accept, partial);
+//! * [`trace_polygon`] on `edge-table`: the edge table, each edge in the
+//!   bucket of its first row, then each row's edges moved into the active
+//!   edge table, those removed, the table sorted by x with each crossing's
+//!   winding, and the spans filled (Foley and van Dam's §3.6);
 //! * [`trace_depth_buffer`]: the rasterization slides' depth buffer, printed as the
 //!   slides' matrix after each triangle;
 //! * [`trace_blend`]: one pixel's fragments in order, each one's depth
@@ -45,11 +49,13 @@
 mod blend;
 mod depth_buffer;
 mod line;
+mod polygon;
 mod triangle;
 
 pub use blend::trace_blend;
 pub use depth_buffer::trace_depth_buffer;
 pub use line::{trace_line, LineEnds};
+pub use polygon::trace_polygon;
 pub use triangle::trace_triangle;
 pub(crate) use triangle::{snapped_or_say, verdict};
 
