@@ -12,7 +12,7 @@
 //!
 //! The move is done symbolically, not with a small number: every
 //! coordinate is a polynomial `a + b e + c e^2 + ...` in an infinitesimal
-//! `e > 0` ([`Nudged`]), and two of them compare by their first
+//! `e > 0`, and two of them compare by their first
 //! different coefficient, which is how they compare for every small
 //! enough `e`. The moved segment touches no diamond's boundary (its
 //! direction is a whole vector, so it cannot run along a side moved off
