@@ -335,12 +335,7 @@ impl LineRasterizer for Diamond {
     }
 
     fn check_options(&self, options: &LineOptions) -> Result<()> {
-        if *options != LineOptions::DEFAULT {
-            return Err(Error::InvalidArgument(
-                "diamond follows the diamond-exit rule: connectivity, endpoint and symmetry options do not apply".into(),
-            ));
-        }
-        Ok(())
+        default_options_only("diamond", options)
     }
 
     fn rasterize(
@@ -350,16 +345,39 @@ impl LineRasterizer for Diamond {
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
-        let mut work = WorkCounters::default();
-        let mut emitter = PixelEmitter::default();
-        let mut pixels = Vec::new();
-        for line in lines {
-            work.primitives += 1;
-            Self::walk_into(line, |_, _, _| work.samples_tested += 1, &mut pixels);
-            emitter.emit(line, &pixels, viewport, sink, &mut work);
-        }
-        work
+        draw_by(exits_diamond, lines, viewport, sink)
     }
+}
+
+/// A diamond-exit back-end's options: the defaults only, as the rule
+/// fixes connectivity, the end points and the direction.
+pub(super) fn default_options_only(name: &str, options: &LineOptions) -> Result<()> {
+    if *options != LineOptions::DEFAULT {
+        return Err(Error::InvalidArgument(format!(
+            "{name} follows the diamond-exit rule: connectivity, endpoint and symmetry options do not apply"
+        )));
+    }
+    Ok(())
+}
+
+/// Draws `lines` by a diamond-exit rule whose test is `exits`: each
+/// segment's candidates walked ([`walk_candidates`]) and counted, its
+/// pixels emitted within `viewport`.
+pub(super) fn draw_by(
+    exits: impl Fn(FixedPoint, FixedPoint, i64, i64) -> bool + Copy,
+    lines: &[LineSetup],
+    viewport: PixelRect,
+    sink: &mut dyn FragmentSink,
+) -> WorkCounters {
+    let mut work = WorkCounters::default();
+    let mut emitter = PixelEmitter::default();
+    let mut pixels = Vec::new();
+    for line in lines {
+        work.primitives += 1;
+        walk_candidates(line, exits, |_, _, _| work.samples_tested += 1, &mut pixels);
+        emitter.emit(line, &pixels, viewport, sink, &mut work);
+    }
+    work
 }
 
 #[cfg(test)]

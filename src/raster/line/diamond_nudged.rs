@@ -25,9 +25,9 @@
 //! and that the symbolic move gives the answer of a concrete move by
 //! `(2^-20, -2^-40)` pixels on a grid where that move is small enough.
 
-use super::diamond::{clip_slab, walk_candidates, Bound, Exact};
-use super::{LineDescriptor, LineOptions, LineRasterizer, LineSetup, LineWalk, PixelEmitter};
-use crate::error::{Error, Result};
+use super::diamond::{clip_slab, default_options_only, draw_by, walk_candidates, Bound, Exact};
+use super::{LineDescriptor, LineOptions, LineRasterizer, LineSetup, LineWalk};
+use crate::error::Result;
 use crate::raster::descriptor::{CostClass, Role};
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::{FixedPoint, HALF_PIXEL, SUBPIXEL_SCALE};
@@ -188,12 +188,7 @@ impl LineRasterizer for DiamondNudged {
     }
 
     fn check_options(&self, options: &LineOptions) -> Result<()> {
-        if *options != LineOptions::DEFAULT {
-            return Err(Error::InvalidArgument(
-                "diamond-nudged follows the diamond-exit rule: connectivity, endpoint and symmetry options do not apply".into(),
-            ));
-        }
-        Ok(())
+        default_options_only("diamond-nudged", options)
     }
 
     fn rasterize(
@@ -203,20 +198,7 @@ impl LineRasterizer for DiamondNudged {
         viewport: PixelRect,
         sink: &mut dyn FragmentSink,
     ) -> WorkCounters {
-        let mut work = WorkCounters::default();
-        let mut emitter = PixelEmitter::default();
-        let mut pixels = Vec::new();
-        for line in lines {
-            work.primitives += 1;
-            walk_candidates(
-                line,
-                exits_nudged_diamond,
-                |_, _, _| work.samples_tested += 1,
-                &mut pixels,
-            );
-            emitter.emit(line, &pixels, viewport, sink, &mut work);
-        }
-        work
+        draw_by(exits_nudged_diamond, lines, viewport, sink)
     }
 }
 
