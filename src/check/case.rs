@@ -44,6 +44,15 @@ impl Case {
         self.len() == 0
     }
 
+    /// Every vertex of every primitive, as given: the triangles' then the
+    /// segments'.
+    pub(crate) fn points(&self) -> impl Iterator<Item = Point> + '_ {
+        self.triangles
+            .iter()
+            .flat_map(|t| t.iter().copied())
+            .chain(self.lines.iter().flat_map(|l| l.iter().copied()))
+    }
+
     /// The triangles as judged: snapped as the case's [`Snapping`] says,
     /// on the 1/256 pixel grid.
     pub fn snapped_triangles(&self) -> Vec<[FixedPoint; 3]> {

@@ -48,7 +48,7 @@ pub fn shrink(
             return None;
         }
         if matches!(property, Property::Line(c) if c.whole_pixels())
-            && points(c).any(|p| p.0.fract() != 0.0 || p.1.fract() != 0.0)
+            && c.points().any(|p| p.0.fract() != 0.0 || p.1.fract() != 0.0)
         {
             // Pixel indices are whole numbers.
             return None;
@@ -187,8 +187,9 @@ fn variants(case: &Case, focus: Option<(i64, i64)>) -> Vec<Case> {
             });
         }
     }
-    let (min_x, min_y) =
-        points(case).fold((f64::MAX, f64::MAX), |m, p| (m.0.min(p.0), m.1.min(p.1)));
+    let (min_x, min_y) = case
+        .points()
+        .fold((f64::MAX, f64::MAX), |m, p| (m.0.min(p.0), m.1.min(p.1)));
     for (dx, dy) in [
         (min_x.floor(), 0.0),
         (0.0, min_y.floor()),
@@ -199,7 +200,7 @@ fn variants(case: &Case, focus: Option<(i64, i64)>) -> Vec<Case> {
             out.push(map_points(case, |p| (p.0 - dx, p.1 - dy)));
         }
     }
-    let mut distinct: Vec<Point> = points(case).collect();
+    let mut distinct: Vec<Point> = case.points().collect();
     distinct.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
     distinct.dedup();
     for &p in &distinct {
@@ -229,15 +230,8 @@ fn variants(case: &Case, focus: Option<(i64, i64)>) -> Vec<Case> {
         }
     }
     let limit = (GUARD_BAND - 1) as f64;
-    out.retain(|c| !c.is_empty() && points(c).all(|p| p.0.abs() < limit && p.1.abs() < limit));
+    out.retain(|c| !c.is_empty() && c.points().all(|p| p.0.abs() < limit && p.1.abs() < limit));
     out
-}
-
-fn points(case: &Case) -> impl Iterator<Item = Point> + '_ {
-    case.triangles
-        .iter()
-        .flat_map(|t| t.iter().copied())
-        .chain(case.lines.iter().flat_map(|l| l.iter().copied()))
 }
 
 fn map_points(case: &Case, f: impl Fn(Point) -> Point) -> Case {

@@ -284,15 +284,9 @@ fn read_case_file(
     } else {
         snapping
     };
-    for (i, p) in case
-        .triangles
-        .iter()
-        .flat_map(|t| t.iter())
-        .chain(case.lines.iter().flat_map(|l| l.iter()))
-        .enumerate()
-    {
+    for (i, p) in case.points().enumerate() {
         snapping
-            .check_exact(*p)
+            .check_exact(p)
             .map_err(|e| Error::InvalidArgument(format!("{}: vertex {i}: {e}", path.display())))?;
     }
     Ok(Case {
