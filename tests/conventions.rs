@@ -199,13 +199,15 @@ fn float_rule<F: Float, const INCLUSIVE: bool>(case: &Case) -> Result<Vec<Fragme
                 *e = (-e.0, -e.1, -e.2);
             }
         }
+        // Whether each edge owns the centres on it, decided once.
+        let owns = edges
+            .map(|(a, b, _)| INCLUSIVE || a > F::of(0.0) || (a == F::of(0.0) && b > F::of(0.0)));
         for y in 0..case.height {
             for x in 0..case.width {
                 let p = (F::of(f64::from(x) + 0.5), F::of(f64::from(y) + 0.5));
-                let inside = edges.iter().all(|&(a, b, c)| {
+                let inside = edges.iter().zip(owns).all(|(&(a, b, c), owns)| {
                     let e = a * p.0 + b * p.1 + c;
-                    let top_left = a > F::of(0.0) || (a == F::of(0.0) && b > F::of(0.0));
-                    e > F::of(0.0) || (e == F::of(0.0) && (top_left || INCLUSIVE))
+                    e > F::of(0.0) || (e == F::of(0.0) && owns)
                 });
                 if inside {
                     out.push(Fragment::at(i64::from(x), i64::from(y), id as u32));
