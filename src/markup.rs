@@ -83,6 +83,29 @@ impl Markup {
         self
     }
 
+    /// Opens an `<svg>` picture `width` by `height` user units, its
+    /// viewBox the same, in DejaVu Sans at `font_size` px (`None`: left
+    /// to the elements).
+    pub(crate) fn open_svg(
+        &mut self,
+        width: f64,
+        height: f64,
+        font_size: Option<u32>,
+    ) -> &mut Markup {
+        let view_box = format!("0 0 {width} {height}");
+        let mut attrs: Vec<Attr> = vec![
+            ("xmlns", &"http://www.w3.org/2000/svg"),
+            ("width", &width),
+            ("height", &height),
+            ("viewBox", &view_box),
+            ("font-family", &"DejaVu Sans, sans-serif"),
+        ];
+        if let Some(size) = &font_size {
+            attrs.push(("font-size", size));
+        }
+        self.open("svg", &attrs)
+    }
+
     /// Closes element `name`: `</name>`.
     pub(crate) fn close(&mut self, name: &str) -> &mut Markup {
         let _ = write!(self.out, "</{name}>");

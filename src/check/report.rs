@@ -257,17 +257,7 @@ impl Finding {
             .max(caption.chars().count() as f64 * 8.4 + 12.0);
         let height = top + gh + 12.0 + legend_height;
         let mut m = Markup::new();
-        m.open(
-            "svg",
-            &[
-                ("xmlns", &"http://www.w3.org/2000/svg"),
-                ("width", &width),
-                ("height", &height),
-                ("viewBox", &format_args!("0 0 {width} {height}")),
-                ("font-family", &"DejaVu Sans, sans-serif"),
-            ],
-        )
-        .newline();
+        m.open_svg(width, height, None).newline();
         m.element("title", &[], &caption).newline();
         m.empty(
             "path",

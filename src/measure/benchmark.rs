@@ -479,18 +479,7 @@ pub fn chart_svg(report: &BenchReport) -> String {
     let width = x0 + bar_w + value_w;
     let height = top + plot_h + 50.0;
     let mut m = Markup::new();
-    m.open(
-        "svg",
-        &[
-            ("xmlns", &"http://www.w3.org/2000/svg"),
-            ("width", &width),
-            ("height", &height),
-            ("viewBox", &format_args!("0 0 {width} {height}")),
-            ("font-family", &"DejaVu Sans, sans-serif"),
-            ("font-size", &11),
-        ],
-    )
-    .newline();
+    m.open_svg(width, height, Some(11)).newline();
     m.empty(
         "rect",
         &[("width", &"100%"), ("height", &"100%"), ("fill", &"white")],

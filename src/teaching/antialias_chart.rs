@@ -128,18 +128,7 @@ pub(crate) fn error_cost_svg(labels: &Labels, points: &[Plotted], legend: &Legen
     let (legend_svg, legend_h) = legend.to_svg(LEFT, TOP + PLOT_H + 48.0, WIDTH - LEFT - 10.0);
     let height = TOP + PLOT_H + 52.0 + legend_h;
     let mut m = Markup::new();
-    m.open(
-        "svg",
-        &[
-            ("xmlns", &"http://www.w3.org/2000/svg"),
-            ("width", &WIDTH),
-            ("height", &height),
-            ("viewBox", &format_args!("0 0 {WIDTH} {height}")),
-            ("font-family", &"DejaVu Sans, sans-serif"),
-            ("font-size", &12),
-        ],
-    )
-    .newline();
+    m.open_svg(WIDTH, height, Some(12)).newline();
     m.empty(
         "rect",
         &[("width", &"100%"), ("height", &"100%"), ("fill", &"white")],

@@ -119,18 +119,7 @@ impl LevelPicture {
         let height = ph + 44.0 + legend_h;
         let z = f64::from(ZOOM);
         let mut m = Markup::new();
-        m.open(
-            "svg",
-            &[
-                ("xmlns", &"http://www.w3.org/2000/svg"),
-                ("width", &width),
-                ("height", &height),
-                ("viewBox", &format_args!("0 0 {width} {height}")),
-                ("font-family", &"DejaVu Sans, sans-serif"),
-                ("font-size", &12),
-            ],
-        )
-        .newline();
+        m.open_svg(width, height, Some(12)).newline();
         m.empty(
             "rect",
             &[("width", &"100%"), ("height", &"100%"), ("fill", &"white")],

@@ -72,17 +72,7 @@ impl GridPicture {
         let width = (left + w + 8.0).max(legend_width + 8.0).max(caption_width);
         let height = top + h + 8.0 + legend_height;
         let mut m = Markup::new();
-        m.open(
-            "svg",
-            &[
-                ("xmlns", &"http://www.w3.org/2000/svg"),
-                ("width", &width),
-                ("height", &height),
-                ("viewBox", &format_args!("0 0 {width} {height}")),
-                ("font-family", &"DejaVu Sans, sans-serif"),
-            ],
-        )
-        .newline();
+        m.open_svg(width, height, None).newline();
         m.element("title", &[], &self.caption).newline();
         m.empty(
             "path",
