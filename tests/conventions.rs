@@ -109,6 +109,66 @@ fn a_y_up_rasterizer_passes_with_its_origin_and_is_named_flipped_without() {
     assert_eq!(mirror.verdict, VerdictWord::Fail);
 }
 
+/// Under `--origin bottom-left` the counterexample file is the program's
+/// input, y up, as the text says ("give it to the program as its input"):
+/// its primitives are the case seen from the bottom edge, its missing and
+/// extra pixels count rows up from the bottom, and `--case` reads it back
+/// (its `# origin bottom-left` line turns y down again) to the same
+/// failure.
+#[test]
+fn a_y_up_counterexample_file_is_the_programs_own_input() {
+    let out = std::env::temp_dir().join(format!("rasterlab-y-up-{}", std::process::id()));
+    let mut request = CheckRequest::new(SubjectSpec::Backend(String::new()));
+    request.cases = 200;
+    request.origin = Origin::BottomLeft;
+    request.rule = Some(RuleChoice::Exact(FillRule::BottomLeft));
+    request.out = Some(out.clone());
+    let failed = run_with(&request, "mine", &|| Box::new(y_up)).unwrap();
+    assert_eq!(failed.verdict, VerdictWord::Fail, "{failed}");
+    let finding = failed.finding.as_deref().unwrap();
+    let file = out.join("counterexample.txt");
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(text.contains("\n# origin bottom-left\n"), "{text}");
+    // The primitives as a program reads them, skipping the comments.
+    let given: Vec<Vec<f64>> = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| l.split_whitespace().map(|t| t.parse().unwrap()).collect())
+        .collect();
+    let h = f64::from(finding.case.height);
+    let seen_up: Vec<Vec<f64>> = finding
+        .case
+        .triangles
+        .iter()
+        .map(|t| t.iter().flat_map(|&(x, y)| [x, h - y]).collect())
+        .collect();
+    assert_eq!(given, seen_up, "{text}");
+    // The missing and extra pixels as the program names them.
+    let last = i64::from(finding.case.height) - 1;
+    for (word, list) in [("missing", &finding.missing), ("extra", &finding.extra)] {
+        let line = text
+            .lines()
+            .find(|l| l.starts_with(&format!("# {word}:")))
+            .unwrap();
+        for f in list.iter().take(40) {
+            let named = format!("({},{}) t{}", f.x, last - f.y, f.id);
+            assert!(line.contains(&named), "{named} not in {line}");
+        }
+    }
+    assert!(failed.to_string().contains("y up as it is given the case"));
+    // Read back: the same case, the same failure.
+    assert_eq!(Case::from_text(&text).unwrap(), finding.case);
+    let mut rerun = request.clone();
+    rerun.case_file = Some(file.clone());
+    rerun.out = None;
+    let again = run_with(&rerun, "mine", &|| Box::new(y_up)).unwrap();
+    let again = again.finding.as_deref().expect("the file fails again");
+    assert_eq!(again.case.triangles, finding.case.triangles);
+    assert_eq!(again.missing, finding.missing);
+    assert_eq!(again.extra, finding.extra);
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
 /// `rasterlab check` on a Python student of `examples/student/`, with
 /// more options; the exit status and what it printed (both streams).
 fn student(file: &str, options: &[&str]) -> Option<(i32, String)> {
@@ -247,7 +307,7 @@ impl Float for f32 {
 /// 1/256 px, are exact in `f64`, and so are its edge functions); with the
 /// default 1/256 px snapping it fails the ties family, whose vertices lie
 /// halfway between two steps. In `f32` it fails, and the cause names
-/// floating point.
+/// floating point (and not snapping, as nothing was snapped).
 #[test]
 fn a_floating_point_rasterizer_passes_when_nothing_is_snapped() {
     let run = |snapping: Snapping,
@@ -286,6 +346,8 @@ fn a_floating_point_rasterizer_passes_when_nothing_is_snapped() {
     assert_eq!(single.verdict, VerdictWord::Fail);
     let d = diagnosis(&single);
     assert!(d.contains("floating-point"), "{d}");
+    // Nothing was snapped, so no snapping is suspected.
+    assert!(!d.contains("not snapped"), "{d}");
 }
 
 /// `--snap 1/16`: a rasterizer that snaps to 1/16 px passes it, and fails

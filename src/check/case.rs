@@ -76,8 +76,22 @@ impl Case {
     /// under a snapping other than 1/256 px a line `# snap S`, then one
     /// primitive per line (`-0` written as `0`).
     pub fn to_text(&self) -> String {
-        let clean = self.without_negative_zeros();
+        self.to_text_for(Origin::TopLeft)
+    }
+
+    /// The input file as a program with this [`Origin`] is given the
+    /// case: under [`Origin::BottomLeft`], y measured up from the bottom
+    /// edge (`height - y`) and a line `# origin bottom-left` after the
+    /// size, which [`Case::from_text`] reads to turn y back.
+    pub fn to_text_for(&self, origin: Origin) -> String {
+        let clean = match origin {
+            Origin::TopLeft => self.without_negative_zeros(),
+            Origin::BottomLeft => self.flipped_y().without_negative_zeros(),
+        };
         let mut out = format!("# size {}x{}\n", clean.width, clean.height);
+        if origin == Origin::BottomLeft {
+            let _ = writeln!(out, "# origin {origin}");
+        }
         if let Some(p) = self.samples {
             let _ = writeln!(out, "# msaa {}", p.count());
         }
@@ -97,6 +111,20 @@ impl Case {
         out
     }
 
+    /// The same case seen from the bottom-left corner: every y made
+    /// `height - y` (exact for the coordinates a case holds, multiples
+    /// of 1/256 px well inside `f64`'s 53 bits, so that flipping twice
+    /// gives the case back).
+    pub(crate) fn flipped_y(&self) -> Case {
+        let h = f64::from(self.height);
+        let flip = |p: Point| (p.0, h - p.1);
+        Case {
+            triangles: self.triangles.iter().map(|t| t.map(flip)).collect(),
+            lines: self.lines.iter().map(|l| l.map(flip)).collect(),
+            ..self.clone()
+        }
+    }
+
     /// The same case with every `-0.0` made `0.0` (adding zero does it).
     fn without_negative_zeros(&self) -> Case {
         let fix = |p: Point| (p.0 + 0.0, p.1 + 0.0);
@@ -113,9 +141,12 @@ impl Case {
     /// Reads a case written by [`Case::to_text`] (a counterexample file),
     /// or any soup or line set with a `# size WxH` line (and a `# msaa N`
     /// line for a multisampled one, `N` one of 1, 2, 4, 8 and 16; a
-    /// `# snap S` line for a snapping other than 1/256 px).
+    /// `# snap S` line for a snapping other than 1/256 px; a line
+    /// `# origin bottom-left` for one whose y runs up from the bottom
+    /// edge, turned back to the protocol's y down).
     pub fn from_text(text: &str) -> Result<Case> {
         let mut case = Case::default();
+        let mut origin = Origin::TopLeft;
         for (i, line) in text.lines().enumerate() {
             let bad = |m: String| Error::InvalidArgument(format!("line {}: {m}", i + 1));
             if let Some(size) = line.trim().strip_prefix("# size ") {
@@ -124,6 +155,10 @@ impl Case {
                     .ok_or_else(|| bad("expected # size WxH".into()))?;
                 case.width = w.trim().parse().map_err(|_| bad("bad width".into()))?;
                 case.height = h.trim().parse().map_err(|_| bad("bad height".into()))?;
+                continue;
+            }
+            if let Some(o) = line.trim().strip_prefix("# origin ") {
+                origin = o.trim().parse().map_err(|e: Error| bad(e.to_string()))?;
                 continue;
             }
             if let Some(s) = line.trim().strip_prefix("# snap ") {
@@ -160,7 +195,10 @@ impl Case {
         if case.width == 0 || case.height == 0 {
             return Err(Error::InvalidArgument("no `# size WxH` line".into()));
         }
-        Ok(case)
+        Ok(match origin {
+            Origin::TopLeft => case,
+            Origin::BottomLeft => case.flipped_y(),
+        })
     }
 }
 
@@ -168,3 +206,28 @@ impl Case {
 pub(crate) fn snap(p: Point) -> FixedPoint {
     FixedPoint::snap_f64(p.0, p.1).unwrap_or_default()
 }
+
+/// Where the subject puts the origin of its screen coordinates, and so
+/// which way its y grows: the protocol's top-left corner with y down
+/// (Direct3D, Vulkan, image rows), or the bottom-left corner with y up
+/// (OpenGL's window coordinates, Scotty3D). A y-up subject is given each
+/// case with y measured up from the bottom of the target (`height - y`)
+/// and answers with rows counted up from the bottom row (row 0 the
+/// lowest); rasterlab turns both back before judging, so the rules and
+/// their names (a top edge, a left edge) are those of the picture as it
+/// is seen, whatever way the subject counts.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Origin {
+    /// At the top-left corner, y down: the protocol's own.
+    #[default]
+    TopLeft,
+    /// At the bottom-left corner, y up.
+    BottomLeft,
+}
+
+crate::names::named_enum!(
+    Origin,
+    "origin",
+    TopLeft = "top-left",
+    BottomLeft = "bottom-left"
+);

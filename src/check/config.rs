@@ -28,10 +28,9 @@
 //! assert_eq!(ties["max_score"], 10.0);
 //! ```
 
+use super::case::Origin;
 use super::generate::{EXACT_FAMILIES, LINE_FAMILIES, MESH_FAMILIES, PIXEL_INDEX_FAMILIES};
-use super::request::{
-    timeout_from_seconds, CheckRequest, ConventionChoice, Kind, Origin, RuleChoice,
-};
+use super::request::{timeout_from_seconds, CheckRequest, ConventionChoice, Kind, RuleChoice};
 use super::snapping::Snapping;
 use crate::error::{Error, Result};
 use serde::Deserialize;

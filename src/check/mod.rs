@@ -88,7 +88,7 @@ mod shrink;
 mod snapping;
 mod text;
 
-pub use case::Case;
+pub use case::{Case, Origin};
 pub use cause::{
     catalogue, catalogue_multisampled, Cause, Diagnosis, End, Side, Winding, FAR_OFF_TARGET,
     NEAR_AN_EDGE,
@@ -104,7 +104,7 @@ pub use program::{shell_words, Program};
 pub use property::{LineConvention, Property};
 pub use request::{
     BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice, Counterexample,
-    FamilyTally, Kind, Origin, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
+    FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
 };
 pub use snapping::Snapping;
 // What only the `rasterlab` program uses; absent without the `cli` feature.

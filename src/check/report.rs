@@ -13,6 +13,7 @@
 //! ([`crate::teaching::palette`]): correct, extra, missing, off the
 //! target, pixel centres, and the triangles' colours and line patterns.
 
+use super::case::Origin;
 use super::judge::{with_samples, Finding, Property};
 use crate::markup::Markup;
 use crate::teaching::palette::{colour_hex, triangle_colour, triangle_mark, Legend, Role};
@@ -236,9 +237,13 @@ impl Finding {
             .unwrap_or(1) as f64;
         let left = 10.0 + 7.0 * digits;
         let caption = format!(
-            "Counterexample: {} ({})",
+            "Counterexample: {} ({}){}",
             with_samples(self.property.to_string(), self.case.samples),
-            self.kind()
+            self.kind(),
+            match self.origin {
+                Origin::TopLeft => "",
+                Origin::BottomLeft => ", rows counted up from the bottom",
+            }
         );
         let top = 26.0 + 18.0;
         let primitives = self.primitives();
@@ -309,7 +314,7 @@ impl Finding {
                     ("y", &(origin.1 + (y as f64 + 0.5) * s + 4.0)),
                     ("text-anchor", &"end"),
                 ],
-                &y.to_string(),
+                &self.program_row(y).to_string(),
             );
         }
         m.close("g").newline();
@@ -640,6 +645,10 @@ impl Finding {
             m.element("li", &[], p);
         }
         m.close("ul").newline();
+        if let Some(note) = self.coordinates_note() {
+            m.element("p", &[("id", &"coordinates")], &format!("Under --origin bottom-left {note}; the picture numbers the rows as the program does."))
+                .newline();
+        }
         if let Some(d) = self.diagnosis.as_deref() {
             m.open("p", &[("id", &"diagnosis")])
                 .element("b", &[], "Diagnosis:")

@@ -33,6 +33,7 @@
 //! assert_eq!(report.exit_code(), 0);
 //! ```
 
+use super::case::Origin;
 use super::cause::Diagnosis;
 use super::judge::{FailureKind, Finding, LineConvention};
 use super::snapping::Snapping;
@@ -66,31 +67,6 @@ pub enum Kind {
 }
 
 crate::names::named_enum!(Kind, "kind", Triangles = "triangles", Lines = "lines");
-
-/// Where the subject puts the origin of its screen coordinates, and so
-/// which way its y grows: the protocol's top-left corner with y down
-/// (Direct3D, Vulkan, image rows), or the bottom-left corner with y up
-/// (OpenGL's window coordinates, Scotty3D). A y-up subject is given each
-/// case with y measured up from the bottom of the target (`height - y`)
-/// and answers with rows counted up from the bottom row (row 0 the
-/// lowest); rasterlab turns both back before judging, so the rules and
-/// their names (a top edge, a left edge) are those of the picture as it
-/// is seen, whatever way the subject counts.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum Origin {
-    /// At the top-left corner, y down: the protocol's own.
-    #[default]
-    TopLeft,
-    /// At the bottom-left corner, y up.
-    BottomLeft,
-}
-
-crate::names::named_enum!(
-    Origin,
-    "origin",
-    TopLeft = "top-left",
-    BottomLeft = "bottom-left"
-);
 
 /// What triangles are judged by.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

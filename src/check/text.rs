@@ -1,5 +1,6 @@
 //! The report as text: what `rasterlab check` prints.
 
+use super::case::Origin;
 use super::judge::FailureKind;
 use super::property::with_samples;
 use super::request::{CheckReport, VerdictWord};
@@ -156,13 +157,20 @@ impl fmt::Display for CheckReport {
                 }
             );
             out.push_str(&finding.ascii_grid());
+            if let Some(note) = finding.coordinates_note() {
+                let _ = writeln!(out, "  ({note}, as the grid numbers its rows)");
+            }
             if let Some(d) = &c.diagnosis {
                 let _ = writeln!(out, "diagnosis: {d}");
             }
             if let Some(file) = c.files.first() {
+                let seen = match finding.origin {
+                    Origin::TopLeft => "",
+                    Origin::BottomLeft => ", y up as it is given the case",
+                };
                 let _ = writeln!(
                     out,
-                    "counterexample: {file} (rerun: give it to the program as its input, or --case {file})"
+                    "counterexample: {file} (rerun: give it to the program as its input{seen}, or --case {file})"
                 );
             }
             if let Some(file) = c.files.iter().find(|f| f.ends_with(".html")) {

@@ -6,7 +6,7 @@
 //! are what probing tells it from.
 
 use super::explain::{explains, predict};
-use super::{catalogue, catalogue_multisampled, Cause, Role};
+use super::{catalogue, catalogue_multisampled, float_edges_words, Cause, Role};
 use crate::check::case::Case;
 use crate::check::property::Property;
 use crate::check::Fragment;
@@ -209,7 +209,10 @@ pub(crate) fn diagnose(
         causes: found.iter().map(Cause::id).collect(),
         description: found
             .iter()
-            .map(|c| c.to_string())
+            .map(|c| match c {
+                Cause::FloatEdges => float_edges_words(first.0.snapping),
+                _ => c.to_string(),
+            })
             .collect::<Vec<_>>()
             .join(", and "),
         evidence,

@@ -39,6 +39,7 @@ mod lines;
 mod triangles;
 
 use super::property::{LineConvention, Property};
+use super::snapping::Snapping;
 use crate::raster::edge::FillRule;
 use std::fmt;
 
@@ -228,9 +229,7 @@ impl fmt::Display for Cause {
                  not to even"
             ),
             Cause::BoxShort(s) => write!(f, "the bounding box {}", side(s)),
-            Cause::FloatEdges => f.write_str(
-                "floating-point edge functions (or vertices not snapped to 1/256 px): every difference lies within a hair of an edge",
-            ),
+            Cause::FloatEdges => f.write_str(&float_edges_words(Snapping::default())),
             Cause::Overflow => f.write_str(
                 "overflow: every difference is on triangles reaching far off the target",
             ),
@@ -254,6 +253,19 @@ impl fmt::Display for Cause {
             ),
         }
     }
+}
+
+/// The floating-point cause in words, for vertices snapped as given:
+/// on a grid, the vertices may also not have been snapped to it; judged
+/// as given (`--snap none`), nothing was to be snapped.
+pub(crate) fn float_edges_words(snapping: Snapping) -> String {
+    let unsnapped = match snapping {
+        Snapping::Grid { .. } => format!(" (or vertices not snapped to {snapping} px)"),
+        Snapping::AsGiven => String::new(),
+    };
+    format!(
+        "floating-point edge functions{unsnapped}: every difference lies within a hair of an edge"
+    )
 }
 
 #[derive(Copy, Clone, PartialEq, Eq)]

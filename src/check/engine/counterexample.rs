@@ -6,10 +6,10 @@
 use super::checker::{Checker, Evidence};
 use super::Progress;
 use crate::check::case::Case;
+use crate::check::case::Origin;
 use crate::check::cause::{self, Cause, Diagnosis};
 use crate::check::judge::{FailureKind, Finding, Provenance};
 use crate::check::property::Property;
-use crate::check::request::Origin;
 use crate::check::request::{BrokenReport, CheckReport, Counterexample, VerdictWord};
 use crate::check::{broken, shrink, Broken, Fragment, Subject, SubjectError};
 use crate::error::Result;
@@ -153,6 +153,7 @@ impl Checker<'_> {
     /// seed, the case and its family.
     fn record_provenance(&self, shrunk: &mut Finding, index: u32) {
         let request = self.request;
+        shrunk.origin = request.origin;
         shrunk.provenance = Some(Provenance {
             command: request.command.clone(),
             seed: request.seed,
@@ -264,7 +265,9 @@ impl Checker<'_> {
         format!(
             "{}{}",
             provenance_comment(&provenance, case),
-            case.to_text().split_once('\n').map_or("", |(_, r)| r)
+            case.to_text_for(request.origin)
+                .split_once('\n')
+                .map_or("", |(_, r)| r)
         )
     }
 }

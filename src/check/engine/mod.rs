@@ -51,10 +51,11 @@ pub(crate) use mode::Mode;
 pub(crate) use subjects::Subjects;
 
 use super::case::Case;
+use super::case::Origin;
 use super::property::Property;
 use super::request::{
-    timeout_from_seconds, BrokenReport, CheckReport, CheckRequest, Kind, Origin, SubjectSpec,
-    VerdictWord, MAX_CASES, MAX_JOBS,
+    timeout_from_seconds, BrokenReport, CheckReport, CheckRequest, Kind, SubjectSpec, VerdictWord,
+    MAX_CASES, MAX_JOBS,
 };
 use super::snapping::Snapping;
 use super::Subject;

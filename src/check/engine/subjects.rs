@@ -180,18 +180,10 @@ pub(super) struct YUp(pub(super) Box<dyn Subject + Send>);
 
 impl Subject for YUp {
     fn draw(&mut self, case: &Case) -> std::result::Result<Vec<Fragment>, SubjectError> {
-        let h = f64::from(case.height);
-        let mut flipped = case.clone();
-        for t in &mut flipped.triangles {
-            *t = t.map(|(x, y)| (x, h - y));
-        }
-        for l in &mut flipped.lines {
-            *l = l.map(|(x, y)| (x, h - y));
-        }
         let last = i64::from(case.height) - 1;
         Ok(self
             .0
-            .draw(&flipped)?
+            .draw(&case.flipped_y())?
             .into_iter()
             .map(|f| Fragment { y: last - f.y, ..f })
             .collect())

@@ -38,7 +38,7 @@ use lines::{one_per_step, vulkan};
 pub use mesh::{cover, Cover};
 use mesh::{crack_free, watertight};
 
-use super::case::Case;
+use super::case::{Case, Origin};
 use super::cause::Diagnosis;
 pub(crate) use super::property::{with_samples, LineConvention, Property};
 use super::{reference, Fragment};
@@ -146,6 +146,12 @@ pub struct Finding {
     /// The cause the reference confirmed, once a check has looked for one
     /// ([`Cause`](super::Cause)).
     pub cause: Option<Diagnosis>,
+    /// Where the program checked puts its origin: under
+    /// [`Origin::BottomLeft`] the counterexample file gives the case and
+    /// the missing and extra pixels as the program sees them (y up), and
+    /// the picture numbers its rows so, while the sentences keep the
+    /// protocol's y down.
+    pub origin: Origin,
     /// The pixel each problem is about, in the same order.
     at: Vec<Option<Fragment>>,
 }
@@ -206,6 +212,7 @@ pub fn judge(property: Property, case: &Case, drawn: &[Fragment]) -> Option<Find
         original_problem: None,
         provenance: None,
         cause: None,
+        origin: Origin::TopLeft,
         at: Vec::new(),
     };
     always(case, drawn, &mut finding);
@@ -534,7 +541,7 @@ impl Finding {
         let mut out = String::new();
         let _ = writeln!(out, "     x {x0}..{}", (x0 + 80).min(w) - 1);
         for y in y0..(y0 + 40).min(h) {
-            let _ = write!(out, "{y:>4}  ");
+            let _ = write!(out, "{:>4}  ", self.program_row(y));
             for x in x0..(x0 + 80).min(w) {
                 out.push(if extra.contains(&(x, y)) {
                     '!'
@@ -556,6 +563,14 @@ impl Finding {
     /// then the primitives, so that the program can be run on it again.
     pub fn counterexample_text(&self) -> String {
         let mut out = format!("# size {}x{}\n", self.case.width, self.case.height);
+        if let Some(note) = self.coordinates_note() {
+            let _ = writeln!(out, "# origin {}", self.origin);
+            let _ = writeln!(
+                out,
+                "# {note}; the missing and extra pixels and the primitives below are the \
+                 program's, y up, as it is given the case"
+            );
+        }
         if let Some(p) = self.case.samples {
             let _ = writeln!(out, "# msaa {}", p.count());
         }
@@ -586,9 +601,10 @@ impl Finding {
         let list = |v: &[Fragment]| -> String {
             v.iter()
                 .take(40)
-                .map(|f| match self.case.samples {
-                    Some(_) => format!("({},{}) t{} mask {}", f.x, f.y, f.id, f.mask),
-                    None => format!("({},{}) t{}", f.x, f.y, f.id),
+                .map(|f| (f, self.program_row(f.y)))
+                .map(|(f, y)| match self.case.samples {
+                    Some(_) => format!("({},{y}) t{} mask {}", f.x, f.id, f.mask),
+                    None => format!("({},{y}) t{}", f.x, f.id),
                 })
                 .collect::<Vec<_>>()
                 .join(" ")
@@ -598,9 +614,33 @@ impl Finding {
         if let Some(d) = &self.diagnosis {
             let _ = writeln!(out, "# diagnosis: {d}");
         }
-        let body = self.case.to_text();
-        let header = if self.case.samples.is_some() { 2 } else { 1 };
-        out.extend(body.split_inclusive('\n').skip(header));
+        let body = self.case.to_text_for(self.origin);
+        let header = ["# size ", "# origin ", "# msaa "];
+        out.extend(
+            body.split_inclusive('\n')
+                .filter(|line| !header.iter().any(|h| line.starts_with(h))),
+        );
         out
+    }
+
+    /// The row the program checked names pixel row `y` by: `y` itself,
+    /// or under [`Origin::BottomLeft`] counted up from the bottom row.
+    pub fn program_row(&self, y: i64) -> i64 {
+        match self.origin {
+            Origin::TopLeft => y,
+            Origin::BottomLeft => i64::from(self.case.height) - 1 - y,
+        }
+    }
+
+    /// Under [`Origin::BottomLeft`], which way the pixels of the
+    /// sentences count: the protocol's, y down.
+    pub fn coordinates_note(&self) -> Option<String> {
+        (self.origin == Origin::BottomLeft).then(|| {
+            format!(
+                "the pixels (x, y) of the sentences count y down from the top edge, as the \
+                 protocol does; the program's row is {} - y",
+                i64::from(self.case.height) - 1
+            )
+        })
     }
 }
