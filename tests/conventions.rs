@@ -169,6 +169,28 @@ fn a_y_up_counterexample_file_is_the_programs_own_input() {
     std::fs::remove_dir_all(&out).unwrap();
 }
 
+/// Under `--origin bottom-left` the samples stay where they are on the
+/// screen: a program that uses the y-down sample list in its y-up
+/// coordinates (a y-down back-end given the case y up) is told its
+/// pattern is mirrored.
+#[test]
+fn a_y_up_program_with_the_y_down_sample_list_is_told_it_is_mirrored() {
+    let out = rasterlab(&[
+        "check",
+        "--origin",
+        "bottom-left",
+        "--msaa",
+        "4",
+        "--backend",
+        "bbox",
+        "--cases",
+        "60",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(text.contains("the sample pattern mirrored in y"), "{text}");
+}
+
 /// `rasterlab check` on a Python student of `examples/student/`, with
 /// more options; the exit status and what it printed (both streams).
 fn student(file: &str, options: &[&str]) -> Option<(i32, String)> {
