@@ -19,7 +19,9 @@ mod common;
 use common::{chromium, HEADLESS};
 use rasterlab::geometry::Scene2D;
 use rasterlab::raster::FillRule;
-use rasterlab::teaching::{colour_hex, triangle_colour, triangle_mark, DepthCells, Role};
+use rasterlab::teaching::{
+    colour_hex, triangle_colour, triangle_mark, DepthCells, Mark, Role, LEVEL_COLOURS,
+};
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
@@ -339,6 +341,13 @@ fn legend(dev: &mut DevTools) -> Vec<String> {
         if let Some(role) = Role::ALL.iter().find(|r| r.key() == key) {
             assert_eq!(colour, role.hex(), "{key}");
             assert!(label.contains(role.label()), "{key}: {label}");
+        } else if let Some(level) = key.strip_prefix("level-") {
+            let level: usize = level.parse().unwrap();
+            assert_eq!(colour, colour_hex(LEVEL_COLOURS[level]), "{key}");
+            assert_eq!(mark, Mark::Fill.key(), "{key}");
+        } else if key == "helper" {
+            assert_eq!(colour, Role::Geometry.hex(), "{key}");
+            assert_eq!(mark, Mark::Cross.key(), "{key}");
         } else {
             let i: usize = key.strip_prefix("triangle-").expect(key).parse().unwrap();
             assert_eq!(colour, colour_hex(triangle_colour(i)), "{key}");
@@ -757,6 +766,78 @@ fn the_compositing_controls_show_the_blended_triangles() {
     settle(dev, before);
     assert_eq!(
         dev.eval("document.querySelectorAll('#composited').length"),
+        json!(0)
+    );
+}
+
+/// The texture controls: the textured preset draws the triangle through
+/// the mipmapped shader, the page paints exactly the library's pixels
+/// and levels, crosses each quad's helper pixels under quad derivatives
+/// (none under analytic), and lists the levels in the legend.
+#[test]
+fn the_texture_controls_show_the_textured_triangle_and_its_levels() {
+    let Some(mut browser) = Browser::start("the lab's texture browser test") else {
+        return;
+    };
+    let lab = Lab::start();
+    let dev = &mut browser.dev;
+    dev.open(&format!("http://{}/", lab.address));
+    let before = updates(dev);
+    dev.eval("(() => { const p = document.getElementById('preset'); p.value = 'textured'; p.onchange(); })()");
+    settle(dev, before);
+    dev.wait_for("document.getElementById('textured') !== null");
+    let answer = |dev: &mut DevTools| {
+        let request = dev.eval("JSON.stringify(request())");
+        let request = rasterlab::lab::LabRequest::parse(request.as_str().unwrap()).unwrap();
+        rasterlab::lab::answer(&request, None)
+            .unwrap()
+            .textured
+            .unwrap()
+    };
+    let view = answer(dev);
+    let painted = dev.eval(
+        "[...document.querySelectorAll('#textured rect.texel')].map((r) => r.getAttribute('fill'))",
+    );
+    let expected: Vec<String> = view
+        .pixels
+        .iter()
+        .map(|[r, g, b, _]| format!("rgb({r},{g},{b})"))
+        .collect();
+    assert_eq!(painted, json!(expected));
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#level-map rect.level').length"),
+        json!(view.lookups.len())
+    );
+    // The preset recedes: more than one level is read.
+    let mut levels: Vec<usize> = view.lookups.iter().map(|l| l.fine).collect();
+    levels.sort_unstable();
+    levels.dedup();
+    assert!(levels.len() > 1, "{levels:?}");
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#level-map line.helper').length"),
+        json!(view.helpers.len())
+    );
+    assert!(!view.helpers.is_empty());
+    let keys = legend(dev);
+    assert!(keys.iter().any(|k| k == "helper"), "{keys:?}");
+    assert_eq!(
+        keys.iter().filter(|k| k.starts_with("level-")).count(),
+        levels.len(),
+        "{keys:?}"
+    );
+    let before = updates(dev);
+    dev.eval("(() => { const d = document.getElementById('tex-derivatives'); d.value = 'analytic'; d.onchange(); })()");
+    settle(dev, before);
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#level-map line.helper').length"),
+        json!(0)
+    );
+    assert!(!legend(dev).iter().any(|k| k == "helper"));
+    let before = updates(dev);
+    dev.eval("(() => { const f = document.getElementById('tex-filter'); f.value = ''; f.onchange(); })()");
+    settle(dev, before);
+    assert_eq!(
+        dev.eval("document.querySelectorAll('#textured').length"),
         json!(0)
     );
 }

@@ -10,7 +10,9 @@
 //! fill rule's heat map (gaps,
 //! double draws) when there are several triangles, with `msaa` every
 //! sample and the resolve ([`SamplesView`]), with `blend` the triangles
-//! composited through the stage at one opacity ([`CompositeView`]), and,
+//! composited through the stage at one opacity ([`CompositeView`]), with
+//! `texture` the triangles textured and each pixel's level of detail
+//! ([`TexturedView`]), and,
 //! with `--exec`, the student's own rasterizer against the exact answer.
 //!
 //! Triangles that carry a depth are the course's depth-buffer example:
@@ -93,10 +95,12 @@ pub fn page() -> String {
 mod composite;
 #[cfg(feature = "lab")]
 mod server;
+mod textured;
 
 pub use composite::CompositeView;
 #[cfg(feature = "lab")]
 pub use server::LabServer;
+pub use textured::{Lookup, TextureControls, TexturedView};
 
 /// The largest grid side a request may ask for.
 pub const MAX_GRID: u32 = 128;
@@ -157,6 +161,9 @@ pub struct LabRequest {
     /// Sort the triangles back to front by depth before compositing.
     #[serde(default)]
     pub sort: bool,
+    /// Triangles: texture them into [`LabResponse::textured`].
+    #[serde(default)]
+    pub texture: Option<TextureControls>,
 }
 
 impl LabRequest {
@@ -226,7 +233,8 @@ impl LabRequest {
         if let Some(n) = self.msaa {
             SamplePattern::standard(n)?;
         }
-        composite::check(self)
+        composite::check(self)?;
+        textured::check(self)
     }
 
     fn rule(&self) -> FillRule {
@@ -363,6 +371,8 @@ pub struct LabResponse {
     pub samples: Option<SamplesView>,
     /// With `blend`: the triangles composited through the stage.
     pub composite: Option<CompositeView>,
+    /// With `texture`: the triangles textured, each pixel's lookup.
+    pub textured: Option<TexturedView>,
     /// What the answer draws: every (colour, mark) pair with its meaning
     /// (the page leaves out the entries of layers it hides: the heat map
     /// when switched off, pixel centres on cells too small to dot).
@@ -461,6 +471,10 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
     if samples.is_some() {
         legend = legend.with(Role::SampleCovered).with(Role::SampleOutside);
     }
+    let textured = TexturedView::of(request, rule)?;
+    legend
+        .entries
+        .extend(textured.iter().flat_map(|t| t.legend_entries()));
     Ok(LabResponse {
         backends: views,
         trace,
@@ -471,6 +485,7 @@ pub fn answer(request: &LabRequest, program: Option<&mut Program>) -> Result<Lab
         student,
         samples,
         composite: CompositeView::of(request, rule)?,
+        textured,
         legend_html: legend.to_html(),
         legend,
     })
