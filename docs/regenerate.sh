@@ -92,6 +92,10 @@ if command -v chromium >/dev/null 2>&1; then
     shot 1400x1150 docs/lab.png "$url#$two"
     depth=$(encode '{"preset":"depth","kind":"triangles","width":14,"height":9,"triangles":[[[2.75,3],[12.3359375,3],[1.9296875,6.9]],[[3.6,1],[6.8,1],[10,9]]],"depths":[0.5,0.8],"lines":[],"backends":'"$backends"',"rule":"top-left","trace":"depth-buffer"}')
     shot 1400x1000 docs/lab-depth.png "$url#$depth"
+    # The texture controls: the receding textured triangle, trilinear,
+    # quad derivatives, its level map and helper pixels.
+    textured=$(encode '{"preset":"textured","kind":"triangles","width":32,"height":32,"triangles":[[[1,1],[31,3],[3,31]]],"depths":[],"lines":[],"backends":["bbox"],"rule":"top-left","trace":"bbox","texture":{"filter":"bilinear","levels":"linear","derivatives":"quad","anisotropy":1,"anisotropic":"probes","repeats":1,"far":4}}')
+    shot 1400x1400 docs/lab-texture.png "$url#$textured"
     kill "$lab"
     lab=
 
@@ -114,7 +118,7 @@ if command -v chromium >/dev/null 2>&1; then
         --exec "python3 examples/student/rasterizer.py {input} {width} {height}" >/dev/null || true)
     shot 1280x1000 docs/check-report.png "file://$tmp/student/check-output/report.html"
 else
-    echo "chromium not found: the screenshots (docs/lab.png, lab-depth.png, grid-picture.png, compare.png, check-report.png) are kept"
+    echo "chromium not found: the screenshots (docs/lab.png, lab-depth.png, lab-texture.png, grid-picture.png, compare.png, check-report.png) are kept"
 fi
 
 # The full dragon of the README's first picture, where the data is.
