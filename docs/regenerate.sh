@@ -77,6 +77,7 @@ cargo run --release --quiet --example alpha_fringe -- docs/alpha-fringe.png >/de
 "$bin" render --scene floor --mip linear --derivatives quad --out docs/floor-trilinear.png >/dev/null
 "$bin" render --scene floor --mip linear --anisotropy 16 --derivatives quad --out docs/floor-anisotropic.png >/dev/null
 "$bin" explain --backend texture --derivatives quad 160 120 --picture docs/floor-levels.png >/dev/null
+"$bin" explain --backend bbox --derivatives quad --size 11x9 1 1 9 2 3 7 --picture docs/quads-grid.png >/dev/null
 "$bin" compare --textures --samples 3 --out "$tmp/textures" >/dev/null
 cp "$tmp/textures/textures.svg" docs/textures-chart.svg
 

@@ -4,12 +4,14 @@
 //! back-end.
 
 use glam::Vec4;
-use rasterlab::geometry::{draw, Floor};
+use rasterlab::geometry::{draw, setup_triangles, Floor};
 use rasterlab::measure::compare_textures;
 use rasterlab::raster::{
-    quad_helpers, triangle_backends, Anisotropic, DepthState, Derivatives, Filter, FragmentList,
-    Interpolation, LevelMode, Mipmapped, PixelRect, RenderTarget, Sampler, Texture, Wrap,
+    quad_helpers, triangle_backends, Anisotropic, DepthState, Derivatives, FillRule, Filter,
+    FixedPoint, FragmentList, Interpolation, LevelMode, Mipmapped, PixelRect, RenderTarget,
+    Sampler, Texture, Wrap,
 };
+use rasterlab::teaching::GridPicture;
 
 const SIZE: (u32, u32) = (96, 64);
 
@@ -172,6 +174,76 @@ fn quads_bring_helper_pixels_along_the_edges() {
         helpers > 0 && helpers < fragments / 4,
         "{helpers} helpers, {fragments} fragments"
     );
+}
+
+/// The grid picture under quad derivatives (`explain --derivatives quad
+/// --picture`): every back-end's picture crosses the same helper pixels,
+/// as many as the work counters count for a triangle inside the grid,
+/// each in a quad the triangle touches and none a fragment; the trace
+/// says how many, and the SVG draws one cross per helper.
+#[test]
+fn the_grid_picture_crosses_each_quads_helper_pixels() {
+    let corners = [(1.0, 1.0), (9.0, 2.0), (3.0, 7.0)];
+    let snapped = corners.map(|(x, y)| FixedPoint::snap_f64(x, y).unwrap());
+    let mut seen = None;
+    for backend in triangle_backends() {
+        let picture = GridPicture::of_triangles(*backend, &[corners], FillRule::TopLeft, 11, 9)
+            .unwrap()
+            .with_quads(*backend, &[snapped], FillRule::TopLeft);
+        let helpers = picture.quad_helpers.clone().unwrap();
+        let mut list = FragmentList::default();
+        let setups = setup_triangles(&[snapped], FillRule::TopLeft);
+        backend.rasterize(&setups, PixelRect::of_target(11, 9), &mut list);
+        let fragments: Vec<(u32, u32)> = list.triangles.iter().map(|f| (f.x, f.y)).collect();
+        assert_eq!(
+            helpers.len() as u64,
+            quad_helpers(fragments.iter().copied())
+        );
+        for h in &helpers {
+            assert!(!fragments.contains(h), "{h:?} is a fragment");
+            let quad = |p: &(u32, u32)| (p.0 / 2, p.1 / 2);
+            assert!(fragments.iter().any(|f| quad(f) == quad(h)), "{h:?}");
+        }
+        let svg = picture.to_svg();
+        assert_eq!(svg.matches("class=\"helper\"").count(), helpers.len());
+        assert!(svg.contains("helper pixel"));
+        match &seen {
+            None => seen = Some(helpers),
+            Some(first) => assert_eq!(first, &helpers, "{}", backend.name()),
+        }
+    }
+    assert_eq!(seen.unwrap().len(), 16);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args([
+            "explain",
+            "--backend",
+            "scanline",
+            "--derivatives",
+            "quad",
+            "--size",
+            "11x9",
+        ])
+        .args(["1", "1", "9", "2", "3", "7"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("16 helper pixel(s) beside 24 fragment(s)"),
+        "{text}"
+    );
+    // Other derivative methods are the texture trace's.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args([
+            "explain",
+            "--backend",
+            "scanline",
+            "--derivatives",
+            "forward",
+        ])
+        .args(["1", "1", "9", "2", "3", "7"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
 }
 
 /// The comparison of `compare --textures` on the 96 x 64 floor: every

@@ -79,7 +79,8 @@ pub struct ExplainArgs {
     #[arg(long)]
     anisotropic: Option<Anisotropic>,
     /// The texture trace's derivative method: analytic (default), quad,
-    /// forward.
+    /// forward. On a triangle back-end, quad counts the helper pixels of
+    /// its 2x2 quads, and its picture draws them.
     #[arg(long)]
     derivatives: Option<Derivatives>,
     /// The coordinates.

@@ -21,7 +21,7 @@
 use super::LabRequest;
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
-use crate::raster::derivatives::{quad_helpers, Derivatives, UvPlanes};
+use crate::raster::derivatives::{quad_helper_pixels, quad_helpers, Derivatives, UvPlanes};
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fragment::FragmentList;
 use crate::raster::primitive::{ShadedVertex, TriangleData, Varyings};
@@ -283,12 +283,12 @@ impl TexturedView {
             }
             if method == Derivatives::Quad {
                 helper_count += quad_helpers(pixels.iter().copied());
-                helpers.extend(quad_helper_pixels(
-                    &pixels,
-                    request.width,
-                    request.height,
-                    t,
-                ));
+                helpers.extend(
+                    quad_helper_pixels(&pixels)
+                        .into_iter()
+                        .filter(|&(x, y)| x < request.width && y < request.height)
+                        .map(|(x, y)| [x, y, t as u32]),
+                );
             }
         }
         let words = |s: String| s.replace('-', " ");
@@ -329,25 +329,6 @@ impl TexturedView {
             caption,
         }))
     }
-}
-
-/// The helper pixels on the `width` x `height` grid of triangle `t`'s
-/// fragments `pixels`: the pixels of each 2x2 quad (aligned to even
-/// pixels) they touch that are not among them, `[x, y, t]`.
-fn quad_helper_pixels(pixels: &[(u32, u32)], width: u32, height: u32, t: usize) -> Vec<[u32; 3]> {
-    let mut quads: Vec<(u32, u32)> = pixels.iter().map(|&(x, y)| (x / 2, y / 2)).collect();
-    quads.sort_unstable();
-    quads.dedup();
-    let drawn: std::collections::HashSet<(u32, u32)> = pixels.iter().copied().collect();
-    let mut out = Vec::new();
-    for (qx, qy) in quads {
-        for (x, y) in [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(i, j)| (2 * qx + i, 2 * qy + j)) {
-            if x < width && y < height && !drawn.contains(&(x, y)) {
-                out.push([x, y, t as u32]);
-            }
-        }
-    }
-    out
 }
 
 #[cfg(test)]

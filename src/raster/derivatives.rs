@@ -226,6 +226,24 @@ pub fn quad_helpers(pixels: impl IntoIterator<Item = (u32, u32)>) -> u64 {
     4 * quads.len() as u64 - count
 }
 
+/// The helper pixels themselves, `(x, y)` in order: the pixels of each
+/// 2x2 quad (aligned to even pixels) that one triangle's fragments
+/// `pixels` touch, which are not among them. There are
+/// [`quad_helpers`] of them.
+pub fn quad_helper_pixels(pixels: &[(u32, u32)]) -> Vec<(u32, u32)> {
+    let mut quads: Vec<(u32, u32)> = pixels.iter().map(|&(x, y)| (y / 2, x / 2)).collect();
+    quads.sort_unstable();
+    quads.dedup();
+    let drawn: std::collections::HashSet<(u32, u32)> = pixels.iter().copied().collect();
+    quads
+        .into_iter()
+        .flat_map(|(qy, qx)| {
+            [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(i, j)| (2 * qx + i, 2 * qy + j))
+        })
+        .filter(|p| !drawn.contains(p))
+        .collect()
+}
+
 /// The helper pixels of drawing `setups` with `backend` on the pixels of
 /// `rect`: each triangle rasterized on its own and its fragments counted
 /// by [`quad_helpers`]. A triangle's fragments are never shaded twice,
@@ -355,5 +373,10 @@ mod tests {
         assert_eq!(quad_helpers([(0, 0), (1, 0), (0, 1), (1, 1)]), 0);
         assert_eq!(quad_helpers([(1, 1), (2, 1)]), 6);
         assert_eq!(quad_helpers([]), 0);
+        assert_eq!(quad_helper_pixels(&[(0, 0)]), [(1, 0), (0, 1), (1, 1)]);
+        assert_eq!(
+            quad_helper_pixels(&[(1, 1), (2, 1)]),
+            [(0, 0), (1, 0), (0, 1), (2, 0), (3, 0), (3, 1)]
+        );
     }
 }

@@ -78,7 +78,9 @@ pub(crate) mod vector;
 
 pub use area::{area_coverage, AreaFragment};
 pub use compact::{SmallTriangle, MAX_SPAN};
-pub use derivatives::{count_quad_helpers, quad_helpers, Derivatives, Gradient, UvPlanes};
+pub use derivatives::{
+    count_quad_helpers, quad_helper_pixels, quad_helpers, Derivatives, Gradient, UvPlanes,
+};
 pub use descriptor::{within_budget, CostClass, Descriptor, Role, WorkBudget};
 pub use edge::{
     EdgeFunction, EdgeKind, FillRule, PixelRect, TriangleSetup, OFFSCREEN_POINT,

@@ -248,10 +248,18 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     if request.backend == TEXTURE {
         return explain_texture(request);
     }
-    if request.texturing != Texturing::default() {
+    // A triangle back-end takes `--derivatives quad` (its quads and
+    // helper pixels); the other texture options are the texture trace's.
+    let quads = Texturing {
+        derivatives: Derivatives::Quad,
+        ..Texturing::default()
+    };
+    let triangle = matches!(backend(&request.backend), Ok(Backend::Triangle(_)));
+    if request.texturing != Texturing::default() && !(triangle && request.texturing == quads) {
         return Err(Error::InvalidArgument(
-            "--filter, --mip, --anisotropy, --anisotropic and --derivatives are for the texture trace \
-             (--backend texture)"
+            "--filter, --mip, --anisotropy and --anisotropic are for the texture trace \
+             (--backend texture), and so is --derivatives, but for --derivatives quad on a \
+             triangle back-end, which marks its 2x2 quads and helper pixels"
                 .into(),
         ));
     }
@@ -299,18 +307,28 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
                         .to_text(),
                 );
             }
-            let picture = request
+            let [v0, v1, v2] = triangle.map(|(x, y)| FixedPoint::snap_f64(x, y));
+            let snapped = [v0?, v1?, v2?];
+            let mut picture = request
                 .picture
                 .then(|| GridPicture::of_triangles(b, &[triangle], rule, width, height))
                 .transpose()?;
-            let picture = match (picture, &request.msaa) {
-                (Some(p), Some(pattern)) => {
-                    let [a, b, c] = triangle.map(|(x, y)| FixedPoint::snap_f64(x, y));
-                    let snapped = [a?, b?, c?];
-                    Some(p.with_samples(&[snapped], rule, pattern))
-                }
-                (p, _) => p,
-            };
+            if let Some(pattern) = &request.msaa {
+                picture = picture.map(|p| p.with_samples(&[snapped], rule, pattern));
+            }
+            // Under quad derivatives, the quads the triangle is shaded in.
+            if request.texturing.derivatives == Derivatives::Quad {
+                let quads = GridPicture::of_triangles(b, &[triangle], rule, width, height)?
+                    .with_quads(b, &[snapped], rule);
+                let helpers = quads.quad_helpers.as_ref().map_or(0, Vec::len);
+                text.push_str(&format!(
+                    "\nquad derivatives: shaded in 2x2 quads aligned to even pixels, {helpers} \
+                     helper pixel(s) beside {} fragment(s), shaded for the differences and \
+                     never written\n",
+                    quads.inside_cells()
+                ));
+                picture = picture.map(|p| p.with_quads(b, &[snapped], rule));
+            }
             (text, picture)
         }
         Backend::Line(_) if request.msaa.is_some() => {

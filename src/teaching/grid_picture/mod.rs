@@ -58,9 +58,10 @@ pub use png::{for_people, scale_for_people, MAX_LABELLED_CELLS};
 
 use crate::error::{Error, Result};
 use crate::geometry::scene::{setup_triangles, Scene2D};
+use crate::raster::derivatives::quad_helper_pixels;
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fixed::FixedPoint;
-use crate::raster::fragment::WorkCounters;
+use crate::raster::fragment::{FragmentList, WorkCounters};
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::multisample::{reference_masks, SamplePattern};
 use crate::raster::target::RenderTarget;
@@ -97,6 +98,9 @@ pub const MIN_SHORT_SIDE: u32 = 256;
 /// Largest grid drawn (4096 x 4096 cells).
 pub const MAX_CELLS: u32 = 4096 * 4096;
 
+/// A straight stroke from one point to another, in pixel coordinates.
+type Stroke = [(f64, f64); 2];
+
 /// A zoomed picture of the pixel grid.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GridPicture {
@@ -121,6 +125,9 @@ pub struct GridPicture {
     /// Multisample points, in pixel coordinates, and whether a triangle
     /// covers each ([`GridPicture::with_samples`]).
     pub samples: Vec<(f64, f64, bool)>,
+    /// Under quad derivatives ([`GridPicture::with_quads`]): the 2x2
+    /// quads are drawn, and these pixels, the helpers, crossed.
+    pub quad_helpers: Option<Vec<(u32, u32)>>,
     /// One line saying what the picture shows.
     pub caption: String,
     /// What the colours say.
@@ -162,6 +169,7 @@ impl GridPicture {
             blocks: Vec::new(),
             hidden: Vec::new(),
             samples: Vec::new(),
+            quad_helpers: None,
             caption,
             legend: Legend::default(),
         }
@@ -297,6 +305,84 @@ impl GridPicture {
             .with(Role::SampleCovered)
             .with(Role::SampleOutside);
         self
+    }
+
+    /// This picture with the 2x2 quads a GPU shades `triangles` in (for
+    /// their derivatives, aligned to even pixels) drawn, and each quad's
+    /// helper pixels crossed: the pixels of a quad that a triangle's
+    /// fragments touch that are not its fragments, shaded for the
+    /// differences and never written. Each triangle's quads are its own.
+    pub fn with_quads(
+        mut self,
+        backend: &dyn TriangleRasterizer,
+        triangles: &[[FixedPoint; 3]],
+        rule: FillRule,
+    ) -> GridPicture {
+        let grid = PixelRect::of_target(self.width, self.height);
+        let mut helpers = Vec::new();
+        let mut fragments = 0;
+        for setup in setup_triangles(triangles, rule) {
+            let mut list = FragmentList::default();
+            backend.rasterize(&[setup], grid, &mut list);
+            let pixels: Vec<(u32, u32)> = list.triangles.iter().map(|f| (f.x, f.y)).collect();
+            fragments += pixels.len();
+            helpers.extend(
+                quad_helper_pixels(&pixels)
+                    .into_iter()
+                    .filter(|&(x, y)| x < self.width && y < self.height),
+            );
+        }
+        let shaded = fragments + helpers.len();
+        self.caption.push_str(&format!(
+            "; 2x2 quads: {} helper pixel(s) beside {fragments} fragment(s), {:.0}% of the shading",
+            helpers.len(),
+            if shaded == 0 {
+                0.0
+            } else {
+                100.0 * helpers.len() as f64 / shaded as f64
+            }
+        ));
+        self.legend = self
+            .legend
+            .with_mark(
+                Role::Geometry,
+                Mark::Dashed,
+                "2x2 quad: derivatives are differences within one",
+            )
+            .with_mark(
+                Role::Geometry,
+                Mark::Cross,
+                "helper pixel: shaded for its quad, never written",
+            );
+        self.quad_helpers = Some(helpers);
+        self
+    }
+
+    /// The strokes that draw the quads, in pixel coordinates: the lines
+    /// between quads (every even column and row inside the grid), then a
+    /// diagonal across each helper pixel.
+    fn quad_strokes(&self) -> (Vec<Stroke>, Vec<Stroke>) {
+        let Some(helpers) = &self.quad_helpers else {
+            return (Vec::new(), Vec::new());
+        };
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        let lines = (1..self.width.div_ceil(2))
+            .map(|k| f64::from(2 * k))
+            .map(|x| [(x, 0.0), (x, h)])
+            .chain(
+                (1..self.height.div_ceil(2))
+                    .map(|k| f64::from(2 * k))
+                    .map(|y| [(0.0, y), (w, y)]),
+            )
+            .collect();
+        let crosses = helpers
+            .iter()
+            .map(|&(x, y)| {
+                let (x, y) = (f64::from(x), f64::from(y));
+                [(x + 0.2, y + 0.2), (x + 0.8, y + 0.8)]
+            })
+            .collect();
+        (lines, crosses)
     }
 
     /// Lines given by their snapped ends ([`LineEnds`](crate::teaching::trace::LineEnds):

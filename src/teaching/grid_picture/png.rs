@@ -82,6 +82,13 @@ impl GridPicture {
         for &[a, b] in &self.segments {
             stroke(a, b, Role::Geometry.rgb(), Mark::Line);
         }
+        let (quad_lines, crosses) = self.quad_strokes();
+        for &[a, b] in &quad_lines {
+            stroke(a, b, Role::Geometry.rgb(), Mark::Dashed);
+        }
+        for &[a, b] in &crosses {
+            stroke(a, b, Role::Geometry.rgb(), Mark::Line);
+        }
         for (r, class) in &self.blocks {
             let colour = block_style(*class).0.rgb();
             // Just inside the block, so neighbouring frames do not overlap.

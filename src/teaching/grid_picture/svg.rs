@@ -293,6 +293,29 @@ impl GridPicture {
             )
             .newline();
         }
+        let (quad_lines, crosses) = self.quad_strokes();
+        let geometry = Role::Geometry.hex();
+        for (class, mark, strokes) in [
+            ("quad", Mark::Dashed, &quad_lines),
+            ("helper", Mark::Cross, &crosses),
+        ] {
+            for [(x0, y0), (x1, y1)] in strokes {
+                m.empty(
+                    "line",
+                    &[
+                        ("class", &class),
+                        ("x1", &(x0 * s)),
+                        ("y1", &(y0 * s)),
+                        ("x2", &(x1 * s)),
+                        ("y2", &(y1 * s)),
+                        ("stroke", &geometry),
+                        ("stroke-width", &2),
+                        ("stroke-dasharray", &mark.dasharray().unwrap_or("none")),
+                    ],
+                )
+                .newline();
+            }
+        }
         for [(x0, y0), (x1, y1)] in &self.segments {
             m.empty(
                 "line",
