@@ -5,7 +5,7 @@
 use super::args::{msaa, Size};
 use super::print::progress_bar;
 use clap::Args;
-use rasterlab::geometry::{CullMode, FrontFace, Shading};
+use rasterlab::geometry::{ClipPlanes, CullMode, FrontFace, Shading};
 use rasterlab::measure::{MeshOverrides, RenderInput, RenderRequest};
 use rasterlab::raster::{
     Anisotropic, Blend, BlendMode, DepthState, Derivatives, FillRule, Filter, Interpolation,
@@ -125,6 +125,10 @@ pub struct MeshArgs {
     /// Winding of front faces as seen on screen: ccw (default), cw.
     #[arg(long)]
     front_face: Option<FrontFace>,
+    /// Where triangles are clipped at the sides: guard-band (far off
+    /// screen, the default) or viewport (the screen's own sides).
+    #[arg(long)]
+    clip: Option<ClipPlanes>,
     /// Draw the triangle edges over the surface with this line back-end (e.g. bresenham).
     #[arg(long)]
     wireframe: Option<String>,
@@ -175,6 +179,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             interpolation: m.interpolation,
             cull: m.cull,
             front_face: m.front_face,
+            clip: m.clip,
             wireframe: m.wireframe.clone(),
             azimuth: m.azimuth,
             elevation: m.elevation,

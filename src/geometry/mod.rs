@@ -61,9 +61,9 @@ pub use mesh::{load_obj, load_ply, parse_obj, read_ply, triangulate_face, Mesh};
 pub use outline::{twice_signed_area, Outline};
 pub use pipeline::{
     assemble, draw, draw_binned, draw_clearing, positions_from_floats, process_triangles,
-    process_triangles_into, ClipResult, ClipVertex, ClipVolume, CullMode, FrontFace, Geometry,
-    GeometryStats, MeshVertex, PipelineOptions, Topology, Transform, VertexShader, Viewport,
-    GUARD_LIMIT_PX, PLANE_NAMES, W_MIN,
+    process_triangles_into, ClipPlanes, ClipResult, ClipVertex, ClipVolume, CullMode, FrontFace,
+    Geometry, GeometryStats, MeshVertex, PipelineOptions, Topology, Transform, VertexShader,
+    Viewport, GUARD_LIMIT_PX, PLANE_NAMES, W_MIN,
 };
 pub use polygon::{Polygon, Side};
 pub use render::{Frame, FrameStats, MeshRenderer, RenderSettings, Shading};

@@ -25,7 +25,7 @@
 use crate::error::{Error, Result};
 use crate::geometry::input::{read_shapes, Shapes};
 use crate::geometry::mesh::Mesh;
-use crate::geometry::pipeline::{CullMode, FrontFace, GeometryStats, PipelineOptions};
+use crate::geometry::pipeline::{ClipPlanes, CullMode, FrontFace, GeometryStats, PipelineOptions};
 use crate::geometry::render::{MeshRenderer, RenderSettings, Shading};
 use crate::geometry::scene::Scene2D;
 use crate::geometry::Floor;
@@ -96,6 +96,8 @@ pub struct MeshOverrides {
     pub cull: Option<CullMode>,
     /// The winding of front faces on screen.
     pub front_face: Option<FrontFace>,
+    /// The side planes triangles are clipped at (default the guard band).
+    pub clip: Option<ClipPlanes>,
     /// A line back-end drawing the triangle edges over the surface.
     pub wireframe: Option<String>,
     /// Camera angle around the vertical axis, degrees.
@@ -121,6 +123,7 @@ impl MeshOverrides {
             ("--interpolation", self.interpolation.is_some()),
             ("--cull", self.cull.is_some()),
             ("--front-face", self.front_face.is_some()),
+            ("--clip", self.clip.is_some()),
             ("--wireframe", self.wireframe.is_some()),
             ("--azimuth", self.azimuth.is_some()),
             ("--elevation", self.elevation.is_some()),
@@ -136,6 +139,7 @@ impl MeshOverrides {
         let mut pipeline = settings.pipeline;
         pipeline.cull = self.cull.unwrap_or(pipeline.cull);
         pipeline.front_face = self.front_face.unwrap_or(pipeline.front_face);
+        pipeline.clip = self.clip.unwrap_or(pipeline.clip);
         let wireframe = match &self.wireframe {
             Some(name) => Some(line_backend(name)?),
             None => settings.wireframe,

@@ -26,6 +26,7 @@
 //! polygon (up to 3 + 7 vertices) is split into a fan of triangles sharing
 //! its first vertex.
 
+use super::options::ClipPlanes;
 use crate::raster::fixed::GUARD_BAND;
 use crate::raster::primitive::Varyings;
 use glam::Vec4;
@@ -109,6 +110,19 @@ impl ClipVolume {
             ],
             offsets: [0.0, 0.0, W_MIN, 0.0, 0.0, 0.0, 0.0],
         }
+    }
+
+    /// The clip volume for a `width` x `height` viewport whose side planes
+    /// are `planes`: the guard band's ([`ClipVolume::new`]), or the
+    /// viewport's own sides, `|x| <= w` and `|y| <= w`.
+    pub fn with_planes(width: u32, height: u32, planes: ClipPlanes) -> ClipVolume {
+        let mut volume = ClipVolume::new(width, height);
+        if planes == ClipPlanes::Viewport {
+            for side in 3..7 {
+                volume.planes[side].w = 1.0;
+            }
+        }
+        volume
     }
 
     /// The guard-band factors `g`: the guard planes keep `|x| <= g[0] w`

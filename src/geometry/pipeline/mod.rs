@@ -47,7 +47,7 @@ pub use camera::Camera;
 pub use clip::{ClipResult, ClipVertex, ClipVolume, GUARD_LIMIT_PX, PLANE_NAMES, W_MIN};
 pub use draw::{draw, draw_binned, draw_clearing};
 pub use geometry::Geometry;
-pub use options::{CullMode, FrontFace, PipelineOptions};
+pub use options::{ClipPlanes, CullMode, FrontFace, PipelineOptions};
 pub use process::{process_lines, process_triangles, process_triangles_into};
 pub use setup::GeometryStats;
 pub use vertex::{positions_from_floats, MeshVertex, Transform, VertexShader};

@@ -39,6 +39,28 @@ crate::names::named_enum!(
     Clockwise = "cw"
 );
 
+/// Which side planes clipping cuts triangles at (the near and far
+/// planes and `w > 0` are always clipped).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum ClipPlanes {
+    /// The guard band, far outside the viewport: only triangles reaching
+    /// thousands of pixels off screen are cut, and the rasterizer's
+    /// bounding box, clamped to the viewport, does the rest.
+    #[default]
+    GuardBand,
+    /// The viewport's own sides, `|x| <= w` and `|y| <= w`: every
+    /// triangle crossing a side of the screen is cut there, its new
+    /// vertices snapped like any other.
+    Viewport,
+}
+
+crate::names::named_enum!(
+    ClipPlanes,
+    "clip planes",
+    GuardBand = "guard-band",
+    Viewport = "viewport"
+);
+
 /// How geometry is turned into set-up triangles.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub struct PipelineOptions {
@@ -54,4 +76,6 @@ pub struct PipelineOptions {
     /// Triangles are then dropped only when their box, one pixel wider
     /// each way, misses the viewport.
     pub multisample: bool,
+    /// The side planes triangles are clipped at.
+    pub clip: ClipPlanes,
 }

@@ -344,7 +344,7 @@ pub(crate) struct DrawInput<'a, V, S> {
 impl<V, S> DrawInput<'_, V, S> {
     /// The clip volume of the draw's viewport.
     fn clip_volume(&self) -> ClipVolume {
-        ClipVolume::new(self.viewport.width, self.viewport.height)
+        ClipVolume::with_planes(self.viewport.width, self.viewport.height, self.options.clip)
     }
 
     /// What the assembly tasks read, once the vertices are shaded into
@@ -717,7 +717,7 @@ mod tests {
             for cull in [CullMode::None, CullMode::Back, CullMode::Front] {
                 for front_face in [FrontFace::CounterClockwise, FrontFace::Clockwise] {
                     for rule in [FillRule::TopLeft, FillRule::BottomRight] {
-                        let options = PipelineOptions { rule, cull, front_face, multisample: false };
+                        let options = PipelineOptions { rule, cull, front_face, ..Default::default() };
                         let expected = geometry_with(Width::Baseline, &vertices, &triangles, &options);
                         for copy in vector::copies() {
                             let lanes = geometry_with(copy, &vertices, &triangles, &options);
