@@ -18,6 +18,9 @@
 //!   fill half transparent, composited by `over` without depth, in linear
 //!   light (`scanline`) and in encoded values (`scanline-srgb`, tiny-skia's
 //!   work), beside tiny-skia's `source-over` of the same colour;
+//! * `floor-trilinear`: the textured floor of `render --scene floor`,
+//!   trilinear with quad derivatives, against llvmpipe sampling the same
+//!   pyramid with `GL_LINEAR_MIPMAP_LINEAR` (see `fn floor`);
 //! * `lines-short-1M`, `lines-long-10k`: every line back-end through the
 //!   stage and the fast path, against the `line_drawing` crate's Bresenham
 //!   writing into a colour buffer.
@@ -61,7 +64,7 @@ mod cores;
 mod gl;
 
 use glam::{Mat4, Vec3};
-use rasterlab::geometry::{CullMode, Mesh, MeshRenderer, RenderSettings, Shading};
+use rasterlab::geometry::{CullMode, Floor, Mesh, MeshRenderer, RenderSettings, Shading, SKY};
 use rasterlab::measure::{
     fill, find, long_lines, ratio_header, short_lines, sized, slivers, Contender, Context,
     LineWorkload, Side, Skipped, TriangleWorkload, Workload, WorkloadResult, DRAGON_RES2,
@@ -70,8 +73,8 @@ use rasterlab::measure::{
 use rasterlab::raster::line::pixel_containing;
 use rasterlab::raster::triangle::TriangleRasterizer;
 use rasterlab::raster::{
-    line_backends, triangle_backend, triangle_backends, within_budget, FixedPoint, MixSpace,
-    RenderTarget, WorkBudget,
+    line_backends, to_rgba8, triangle_backend, triangle_backends, within_budget, Derivatives,
+    FixedPoint, LevelMode, MixSpace, RenderTarget, Sampler, WorkBudget,
 };
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -358,6 +361,105 @@ fn dragon(name: &str, mesh: &Mesh, zoom: f32, rounds: usize, gls: &Gl) -> Worklo
     result
 }
 
+/// `floor-trilinear`: the textured floor (`render --scene floor`) at
+/// 1920x1080, trilinear (level mode linear, bilinear, quad derivatives),
+/// against llvmpipe drawing the same plane through the same camera with
+/// `GL_LINEAR_MIPMAP_LINEAR` from the same pyramid, uploaded level by
+/// level. The shader (rasterlab) and the texture (llvmpipe) are made once,
+/// outside the timing, as an application keeps them from frame to frame.
+fn floor(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
+    const NAME: &str = "floor-trilinear";
+    if !options.wants(NAME) {
+        return Vec::new();
+    }
+    let floor = Floor::new(W, H).unwrap();
+    let trilinear = Sampler {
+        levels: LevelMode::Linear,
+        ..Sampler::default()
+    };
+    let shader = floor.shader(trilinear, Derivatives::Quad);
+    let target = RefCell::new(RenderTarget::without_coverage(W, H).unwrap());
+    let (one, two) = (pool(1), pool(2));
+    let draw = |b: &dyn TriangleRasterizer, pool: &rayon::ThreadPool| {
+        let target = &mut *target.borrow_mut();
+        pool.install(|| floor.draw(b, &shader, target).fragments)
+    };
+    let ours = draw(triangle_backend("scanline").unwrap(), &one);
+    let levels: Vec<gl::Level> = floor
+        .texture()
+        .levels()
+        .iter()
+        .map(|level| gl::Level {
+            width: level.width(),
+            height: level.height(),
+            rgba: level.texels().iter().flat_map(|&c| to_rgba8(c)).collect(),
+        })
+        .collect();
+    let vertices = floor.vertices().map(|(p, uv)| gl::TexturedVertex {
+        position: p.to_array(),
+        uv: uv.to_array(),
+    });
+    let indices: Vec<u32> = Floor::TRIANGLES.concat();
+    let transform = gl::Llvmpipe::mesh_transform(floor.mvp().to_cols_array());
+    let uploaded: Vec<(gl::Shape, glow::Texture)> = gls
+        .iter()
+        .flatten()
+        .map(|gl| {
+            let texture = gl
+                .mipmapped(&levels, 1.0)
+                .expect("the floor's pyramid uploaded");
+            (gl.textured_shape(&vertices, &indices), texture)
+        })
+        .collect();
+    let mut work = Workload::new(NAME);
+    let (draw, one, two) = (&draw, &one, &two);
+    for name in ["scanline", "tiled"] {
+        let b = triangle_backend(name).unwrap();
+        work.add(Contender::new(name, Side::Rasterlab, 1, move || {
+            draw(b, one)
+        }));
+    }
+    let tiled = triangle_backend("tiled").unwrap();
+    work.add(Contender::new(
+        "tiled-2-threads",
+        Side::Rasterlab,
+        2,
+        move || draw(tiled, two),
+    ));
+    match gls {
+        Err(why) => work.skip("llvmpipe", why.clone()),
+        Ok(gls) => {
+            let theirs = gls[0].fragments(&uploaded[0].0, &transform, false);
+            eprintln!("{NAME}: fragments rasterlab {ours}, llvmpipe {theirs}");
+            // The horizon's row of pixels, where a centre lies within
+            // rounding of the far edge, may go either way.
+            if ours.abs_diff(theirs) > u64::from(W) {
+                let reason = format!(
+                    "llvmpipe drew {theirs} fragments where rasterlab drew {ours}: not the same work"
+                );
+                work.skip("llvmpipe", Skipped { reason });
+            } else {
+                for (gl, (shape, texture)) in gls.iter().zip(&uploaded) {
+                    let name = llvmpipe_name(gl);
+                    let transform = &transform;
+                    work.add(Contender::new(&name, Side::Peer, gl.threads(), move || {
+                        gl.draw_textured(shape, transform, *texture, SKY)
+                    }));
+                }
+            }
+        }
+    }
+    let result = work.run(options.rounds);
+    print!("{}", result.figure_table());
+    if let Ok(gls) = gls {
+        for (gl, (shape, texture)) in gls.iter().zip(uploaded) {
+            gl.delete_texture(texture);
+            gl.delete(shape);
+        }
+    }
+    vec![result]
+}
+
 /// The workload's triangles filled by tiny-skia, aliased, in one colour
 /// of opacity `alpha` (255: opaque), composited by its default blend,
 /// `source-over`.
@@ -620,6 +722,7 @@ fn main() {
         eprintln!("llvmpipe: {why}");
     }
     let mut results = dragons(&options, &gls);
+    results.extend(floor(&options, &gls));
     results.extend(triangles(&options, &gls));
     results.extend(lines(&options));
     context.finish();

@@ -26,7 +26,8 @@
 //! faces (counter-clockwise in rasterlab) are clockwise for GL
 //! (`glFrontFace(GL_CW)`).
 //!
-//! Included by `benches/side_by_side.rs` and `tests/llvmpipe.rs` with
+//! Included by `benches/side_by_side.rs`, `tests/llvmpipe.rs` and
+//! `tests/llvmpipe_textures.rs` with
 //! `#[path]`; it depends on `khronos-egl` and `glow` only.
 
 use glow::HasContext;
@@ -37,6 +38,12 @@ use std::sync::Mutex;
 const PLATFORM_SURFACELESS: egl::Enum = 0x31DD;
 /// `EGL_PLATFORM_DEVICE_EXT`.
 const PLATFORM_DEVICE: egl::Enum = 0x313F;
+/// `GL_TEXTURE_MAX_ANISOTROPY_EXT` (EXT_texture_filter_anisotropic).
+#[allow(dead_code)] // drawn by the texture tests and the bench only
+const TEXTURE_MAX_ANISOTROPY: u32 = 0x84FE;
+/// `GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT`.
+#[allow(dead_code)] // drawn by the texture tests and the bench only
+const MAX_TEXTURE_MAX_ANISOTROPY: u32 = 0x84FF;
 
 /// The two displays and the thread count each was initialised with.
 static DISPLAYS: Mutex<[Option<usize>; 2]> = Mutex::new([None, None]);
@@ -50,6 +57,32 @@ pub struct Vertex {
     pub position: [f32; 3],
     /// Light intensity in `[0, 1]`.
     pub light: f32,
+}
+
+/// One vertex of a textured shape: a position (model space) and a
+/// texture coordinate, `(0, 0)` at the top-left corner of texel `(0, 0)`
+/// of the first row uploaded, as rasterlab's.
+#[allow(dead_code)] // drawn by the texture tests and the bench only
+#[derive(Copy, Clone, Debug, PartialEq)]
+#[repr(C)]
+pub struct TexturedVertex {
+    /// Position.
+    pub position: [f32; 3],
+    /// Texture coordinate.
+    pub uv: [f32; 2],
+}
+
+/// One level of a mip pyramid to upload: RGBA8 texels, row by row, row 0
+/// first (texture coordinate t = 0).
+#[allow(dead_code)] // drawn by the texture tests and the bench only
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// `width * height * 4` bytes.
+    pub rgba: Vec<u8>,
 }
 
 /// Indexed triangles uploaded to the GL.
@@ -78,6 +111,8 @@ pub struct Llvmpipe {
     gl: glow::Context,
     program: glow::Program,
     transform: glow::UniformLocation,
+    textured: glow::Program,
+    textured_transform: glow::UniformLocation,
     query: glow::Query,
     width: u32,
     height: u32,
@@ -105,6 +140,11 @@ impl Llvmpipe {
         }
         // SAFETY: as above.
         let (program, transform, query) = unsafe { set_up(&gl, width, height)? };
+        // SAFETY: as above.
+        let textured = unsafe { textured_program(&gl)? };
+        // SAFETY: as above.
+        let textured_transform = unsafe { gl.get_uniform_location(textured, "transform") }
+            .ok_or("no uniform `transform` in the textured program")?;
         Ok(Llvmpipe {
             egl,
             display,
@@ -112,6 +152,8 @@ impl Llvmpipe {
             gl,
             program,
             transform,
+            textured,
+            textured_transform,
             query,
             width,
             height,
@@ -240,6 +282,13 @@ impl Llvmpipe {
     /// 0 first (rasterlab's top row, see the module docs).
     #[allow(dead_code)] // the tests read pixels back; the bench only times
     pub fn coverage(&self) -> Vec<bool> {
+        self.rgba().chunks_exact(4).map(|p| p[3] != 0).collect()
+    }
+
+    /// The target's RGBA8 colour, row by row, row 0 first (rasterlab's
+    /// top row, see the module docs), as rasterlab's target holds it.
+    #[allow(dead_code)] // the tests read pixels back; the bench only times
+    pub fn rgba(&self) -> Vec<u8> {
         self.make_current();
         let mut rgba = vec![0u8; self.width as usize * self.height as usize * 4];
         // SAFETY: a GL call on the current context; the buffer holds the
@@ -255,7 +304,183 @@ impl Llvmpipe {
                 glow::PixelPackData::Slice(Some(&mut rgba)),
             );
         }
-        rgba.chunks_exact(4).map(|p| p[3] != 0).collect()
+        rgba
+    }
+
+    /// Uploads textured triangles (the position and the texture
+    /// coordinate of each vertex).
+    #[allow(dead_code)] // drawn by the texture tests and the bench only
+    pub fn textured_shape(&self, vertices: &[TexturedVertex], indices: &[u32]) -> Shape {
+        self.make_current();
+        let gl = &self.gl;
+        // SAFETY: GL calls on the current context; the slices outlive the
+        // calls, and the attribute layout is `TexturedVertex`'s (repr(C),
+        // 20 bytes).
+        unsafe {
+            let vertex_array = gl.create_vertex_array().expect("a vertex array");
+            gl.bind_vertex_array(Some(vertex_array));
+            let vbo = gl.create_buffer().expect("a vertex buffer");
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+            gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, as_bytes(vertices), glow::STATIC_DRAW);
+            gl.enable_vertex_attrib_array(0);
+            gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, 20, 0);
+            gl.enable_vertex_attrib_array(1);
+            gl.vertex_attrib_pointer_f32(1, 2, glow::FLOAT, false, 20, 12);
+            let ebo = gl.create_buffer().expect("an index buffer");
+            gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
+            gl.buffer_data_u8_slice(
+                glow::ELEMENT_ARRAY_BUFFER,
+                as_bytes(indices),
+                glow::STATIC_DRAW,
+            );
+            gl.bind_vertex_array(None);
+            Shape {
+                vertex_array,
+                buffers: [vbo, ebo],
+                indices: indices.len() as i32,
+            }
+        }
+    }
+
+    /// The most anisotropy the context offers
+    /// (`GL_MAX_TEXTURE_MAX_ANISOTROPY`), or `None` without
+    /// `GL_EXT_texture_filter_anisotropic` (or its ARB twin).
+    #[allow(dead_code)] // drawn by the texture tests and the bench only
+    pub fn max_anisotropy(&self) -> Option<f32> {
+        self.make_current();
+        let extensions = self.gl.supported_extensions();
+        let offered = [
+            "GL_EXT_texture_filter_anisotropic",
+            "GL_ARB_texture_filter_anisotropic",
+        ]
+        .iter()
+        .any(|e| extensions.contains(*e));
+        // SAFETY: a GL call on the current context, of a parameter the
+        // extension defines.
+        offered.then(|| unsafe { self.gl.get_parameter_f32(MAX_TEXTURE_MAX_ANISOTROPY) })
+    }
+
+    /// A mipmapped texture whose levels are `levels`, uploaded one by one
+    /// (`glTexImage2D` for each, no `glGenerateMipmap`), so that the GL
+    /// filters the very pyramid given. Sampled with `GL_LINEAR_MIPMAP_LINEAR`
+    /// (trilinear), `GL_LINEAR` when magnified, repeating both ways; with
+    /// `anisotropy` above 1, `GL_TEXTURE_MAX_ANISOTROPY` set to it. The
+    /// texels are plain RGBA8 (`GL_RGBA8`, not sRGB): the GL filters the
+    /// stored values, as rasterlab does. An error when the levels do not
+    /// form a pyramid from the first down to 1x1, or the anisotropy is not
+    /// offered.
+    #[allow(dead_code)] // drawn by the texture tests and the bench only
+    pub fn mipmapped(&self, levels: &[Level], anisotropy: f32) -> Result<glow::Texture, String> {
+        let Some(first) = levels.first() else {
+            return Err("a texture needs at least one level".into());
+        };
+        let (mut w, mut h) = (first.width, first.height);
+        for (i, level) in levels.iter().enumerate() {
+            if (level.width, level.height) != (w, h) || level.rgba.len() != (w * h * 4) as usize {
+                return Err(format!(
+                    "level {i} is {}x{} with {} bytes, not {w}x{h}",
+                    level.width,
+                    level.height,
+                    level.rgba.len()
+                ));
+            }
+            (w, h) = ((w / 2).max(1), (h / 2).max(1));
+        }
+        if levels.last().map(|l| (l.width, l.height)) != Some((1, 1)) {
+            return Err("the levels stop before 1x1".into());
+        }
+        if anisotropy > 1.0 {
+            match self.max_anisotropy() {
+                Some(max) if anisotropy <= max => {}
+                Some(max) => {
+                    return Err(format!(
+                        "llvmpipe offers {max}x anisotropy, not {anisotropy}x"
+                    ))
+                }
+                None => return Err("no GL_EXT_texture_filter_anisotropic".into()),
+            }
+        }
+        self.make_current();
+        let gl = &self.gl;
+        // SAFETY: GL calls on the current context; each level's bytes hold
+        // its width x height RGBA8 texels (checked above).
+        unsafe {
+            let texture = gl.create_texture()?;
+            gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+            gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
+            for (i, level) in levels.iter().enumerate() {
+                gl.tex_image_2d(
+                    glow::TEXTURE_2D,
+                    i as i32,
+                    glow::RGBA8 as i32,
+                    level.width as i32,
+                    level.height as i32,
+                    0,
+                    glow::RGBA,
+                    glow::UNSIGNED_BYTE,
+                    glow::PixelUnpackData::Slice(Some(&level.rgba)),
+                );
+            }
+            let parameters = [
+                (glow::TEXTURE_BASE_LEVEL, 0),
+                (glow::TEXTURE_MAX_LEVEL, levels.len() as i32 - 1),
+                (glow::TEXTURE_MIN_FILTER, glow::LINEAR_MIPMAP_LINEAR as i32),
+                (glow::TEXTURE_MAG_FILTER, glow::LINEAR as i32),
+                (glow::TEXTURE_WRAP_S, glow::REPEAT as i32),
+                (glow::TEXTURE_WRAP_T, glow::REPEAT as i32),
+            ];
+            for (name, value) in parameters {
+                gl.tex_parameter_i32(glow::TEXTURE_2D, name, value);
+            }
+            if anisotropy > 1.0 {
+                gl.tex_parameter_f32(glow::TEXTURE_2D, TEXTURE_MAX_ANISOTROPY, anisotropy);
+            }
+            gl.bind_texture(glow::TEXTURE_2D, None);
+            Ok(texture)
+        }
+    }
+
+    /// Frees a texture.
+    #[allow(dead_code)] // drawn by the texture tests and the bench only
+    pub fn delete_texture(&self, texture: glow::Texture) {
+        self.make_current();
+        // SAFETY: a GL call on the current context, on a texture it made.
+        unsafe { self.gl.delete_texture(texture) };
+    }
+
+    /// Clears the colour to `clear` (RGBA8), draws `shape` sampling
+    /// `texture` in its fragment shader (`texture(sampler2D, uv)`, the
+    /// derivatives and level of detail llvmpipe's own) without depth
+    /// test or culling, and waits until llvmpipe has finished.
+    #[allow(dead_code)] // drawn by the texture tests and the bench only
+    pub fn draw_textured(
+        &self,
+        shape: &Shape,
+        transform: &[f32; 16],
+        texture: glow::Texture,
+        clear: [u8; 4],
+    ) {
+        self.make_current();
+        let gl = &self.gl;
+        let [r, g, b, a] = clear.map(|c| f32::from(c) / 255.0);
+        // SAFETY: GL calls on the current context, with objects it made.
+        unsafe {
+            gl.disable(glow::DEPTH_TEST);
+            gl.depth_mask(false);
+            gl.disable(glow::CULL_FACE);
+            gl.clear_color(r, g, b, a);
+            gl.clear(glow::COLOR_BUFFER_BIT);
+            gl.clear_color(0.0, 0.0, 0.0, 0.0);
+            gl.use_program(Some(self.textured));
+            gl.uniform_matrix_4_f32_slice(Some(&self.textured_transform), false, transform);
+            gl.active_texture(glow::TEXTURE0);
+            gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+            gl.bind_vertex_array(Some(shape.vertex_array));
+            gl.draw_elements(glow::TRIANGLES, shape.indices, glow::UNSIGNED_INT, 0);
+            gl.bind_vertex_array(None);
+            gl.bind_texture(glow::TEXTURE_2D, None);
+            gl.finish();
+        }
     }
 
     fn submit(&self, shape: &Shape, transform: &[f32; 16], state: DrawState) {
@@ -762,6 +987,30 @@ unsafe fn set_up(
     Ok((program, transform, query))
 }
 
+/// The textured program: the position through `transform`, the texture
+/// coordinate interpolated perspective-correct, and `texture()` of the
+/// sampler on unit 0 (its implicit derivatives and level of detail).
+///
+/// # Safety
+///
+/// A GL context must be current.
+unsafe fn textured_program(gl: &glow::Context) -> Result<glow::Program, String> {
+    program(
+        gl,
+        "#version 330 core\n\
+             layout(location = 0) in vec3 position;\n\
+             layout(location = 1) in vec2 uv;\n\
+             uniform mat4 transform;\n\
+             out vec2 st;\n\
+             void main() { st = uv; gl_Position = transform * vec4(position, 1.0); }\n",
+        "#version 330 core\n\
+             in vec2 st;\n\
+             uniform sampler2D image;\n\
+             out vec4 colour;\n\
+             void main() { colour = texture(image, st); }\n",
+    )
+}
+
 /// The bytes of a slice of plain numbers, to write into.
 #[allow(dead_code)] // the tests read masks; the bench does not
 fn as_bytes_mut(values: &mut [u32]) -> &mut [u8] {
@@ -773,6 +1022,7 @@ fn as_bytes_mut(values: &mut [u32]) -> &mut [u8] {
 
 /// The bytes of a slice of plain numbers.
 fn as_bytes<T: Copy>(values: &[T]) -> &[u8] {
-    // SAFETY: T is u32, f32 or Vertex (four f32), plain data without padding.
+    // SAFETY: T is u32, f32, Vertex (four f32) or TexturedVertex (five
+    // f32), plain data without padding.
     unsafe { std::slice::from_raw_parts(values.as_ptr().cast(), std::mem::size_of_val(values)) }
 }

@@ -94,15 +94,8 @@ impl Floor {
     /// [`Floor::checkerboard`]. An error for a size a target cannot have.
     pub fn new(width: u32, height: u32) -> Result<Floor> {
         RenderTarget::check_size(width, height)?;
-        let projection =
-            Mat4::perspective_rh_gl(60f32.to_radians(), width as f32 / height as f32, 0.5, 500.0);
-        let view = Mat4::look_at_rh(Vec3::new(0., 1., 0.), Vec3::new(0., 0.3, -10.), Vec3::Y);
-        let transform = Transform::new(Mat4::IDENTITY, view, projection);
-        let corners = [(-100., -1.), (100., -1.), (100., -200.), (-100., -200.)];
-        let vertices = corners.map(|(x, z): (f32, f32)| {
-            let uv = Vec2::new((x + 100.) / 2., (z + 1.) / -2.);
-            (Vec3::new(x, 0., z), uv)
-        });
+        let transform = Floor::camera(width, height);
+        let vertices = Floor::corners();
         let shader = |v: &(Vec3, Vec2)| ClipVertex {
             position: transform.mvp * v.0.extend(1.0),
             varyings: Varyings {
@@ -112,7 +105,7 @@ impl Floor {
         };
         let geometry = process_triangles(
             &vertices,
-            &[[0, 1, 2], [0, 2, 3]],
+            &Floor::TRIANGLES,
             &shader,
             Viewport { width, height },
             &PipelineOptions::default(),
@@ -133,6 +126,39 @@ impl Floor {
             texture: Floor::checkerboard(),
             planes,
         })
+    }
+
+    /// The plane's corners `(x, z)`, drawn as the triangles
+    /// [`TRIANGLES`](Self::TRIANGLES).
+    const CORNERS: [(f32, f32); 4] = [(-100., -1.), (100., -1.), (100., -200.), (-100., -200.)];
+
+    /// The two triangles of [`vertices`](Self::vertices), counter-clockwise.
+    pub const TRIANGLES: [[u32; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+
+    fn camera(width: u32, height: u32) -> Transform {
+        let projection =
+            Mat4::perspective_rh_gl(60f32.to_radians(), width as f32 / height as f32, 0.5, 500.0);
+        let view = Mat4::look_at_rh(Vec3::new(0., 1., 0.), Vec3::new(0., 0.3, -10.), Vec3::Y);
+        Transform::new(Mat4::IDENTITY, view, projection)
+    }
+
+    /// The plane's four corners in world space, each with its texture
+    /// coordinate: what another renderer is given to draw the same floor.
+    pub fn vertices(&self) -> [(Vec3, Vec2); 4] {
+        Floor::corners()
+    }
+
+    fn corners() -> [(Vec3, Vec2); 4] {
+        Floor::CORNERS.map(|(x, z): (f32, f32)| {
+            let uv = Vec2::new((x + 100.) / 2., (z + 1.) / -2.);
+            (Vec3::new(x, 0., z), uv)
+        })
+    }
+
+    /// The camera's model-view-projection matrix (OpenGL's clip space,
+    /// y up, depth -1 to 1), which the floor's vertices go through.
+    pub fn mvp(&self) -> Mat4 {
+        Floor::camera(self.width, self.height).mvp
     }
 
     /// The same floor under another texture.

@@ -35,7 +35,7 @@ use crate::raster::edge::PixelRect;
 use crate::raster::fragment::WorkCounters;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::multisample_stage::{draw_multisampled, MultisampleTarget};
-use crate::raster::primitive::ShadedLine;
+use crate::raster::primitive::{ShadedLine, TriangleData};
 use crate::raster::shader::FragmentShader;
 use crate::raster::shader::{Diffuse, Flat, Gouraud, Mipmapped, NormalColors, Texture, Textured};
 use crate::raster::stage::FragmentStage;
@@ -104,6 +104,9 @@ pub struct MeshRenderer {
     /// The same for multisampled frames, whose set-up keeps more
     /// triangles and whose draw reads them as one array.
     multisampled: Mutex<Geometry>,
+    /// The same for mipmapped frames, with their shader, made once and
+    /// given each frame's triangles.
+    mipmapped: Mutex<(Geometry, Option<Mipmapped>)>,
 }
 
 impl MeshRenderer {
@@ -180,6 +183,7 @@ impl MeshRenderer {
             shader,
             geometry: Mutex::new(GeometryInParts::default()),
             multisampled: Mutex::new(Geometry::default()),
+            mipmapped: Mutex::new((Geometry::default(), None)),
         })
     }
 
@@ -370,22 +374,42 @@ impl MeshRenderer {
         target: &mut RenderTarget,
     ) -> Result<FrameStats> {
         let frame_start = Instant::now();
-        let geometry = self.geometry()?;
-        let mut shader = Mipmapped::new(
-            textured.texture.clone(),
-            self.settings.sampler(),
-            self.settings.derivatives,
-            &geometry.setups,
-            &geometry.shaded,
-            self.settings.interpolation == Interpolation::PerspectiveCorrect,
-        );
-        shader.light = textured.light;
+        // As in `render_into`: other threads drawing at once get their own.
+        let mut reused = self.mipmapped.try_lock().ok();
+        let mut own = (Geometry::default(), None);
+        let (geometry, shader) = reused.as_deref_mut().unwrap_or(&mut own);
+        pipeline::process_triangles_into(
+            geometry,
+            &self.vertices,
+            &self.triangles,
+            &self.transform,
+            self.viewport(),
+            &self.settings.pipeline,
+        )?;
+        let perspective = self.settings.interpolation == Interpolation::PerspectiveCorrect;
+        let shader = shader.get_or_insert_with(|| {
+            let none = TriangleData::default();
+            let sampler = self.settings.sampler();
+            let derivatives = self.settings.derivatives;
+            let mut shader = Mipmapped::new(
+                textured.texture.clone(),
+                sampler,
+                derivatives,
+                &[],
+                &none,
+                false,
+            );
+            shader.light = textured.light;
+            shader
+        });
+        shader.set_triangles(&geometry.setups, &geometry.shaded, perspective);
+        let geometry = &*geometry;
         let geometry_time = frame_start.elapsed();
         let start = Instant::now();
         let mut work = pipeline::draw_clearing(
-            &geometry,
+            geometry,
             backend,
-            &shader,
+            &*shader,
             self.settings.depth,
             self.settings.interpolation,
             Clear::all(self.settings.background),

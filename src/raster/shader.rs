@@ -388,22 +388,38 @@ impl Mipmapped {
         data: &TriangleData,
         perspective: bool,
     ) -> Mipmapped {
-        let mut planes = vec![None; data.triangles.len()];
+        let mut shader = Mipmapped {
+            texture,
+            sampler,
+            derivatives,
+            light: None,
+            planes: Vec::new(),
+        };
+        shader.set_triangles(setups, data, perspective);
+        shader
+    }
+
+    /// Makes the shader one for the triangles `setups` whose stage data is
+    /// `data`, as [`new`](Self::new) does, in the memory it already has:
+    /// what a renderer drawing frame after frame calls, so that a frame
+    /// does not allocate (and the system zero) the planes of every
+    /// triangle again.
+    pub fn set_triangles(
+        &mut self,
+        setups: &[TriangleSetup],
+        data: &TriangleData,
+        perspective: bool,
+    ) {
+        self.planes.clear();
+        self.planes.resize(data.triangles.len(), None);
         for s in setups {
             let Some(t) = data.triangles.get(s.id as usize) else {
                 continue;
             };
             let vertices = t.vertices.map(|i| data.vertices.get(i as usize).copied());
             if let [Some(a), Some(b), Some(c)] = vertices {
-                planes[s.id as usize] = Some(UvPlanes::new(s, [a, b, c], perspective));
+                self.planes[s.id as usize] = Some(UvPlanes::new(s, [a, b, c], perspective));
             }
-        }
-        Mipmapped {
-            texture,
-            sampler,
-            derivatives,
-            light: None,
-            planes,
         }
     }
 

@@ -104,11 +104,21 @@ impl Wrap {
     #[inline]
     pub fn index(self, i: i64, n: u32) -> u32 {
         let n = i64::from(n);
+        // A side of a power of two (the usual one) wraps by a mask, which
+        // is the Euclidean remainder in two's complement, without the
+        // division.
+        let wrap = |i: i64, n: i64| {
+            if n & (n - 1) == 0 {
+                i & (n - 1)
+            } else {
+                i.rem_euclid(n)
+            }
+        };
         let k = match self {
-            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::Repeat => wrap(i, n),
             Wrap::ClampToEdge => i.clamp(0, n - 1),
             Wrap::MirroredRepeat => {
-                let k = i.rem_euclid(2 * n);
+                let k = wrap(i, 2 * n);
                 if k < n {
                     k
                 } else {
@@ -275,11 +285,11 @@ impl Image {
         let u = f64::from(uv.x) * f64::from(self.width);
         let v = f64::from(uv.y) * f64::from(self.height);
         match filter {
-            Filter::Nearest => self.fetch(u.floor() as i64, v.floor() as i64, wrap),
+            Filter::Nearest => self.fetch(floor(u) as i64, floor(v) as i64, wrap),
             Filter::Bilinear => {
                 // Texel centres sit at half-integers.
                 let (u, v) = (u - 0.5, v - 0.5);
-                let (x0, y0) = (u.floor(), v.floor());
+                let (x0, y0) = (floor(u), floor(v));
                 let (fx, fy) = ((u - x0) as f32, (v - y0) as f32);
                 let (x0, y0) = (x0 as i64, y0 as i64);
                 let top = self
@@ -291,6 +301,24 @@ impl Image {
                 top.lerp(bottom, fy)
             }
         }
+    }
+}
+
+/// `x.floor()`, the same value, without the library call `f64::floor`
+/// becomes where the build does not assume SSE4.1: below 2^52 in
+/// magnitude, truncation then one step down for a negative fraction.
+#[inline]
+fn floor(x: f64) -> f64 {
+    if x.abs() < 4_503_599_627_370_496.0 {
+        let t = x as i64 as f64;
+        if t > x {
+            t - 1.0
+        } else {
+            // -0.5 < x <= -0.0 truncates to +0.0; floor keeps the sign.
+            t.copysign(x)
+        }
+    } else {
+        x.floor()
     }
 }
 

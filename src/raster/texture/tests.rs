@@ -416,3 +416,51 @@ proptest! {
         prop_assert_eq!(m(i), m(i + 2 * i64::from(n)));
     }
 }
+
+/// The texel addressing's floor is `f64::floor` bit for bit, and the
+/// masked wrap of a power-of-two side the Euclidean remainder.
+#[test]
+fn floor_and_masked_wrap_are_the_plain_ones() {
+    let mut values = vec![
+        0.0,
+        -0.0,
+        0.5,
+        -0.5,
+        1.0,
+        -1.0,
+        -1e-300,
+        1e-300,
+        2f64.powi(52),
+        -2f64.powi(52),
+    ];
+    values.extend([
+        2f64.powi(52) - 0.5,
+        -(2f64.powi(52) - 0.5),
+        1e300,
+        -1e300,
+        f64::MAX,
+        f64::MIN,
+    ]);
+    let mut rng = fastrand::Rng::with_seed(3);
+    values.extend((0..100_000).map(|_| (rng.f64() - 0.5) * 10f64.powi(rng.i32(-3..20))));
+    for x in values {
+        assert_eq!(super::floor(x).to_bits(), x.floor().to_bits(), "{x}");
+    }
+    for n in [1u32, 2, 4, 32, 1 << 14] {
+        for i in -100_000i64..100_000 {
+            let n64 = i64::from(n);
+            assert_eq!(
+                i64::from(Wrap::Repeat.index(i, n)),
+                i.rem_euclid(n64),
+                "{i} {n}"
+            );
+            let k = i.rem_euclid(2 * n64);
+            let mirrored = if k < n64 { k } else { 2 * n64 - 1 - k };
+            assert_eq!(
+                i64::from(Wrap::MirroredRepeat.index(i, n)),
+                mirrored,
+                "{i} {n}"
+            );
+        }
+    }
+}
