@@ -1,0 +1,376 @@
+//! Line clipping: Cohen-Sutherland and Liang-Barsky keep the same part of
+//! every segment, exactly; clipping then walking from the entry column
+//! with the original segment's decision variable draws every line
+//! back-end's on-screen pixels exactly; rounding the clipped endpoints and
+//! walking the short segment afresh moves pixels, counted per back-end.
+
+mod common;
+
+use proptest::prelude::*;
+use rasterlab::raster::line::clip::cohen_sutherland::Outcode;
+use rasterlab::raster::line::clip::{
+    draw_clipped, ClipRestart, ClipWindow, ClipWork, Clipper, ExactPoint, Param,
+};
+use rasterlab::raster::line::{
+    Connectivity, Endpoints, LineOptions, LineRasterizer, LineSetup, LineWalk,
+};
+use rasterlab::raster::{line_backends, FixedPoint, FragmentList, PixelRect};
+
+/// A fragment as a comparable tuple: pixel, segment and coverage bits.
+type Frag = (u32, u32, u32, u32);
+
+fn fragments_of(list: &FragmentList) -> Vec<Frag> {
+    list.lines
+        .iter()
+        .map(|f| (f.x, f.y, f.line, f.coverage.to_bits()))
+        .collect()
+}
+
+/// The whole segments drawn, their pixels restricted to the viewport.
+fn whole(
+    backend: &dyn LineRasterizer,
+    lines: &[LineSetup],
+    options: &LineOptions,
+    viewport: PixelRect,
+) -> Vec<Frag> {
+    let mut list = FragmentList::default();
+    backend.rasterize(lines, options, viewport, &mut list);
+    fragments_of(&list)
+}
+
+/// The segments clipped by `clipper`, then walked as `restart` says.
+fn clipped(
+    backend: &dyn LineRasterizer,
+    clipper: Clipper,
+    restart: ClipRestart,
+    lines: &[LineSetup],
+    options: &LineOptions,
+    viewport: PixelRect,
+) -> Vec<Frag> {
+    let mut list = FragmentList::default();
+    draw_clipped(
+        backend, clipper, restart, lines, options, viewport, &mut list,
+    );
+    fragments_of(&list)
+}
+
+fn raw(x: i64, y: i64) -> FixedPoint {
+    FixedPoint::from_raw(x, y).unwrap()
+}
+
+/// The options a back-end can take: `wanted` when it accepts them, the
+/// defaults otherwise (the diamond-exit rules take no others).
+fn options_for(backend: &dyn LineRasterizer, wanted: LineOptions) -> LineOptions {
+    if backend.check_options(&wanted).is_ok() {
+        wanted
+    } else {
+        LineOptions::DEFAULT
+    }
+}
+
+/// A coordinate along an axis of `size` pixels: well inside, just
+/// outside either side, far outside, or on a pixel centre, a pixel edge or
+/// a half-edge (ties for every rule), in 1/256 px.
+fn coordinate(size: i64) -> impl Strategy<Value = i64> {
+    let s = size * 256;
+    prop_oneof![
+        (0..s),
+        (-3 * 256i64..256),
+        (s - 256..s + 3 * 256),
+        (-40 * 256i64..s + 40 * 256),
+        (-6i64..size + 6).prop_map(|p| p * 256 + 128),
+        (-6i64..size + 6).prop_map(|p| p * 256),
+        (-12i64..2 * size + 12).prop_map(|p| p * 128 + 64),
+    ]
+}
+
+/// A viewport and a segment about it: crossing sides and corners, wholly
+/// inside, wholly outside.
+fn case() -> impl Strategy<Value = (PixelRect, LineSetup)> {
+    (1i64..24, 1i64..24).prop_flat_map(|(w, h)| {
+        (
+            Just(PixelRect {
+                x0: 0,
+                y0: 0,
+                x1: w - 1,
+                y1: h - 1,
+            }),
+            (coordinate(w), coordinate(h), coordinate(w), coordinate(h)).prop_map(
+                |(ax, ay, bx, by)| LineSetup {
+                    id: 7,
+                    from: raw(ax, ay),
+                    to: raw(bx, by),
+                },
+            ),
+        )
+    })
+}
+
+fn line_options() -> impl Strategy<Value = LineOptions> {
+    (any::<bool>(), any::<bool>(), any::<bool>()).prop_map(|(four, open, symmetric)| LineOptions {
+        connectivity: if four {
+            Connectivity::Four
+        } else {
+            Connectivity::Eight
+        },
+        endpoints: if open {
+            Endpoints::HalfOpen
+        } else {
+            Endpoints::Inclusive
+        },
+        symmetric,
+    })
+}
+
+/// Checks the property on one case: every back-end, both clippers.
+fn keeps_every_pixel(viewport: PixelRect, line: LineSetup, wanted: LineOptions) {
+    for &backend in line_backends() {
+        let options = options_for(backend, wanted);
+        // wu takes 8-connected lines only.
+        let options = if backend.descriptor().walk == LineWalk::AntiAliased {
+            LineOptions {
+                connectivity: Connectivity::Eight,
+                ..options
+            }
+        } else {
+            options
+        };
+        let expected = whole(backend, &[line], &options, viewport);
+        for clipper in Clipper::ALL {
+            let got = clipped(
+                backend,
+                clipper,
+                ClipRestart::KeepDecision,
+                &[line],
+                &options,
+                viewport,
+            );
+            assert_eq!(
+                got,
+                expected,
+                "{} clipped by {clipper} ({options:?}) on {viewport:?}, {line:?}",
+                backend.name()
+            );
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(common::proptest_config(1000, "tests/proptest-regressions/line_clipping.txt"))]
+
+    /// Clip, then walk from the entry column keeping the original
+    /// decision variable: for every line back-end, the whole segment's
+    /// pixels in the viewport, with their coverage, in the same order,
+    /// under both clippers.
+    #[test]
+    fn clipped_walk_keeps_every_backends_pixels((viewport, line) in case(), options in line_options()) {
+        keeps_every_pixel(viewport, line, options);
+    }
+
+    /// Cohen-Sutherland and Liang-Barsky keep the same interval, exactly;
+    /// its ends are inside the window, and just beyond them the segment
+    /// is outside (or ended).
+    #[test]
+    fn both_clippers_keep_the_same_part((viewport, line) in case(), margin in any::<bool>()) {
+        let window = if margin { ClipWindow::around(viewport) } else { ClipWindow::of_viewport(viewport) };
+        let mut work = ClipWork::default();
+        let cs = Clipper::CohenSutherland.clip(&line, window, &mut work);
+        let lb = Clipper::LiangBarsky.clip(&line, window, &mut work);
+        prop_assert_eq!(cs, lb);
+        if let Some(kept) = cs {
+            prop_assert!(kept.t0 <= kept.t1);
+            for t in [kept.t0, kept.t1] {
+                prop_assert!(Outcode::of(t.point(line.from, line.to), window).is_inside());
+            }
+            // A step of 1/2^20 of the segment before t0 and after t1
+            // leaves the window unless the segment ends there.
+            let step = Param { num: 1, den: 1 << 20 };
+            let before = Param { num: kept.t0.num * step.den - kept.t0.den, den: kept.t0.den * step.den };
+            let after = Param { num: kept.t1.num * step.den + kept.t1.den, den: kept.t1.den * step.den };
+            if kept.t0 > Param::ZERO {
+                prop_assert!(!Outcode::of(before.point(line.from, line.to), window).is_inside());
+            }
+            if kept.t1 < Param::ONE {
+                prop_assert!(!Outcode::of(after.point(line.from, line.to), window).is_inside());
+            }
+        } else {
+            // Nothing inside: no point of the segment is, at 65 samples.
+            for n in 0..=64 {
+                let t = Param { num: n, den: 64 };
+                prop_assert!(!Outcode::of(t.point(line.from, line.to), window).is_inside());
+            }
+        }
+    }
+}
+
+/// A fixed set of `n` segments about a 32 x 24 viewport, from a seeded
+/// generator: endpoints up to 16 px beyond each side, a third of them on
+/// pixel centres.
+fn seeded_segments(n: usize) -> Vec<LineSetup> {
+    let mut state: u64 = 0x6a09_e667_f3bc_c908;
+    let mut next = move |range: i64| {
+        // xorshift64*
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as i64 % range
+    };
+    (0..n)
+        .map(|i| {
+            let mut point = |w: i64, h: i64| {
+                let (x, y) = (
+                    next((w + 32) * 256) - 16 * 256,
+                    next((h + 32) * 256) - 16 * 256,
+                );
+                if next(3) == 0 {
+                    raw(x.div_euclid(256) * 256 + 128, y.div_euclid(256) * 256 + 128)
+                } else {
+                    raw(x, y)
+                }
+            };
+            LineSetup {
+                id: i as u32,
+                from: point(32, 24),
+                to: point(32, 24),
+            }
+        })
+        .collect()
+}
+
+/// How many of `lines` a back-end draws differently when the clipped
+/// endpoints are rounded and the short segment walked afresh.
+fn segments_moved_by_rounding(
+    backend: &dyn LineRasterizer,
+    clipper: Clipper,
+    lines: &[LineSetup],
+    viewport: PixelRect,
+) -> usize {
+    lines
+        .iter()
+        .filter(|line| {
+            let one = std::slice::from_ref(*line);
+            let options = LineOptions::DEFAULT;
+            whole(backend, one, &options, viewport)
+                != clipped(
+                    backend,
+                    clipper,
+                    ClipRestart::RoundEndpoints,
+                    one,
+                    &options,
+                    viewport,
+                )
+        })
+        .count()
+}
+
+/// The naive way, counted: on 2,000 seeded segments about a 32 x 24
+/// viewport, rounding the clipped endpoints to the 1/256 px grid and
+/// walking the short segment from scratch changes the pixels of some
+/// segments for every aliased back-end (and the coverage for wu), while
+/// the restarted walk changes none. The counts are printed
+/// (`--nocapture`).
+#[test]
+fn rounding_the_clipped_endpoints_moves_pixels() {
+    let viewport = PixelRect::of_target(32, 24);
+    let lines = seeded_segments(2000);
+    let crossing = lines
+        .iter()
+        .filter(|l| {
+            let mut work = ClipWork::default();
+            Clipper::LiangBarsky
+                .clip(l, ClipWindow::of_viewport(viewport), &mut work)
+                .is_some_and(|c| c.t0 > Param::ZERO || c.t1 < Param::ONE)
+        })
+        .count();
+    println!(
+        "{} segments, {crossing} cut by the viewport's edges",
+        lines.len()
+    );
+    println!(
+        "{:<16} {:>18} {:>18}",
+        "back-end", "cohen-sutherland", "liang-barsky"
+    );
+    for &backend in line_backends() {
+        let counts = Clipper::ALL.map(|c| segments_moved_by_rounding(backend, c, &lines, viewport));
+        println!("{:<16} {:>18} {:>18}", backend.name(), counts[0], counts[1]);
+        // The two clippers keep the same points, so they round alike.
+        assert_eq!(counts[0], counts[1], "{}", backend.name());
+        assert!(
+            counts[0] > 0,
+            "{}: rounding the clipped endpoints moved no pixel on {} segments",
+            backend.name(),
+            lines.len()
+        );
+        assert!(
+            counts[0] <= crossing,
+            "{}: segments not cut cannot move",
+            backend.name()
+        );
+        for clipper in Clipper::ALL {
+            let options = LineOptions::DEFAULT;
+            assert_eq!(
+                clipped(
+                    backend,
+                    clipper,
+                    ClipRestart::KeepDecision,
+                    &lines,
+                    &options,
+                    viewport
+                ),
+                whole(backend, &lines, &options, viewport),
+                "{} under {clipper}",
+                backend.name()
+            );
+        }
+    }
+}
+
+/// A rounded endpoint is the nearest grid point, ties up.
+#[test]
+fn a_clipped_point_rounds_to_the_nearest_grid_point() {
+    let p = ExactPoint {
+        x: 2561,
+        y: -3,
+        den: 2,
+    };
+    assert_eq!(p.rounded(), raw(1281, -1));
+    assert_eq!(ExactPoint { x: 7, y: 5, den: 3 }.rounded(), raw(2, 2));
+    assert_eq!(p.pixel(), (5, -1));
+}
+
+/// Regression: a segment ending just above the screen, `(0.2, -1.6) ->
+/// (3.2, -0.1)`, lies wholly outside the viewport's own edges, yet its
+/// last column's centre (x = 3.5) is where the line, extended, has
+/// crossed into row 0: `bresenham` draws pixel (3, 0). Clipping at the
+/// viewport's edges rejects the segment and loses the pixel; the window
+/// with its one-pixel margin keeps it.
+#[test]
+fn a_segment_ending_above_the_screen_still_draws_its_edge_pixel() {
+    let viewport = PixelRect::of_target(8, 8);
+    let line = LineSetup {
+        id: 0,
+        from: FixedPoint::snap(0.2, -1.6).unwrap(),
+        to: FixedPoint::snap(3.2, -0.1).unwrap(),
+    };
+    let bresenham = rasterlab::raster::line_backend("bresenham").unwrap();
+    let options = LineOptions::DEFAULT;
+    let expected = whole(bresenham, &[line], &options, viewport);
+    assert_eq!(expected, vec![(3, 0, 0, 1.0f32.to_bits())]);
+    for clipper in Clipper::ALL {
+        let mut work = ClipWork::default();
+        assert_eq!(
+            clipper.clip(&line, ClipWindow::of_viewport(viewport), &mut work),
+            None
+        );
+        assert!(clipper
+            .clip(&line, ClipWindow::around(viewport), &mut work)
+            .is_some());
+        let keep = ClipRestart::KeepDecision;
+        assert_eq!(
+            clipped(bresenham, clipper, keep, &[line], &options, viewport),
+            expected
+        );
+        let round = ClipRestart::RoundEndpoints;
+        assert!(clipped(bresenham, clipper, round, &[line], &options, viewport).is_empty());
+    }
+}
