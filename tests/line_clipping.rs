@@ -238,74 +238,90 @@ fn seeded_segments(n: usize) -> Vec<LineSetup> {
 }
 
 /// How many of `lines` a back-end draws differently when the clipped
-/// endpoints are rounded and the short segment walked afresh.
-fn segments_moved_by_rounding(
+/// segment is walked as `restart` says.
+fn segments_moved(
     backend: &dyn LineRasterizer,
     clipper: Clipper,
+    restart: ClipRestart,
     lines: &[LineSetup],
     viewport: PixelRect,
 ) -> usize {
+    let options = LineOptions::DEFAULT;
     lines
         .iter()
         .filter(|line| {
             let one = std::slice::from_ref(*line);
-            let options = LineOptions::DEFAULT;
             whole(backend, one, &options, viewport)
-                != clipped(
-                    backend,
-                    clipper,
-                    ClipRestart::RoundEndpoints,
-                    one,
-                    &options,
-                    viewport,
-                )
+                != clipped(backend, clipper, restart, one, &options, viewport)
         })
         .count()
 }
 
-/// The naive way, counted: on 2,000 seeded segments about a 32 x 24
-/// viewport, rounding the clipped endpoints to the 1/256 px grid and
-/// walking the short segment from scratch changes the pixels of some
-/// segments for every aliased back-end (and the coverage for wu), while
-/// the restarted walk changes none. The counts are printed
-/// (`--nocapture`).
+/// The naive ways, counted: on 2,000 seeded segments about a 32 x 24
+/// viewport, rounding the clipped endpoints to the 1/256 px grid, or
+/// moving them to their pixels' centres, and walking the short segment
+/// from scratch changes the pixels of some segments for every back-end
+/// (the coverage, for wu), while the restarted walk changes none. The
+/// counts are printed (`--nocapture`).
 #[test]
 fn rounding_the_clipped_endpoints_moves_pixels() {
     let viewport = PixelRect::of_target(32, 24);
     let lines = seeded_segments(2000);
-    let crossing = lines
+    // Segments the clipper leaves whole cannot move; the others (cut,
+    // or rejected while passing near enough to draw an edge pixel) can.
+    let whole_inside = lines
         .iter()
         .filter(|l| {
             let mut work = ClipWork::default();
             Clipper::LiangBarsky
                 .clip(l, ClipWindow::of_viewport(viewport), &mut work)
-                .is_some_and(|c| c.t0 > Param::ZERO || c.t1 < Param::ONE)
+                .is_some_and(|c| c.t0 == Param::ZERO && c.t1 == Param::ONE)
         })
         .count();
+    let crossing = lines.len() - whole_inside;
     println!(
-        "{} segments, {crossing} cut by the viewport's edges",
+        "{} segments, {crossing} not wholly inside the viewport; segments drawn differently:",
         lines.len()
     );
     println!(
-        "{:<16} {:>18} {:>18}",
-        "back-end", "cohen-sutherland", "liang-barsky"
+        "{:<16} {:>14} {:>14} {:>22}",
+        "back-end", "keep-decision", "round-endpoints", "round-to-pixel-centres"
     );
     for &backend in line_backends() {
-        let counts = Clipper::ALL.map(|c| segments_moved_by_rounding(backend, c, &lines, viewport));
-        println!("{:<16} {:>18} {:>18}", backend.name(), counts[0], counts[1]);
-        // The two clippers keep the same points, so they round alike.
-        assert_eq!(counts[0], counts[1], "{}", backend.name());
-        assert!(
-            counts[0] > 0,
-            "{}: rounding the clipped endpoints moved no pixel on {} segments",
+        let mut counts = Vec::new();
+        for restart in ClipRestart::ALL {
+            let [cs, lb] =
+                Clipper::ALL.map(|c| segments_moved(backend, c, restart, &lines, viewport));
+            // The two clippers keep the same points, so they round alike.
+            assert_eq!(cs, lb, "{} {restart}", backend.name());
+            assert!(
+                cs <= crossing,
+                "{} {restart}: a segment wholly inside moved",
+                backend.name()
+            );
+            counts.push(cs);
+        }
+        println!(
+            "{:<16} {:>14} {:>14} {:>22}",
             backend.name(),
-            lines.len()
+            counts[0],
+            counts[1],
+            counts[2]
         );
-        assert!(
-            counts[0] <= crossing,
-            "{}: segments not cut cannot move",
+        assert_eq!(
+            counts[0],
+            0,
+            "{}: the restarted walk moved pixels",
             backend.name()
         );
+        for (restart, &count) in ClipRestart::ALL.iter().zip(&counts).skip(1) {
+            assert!(
+                count > 0,
+                "{}: {restart} moved no pixel on {} segments",
+                backend.name(),
+                lines.len()
+            );
+        }
         for clipper in Clipper::ALL {
             let options = LineOptions::DEFAULT;
             assert_eq!(
@@ -336,6 +352,7 @@ fn a_clipped_point_rounds_to_the_nearest_grid_point() {
     assert_eq!(p.rounded(), raw(1281, -1));
     assert_eq!(ExactPoint { x: 7, y: 5, den: 3 }.rounded(), raw(2, 2));
     assert_eq!(p.pixel(), (5, -1));
+    assert_eq!(p.pixel_centre(), raw(5 * 256 + 128, -128));
 }
 
 /// Regression: a segment ending just above the screen, `(0.2, -1.6) ->
@@ -370,7 +387,11 @@ fn a_segment_ending_above_the_screen_still_draws_its_edge_pixel() {
             clipped(bresenham, clipper, keep, &[line], &options, viewport),
             expected
         );
-        let round = ClipRestart::RoundEndpoints;
-        assert!(clipped(bresenham, clipper, round, &[line], &options, viewport).is_empty());
+        for round in [
+            ClipRestart::RoundEndpoints,
+            ClipRestart::RoundToPixelCentres,
+        ] {
+            assert!(clipped(bresenham, clipper, round, &[line], &options, viewport).is_empty());
+        }
     }
 }

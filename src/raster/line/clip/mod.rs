@@ -42,7 +42,9 @@
 //!   segment is walked from scratch. Its slope is not the original's, its
 //!   first pixel is the one containing the rounded entry point, and its
 //!   decision variable starts afresh there: some pixels move by a row.
-//!   The `line_clipping` suite counts them on a fixed set of segments.
+//!   [`ClipRestart::RoundToPixelCentres`], the textbook's integer
+//!   endpoints, moves more. The `line_clipping` suite counts both on a
+//!   fixed set of segments.
 //!
 //! The window [`ClipWindow::around`] a viewport keeps a margin of one
 //! pixel beyond the viewport's edges: a pixel on the screen's edge can be
@@ -152,6 +154,15 @@ impl ExactPoint {
             self.x.div_euclid(unit) as i64,
             self.y.div_euclid(unit) as i64,
         )
+    }
+
+    /// The centre of [the pixel containing](Self::pixel) the point: the
+    /// naive clipped endpoint of integer arithmetic.
+    pub fn pixel_centre(self) -> FixedPoint {
+        let (x, y) = self.pixel();
+        let centre = |p: i64| p * SUBPIXEL_SCALE + SUBPIXEL_SCALE / 2;
+        FixedPoint::from_raw(centre(x), centre(y))
+            .expect("a pixel between two snapped points is within the guard band")
     }
 
     /// The nearest point of the 1/256 px grid, ties rounded up: the naive
@@ -307,14 +318,28 @@ pub enum ClipRestart {
     /// Round the clipped endpoints to the 1/256 px grid and walk the new
     /// segment from scratch: the naive way, which moves pixels.
     RoundEndpoints,
+    /// Move the clipped endpoints (those the clipper moved) to the
+    /// centres of the pixels containing them and walk the new segment from scratch: the naive way with the
+    /// textbook's integer endpoints, which moves more.
+    RoundToPixelCentres,
 }
 
 crate::names::named_enum!(
     ClipRestart,
     "clip restart",
     KeepDecision = "keep-decision",
-    RoundEndpoints = "round-endpoints"
+    RoundEndpoints = "round-endpoints",
+    RoundToPixelCentres = "round-to-pixel-centres"
 );
+
+impl ClipRestart {
+    /// Every way.
+    pub const ALL: [ClipRestart; 3] = [
+        ClipRestart::KeepDecision,
+        ClipRestart::RoundEndpoints,
+        ClipRestart::RoundToPixelCentres,
+    ];
+}
 
 /// What a clipped draw did: the clipper's work, and the back-end's.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
@@ -370,7 +395,9 @@ pub fn draw_clipped(
     }
     let window = match restart {
         ClipRestart::KeepDecision => ClipWindow::around(viewport),
-        ClipRestart::RoundEndpoints => ClipWindow::of_viewport(viewport),
+        ClipRestart::RoundEndpoints | ClipRestart::RoundToPixelCentres => {
+            ClipWindow::of_viewport(viewport)
+        }
     };
     for line in lines {
         let Some(clipped) = clipper.clip(line, window, &mut draw.clip) else {
@@ -385,8 +412,24 @@ pub fn draw_clipped(
                 draw.columns += columns_within(line, rect);
                 backend.rasterize(std::slice::from_ref(line), options, rect, sink)
             }
-            ClipRestart::RoundEndpoints => {
-                let [from, to] = clipped.points(line).map(ExactPoint::rounded);
+            ClipRestart::RoundEndpoints | ClipRestart::RoundToPixelCentres => {
+                let round = if restart == ClipRestart::RoundEndpoints {
+                    ExactPoint::rounded
+                } else {
+                    ExactPoint::pixel_centre
+                };
+                // Only the ends the clipper moved are rounded.
+                let [entry, exit] = clipped.points(line);
+                let from = if clipped.t0 == Param::ZERO {
+                    line.from
+                } else {
+                    round(entry)
+                };
+                let to = if clipped.t1 == Param::ONE {
+                    line.to
+                } else {
+                    round(exit)
+                };
                 let short = LineSetup {
                     id: line.id,
                     from,
