@@ -395,3 +395,78 @@ fn a_segment_ending_above_the_screen_still_draws_its_edge_pixel() {
         }
     }
 }
+
+/// `explain --clip`: both clippers' traces print, and bad input is
+/// refused with a clear message and exit code 2, never a panic.
+#[test]
+fn explain_clip_traces_and_refuses_bad_input() {
+    let ok = common::rasterlab(&[
+        "explain",
+        "--clip",
+        "liang-barsky",
+        "--size",
+        "8x8",
+        "--screen",
+        "-2.3",
+        "1.7",
+        "12.4",
+        "6.1",
+    ]);
+    assert!(ok.status.success());
+    let text = String::from_utf8(ok.stdout).unwrap();
+    assert!(text.contains("4  bottom"), "{text}");
+    assert!(text.contains("bresenham: 8 fragments on screen"), "{text}");
+    for (args, message) in [
+        (
+            &["--clip", "sutherland", "0", "0", "1", "1"][..],
+            "unknown line clipper",
+        ),
+        (
+            &[
+                "--clip",
+                "liang-barsky",
+                "--backend",
+                "scanline",
+                "0",
+                "0",
+                "1",
+                "1",
+            ],
+            "line back-end",
+        ),
+        (
+            &[
+                "--clip",
+                "cohen-sutherland",
+                "--screen",
+                "nan",
+                "0",
+                "1",
+                "1",
+            ],
+            "not a finite number",
+        ),
+        (
+            &[
+                "--clip",
+                "cohen-sutherland",
+                "--screen",
+                "1e9",
+                "0",
+                "1",
+                "1",
+            ],
+            "guard band",
+        ),
+        (
+            &["--clip", "cohen-sutherland", "0", "0", "1"],
+            "give 4 numbers",
+        ),
+    ] {
+        let out = common::rasterlab(&[&["explain"][..], args].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(message), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
