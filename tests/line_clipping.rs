@@ -470,3 +470,92 @@ fn explain_clip_traces_and_refuses_bad_input() {
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
 }
+
+/// The two clippers' cost on the same 2,000 seeded segments about a 32 x
+/// 24 viewport, clipped to the window the restarted walk uses, and the
+/// columns the walk then visits against the whole segments' columns. The
+/// table is printed (`--nocapture`). Both reject the same segments;
+/// Cohen-Sutherland decides some by its first test alone, and computes at
+/// most four intersections a segment, Liang-Barsky at most four ratios.
+#[test]
+fn the_clippers_costs_compared() {
+    let viewport = PixelRect::of_target(32, 24);
+    let lines = seeded_segments(2000);
+    let n = lines.len() as u64;
+    let bresenham = rasterlab::raster::line_backend("bresenham").unwrap();
+    let whole_columns: u64 = lines
+        .iter()
+        .map(|l| {
+            rasterlab::raster::line::clip::columns_within(
+                l,
+                PixelRect {
+                    x0: -1 << 20,
+                    y0: -1 << 20,
+                    x1: 1 << 20,
+                    y1: 1 << 20,
+                },
+            )
+        })
+        .sum();
+    // Without a clipper, an 8-connected walk already skips the columns
+    // beyond the viewport's sides along the major axis.
+    let major_only: u64 = lines
+        .iter()
+        .map(|l| rasterlab::raster::line::clip::columns_within(l, viewport))
+        .sum();
+    println!(
+        "{n} segments, {whole_columns} columns in all, {major_only} within the viewport's major range"
+    );
+    println!(
+        "{:<17} {:>8} {:>9} {:>13} {:>8} {:>8} {:>8} {:>8}",
+        "clipper",
+        "outcodes",
+        "p/q tests",
+        "intersections",
+        "trivial+",
+        "trivial-",
+        "rejected",
+        "columns"
+    );
+    let mut rejected = Vec::new();
+    for clipper in Clipper::ALL {
+        let mut list = FragmentList::default();
+        let draw = draw_clipped(
+            bresenham,
+            clipper,
+            ClipRestart::KeepDecision,
+            &lines,
+            &LineOptions::DEFAULT,
+            viewport,
+            &mut list,
+        );
+        let w = draw.clip;
+        println!(
+            "{:<17} {:>8} {:>9} {:>13} {:>8} {:>8} {:>8} {:>8}",
+            clipper.name(),
+            w.outcodes,
+            w.boundary_tests,
+            w.intersections,
+            w.trivially_accepted,
+            w.trivially_rejected,
+            w.rejected,
+            draw.columns
+        );
+        assert_eq!(w.segments, n);
+        assert!(w.intersections <= 4 * n && w.boundary_tests <= 4 * n);
+        assert!(w.trivially_rejected <= w.rejected);
+        assert!(
+            draw.columns < whole_columns,
+            "{clipper}: clipping saved no column"
+        );
+        rejected.push(w.rejected);
+        match clipper {
+            Clipper::CohenSutherland => {
+                assert_eq!(w.outcodes, 2 * n + w.intersections);
+                assert!(w.trivially_accepted > 0 && w.trivially_rejected > 0);
+            }
+            Clipper::LiangBarsky => assert_eq!(w.outcodes, 0),
+        }
+    }
+    assert_eq!(rejected[0], rejected[1]);
+}

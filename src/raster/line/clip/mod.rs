@@ -36,7 +36,10 @@
 //!   column with the row and decision variable the whole walk would have
 //!   had there ([`AliasedLine::walk_columns`](super::AliasedLine::walk_columns)).
 //!   The pixels drawn are exactly the whole segment's pixels on the
-//!   screen;
+//!   screen. The 8-connected aliased walks visit only those columns;
+//!   4-connected walks, `wu` and the diamond-exit rules compute the
+//!   segment's pixels and keep those of the rectangle ([`walk_rect`])
+//!   around the part kept;
 //! * [`ClipRestart::RoundEndpoints`] is the naive way: the clipped
 //!   endpoints are rounded to the 1/256 px grid and the new, shorter
 //!   segment is walked from scratch. Its slope is not the original's, its
