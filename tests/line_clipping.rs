@@ -559,3 +559,49 @@ fn the_clippers_costs_compared() {
     }
     assert_eq!(rejected[0], rejected[1]);
 }
+
+/// Regression, shrunk by proptest from the window without its margin: a
+/// steep segment `(3.75, -5.168) -> (0.523, 2.070)` passing beside a
+/// one-pixel screen. Clipped at the screen's own edges, the part kept
+/// chooses a smaller rectangle than the whole segment's pixels need, and
+/// some back-end loses a fragment; with the one-pixel margin every
+/// back-end keeps them all.
+#[test]
+fn a_steep_segment_beside_a_one_pixel_screen_keeps_its_fragments() {
+    use rasterlab::raster::line::clip::walk_rect;
+    let viewport = PixelRect::of_target(1, 1);
+    let line = LineSetup {
+        id: 7,
+        from: raw(960, -1323),
+        to: raw(134, 530),
+    };
+    let options = LineOptions::DEFAULT;
+    let mut lost_without_margin = 0;
+    for &backend in line_backends() {
+        let expected = whole(backend, &[line], &options, viewport);
+        for clipper in Clipper::ALL {
+            let keep = ClipRestart::KeepDecision;
+            assert_eq!(
+                clipped(backend, clipper, keep, &[line], &options, viewport),
+                expected,
+                "{} under {clipper}",
+                backend.name()
+            );
+            // The same walk in the rectangle of a clip at the screen's
+            // own edges.
+            let mut work = ClipWork::default();
+            let tight = clipper
+                .clip(&line, ClipWindow::of_viewport(viewport), &mut work)
+                .map(|kept| walk_rect(&line, &kept, viewport));
+            let got = match tight {
+                Some(rect) if !rect.is_empty() => whole(backend, &[line], &options, rect),
+                _ => Vec::new(),
+            };
+            lost_without_margin += usize::from(got != expected);
+        }
+    }
+    assert!(
+        lost_without_margin > 0,
+        "the margin is needed on this segment"
+    );
+}
