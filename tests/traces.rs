@@ -649,3 +649,66 @@ fn the_blend_trace_follows_one_pixel_through_every_fragment() {
         .to_string()
         .contains("outside the 48 x 32 scene"));
 }
+
+/// `explain --clip`: the line (-2.3, 1.7) -> (12.4, 6.1) on an 8 x 8 grid,
+/// worked by hand. Snapped, it runs from (-589, 435) to (3174, 1562) in
+/// 1/256 px, `dx = 3763`; the window (one pixel beyond the grid) is
+/// `-256..=2304` both ways. Cohen-Sutherland: P0 is left (0001), P1 right
+/// (0010); P0 moves to `x = -256` at `t = 333/3763`, P1 to `x = 2304` at
+/// `t = 2893/3763`. Liang-Barsky: `p1 = -dx`, `q1 = x0 - xmin = -333`
+/// (-14.699 and -1.301 px), the same interval. The walk restarts at
+/// column 0 with the decision variable the whole walk has there.
+#[test]
+fn clip_traces_worked_by_hand() {
+    use rasterlab::raster::line::bresenham::Bresenham;
+    use rasterlab::raster::line::clip::Clipper;
+    use rasterlab::raster::line::OctantFrame;
+    use rasterlab::teaching::trace_clip;
+    let ends = LineEnds::screen([-2.3, 1.7, 12.4, 6.1]).unwrap();
+    assert_eq!((ends.from.x.raw(), ends.from.y.raw()), (-589, 435));
+    assert_eq!((ends.to.x.raw(), ends.to.y.raw()), (3174, 1562));
+    let bresenham = line_backend("bresenham").unwrap();
+    let cs = trace_clip(Clipper::CohenSutherland, bresenham, &ends, 8, 8)
+        .unwrap()
+        .to_text();
+    for line in [
+        "   1     0001     0010  P0 is outside: move it to the left edge, t = 333/3763 = 0.0885, P0 = (-1.000, 2.089), code 0000",
+        "   2     0000     0010  P1 is outside: move it to the right edge, t = 2893/3763 = 0.7688, P1 = (9.000, 5.084), code 0000",
+        "   3     0000     0000  accept: both codes 0000, the segment between them is inside",
+        "work: 4 outcodes, 2 intersections computed",
+    ] {
+        assert!(cs.lines().any(|l| l == line), "{line}\nnot in\n{cs}");
+    }
+    let lb = trace_clip(Clipper::LiangBarsky, bresenham, &ends, 8, 8)
+        .unwrap()
+        .to_text();
+    let row = lb.lines().find(|l| l.starts_with("1  left")).unwrap();
+    let cells: Vec<&str> = row.split_whitespace().collect();
+    assert_eq!(
+        &cells[2..7],
+        ["-14.69921875", "-1.30078125", "0.0885", "0.0885", "1.0000"]
+    );
+    // Both keep the same interval and walk the same columns.
+    let tail = |t: &str| {
+        t.lines()
+            .skip_while(|l| !l.starts_with("kept"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    assert_eq!(tail(&cs), tail(&lb));
+    // The restarted decision variable is the whole walk's at column 0.
+    let frame = OctantFrame::new(ends.from, ends.to);
+    let at_0 = Bresenham::steps(&frame)
+        .into_iter()
+        .find(|s| s.i == 0)
+        .unwrap();
+    let d = at_0.d as f64 / 65536.0;
+    assert!(
+        cs.contains(&format!(
+            "restarted there: d = f(x + 1, y + 1/2) = {d:.3} px²"
+        )),
+        "{cs}"
+    );
+    assert!(cs.contains("walks x = 0..7 only"), "{cs}");
+    assert!(cs.contains("round-to-pixel-centres): clipped at the viewport's own edges, moved to their pixels' centres, (0.5, 2.5) -> (8.5, 4.5), walked afresh: 8 fragments, 6 drawn"), "{cs}");
+}

@@ -2,14 +2,16 @@
 
 use super::args::{fill_rule, msaa, rule_for_lines, winding_rule, Size};
 use clap::Args;
+use rasterlab::raster::line::clip::Clipper;
 use rasterlab::raster::polygon::WindingRule;
 use rasterlab::raster::{
-    backend, Anisotropic, Backend, Blend, BlendMode, DepthState, Derivatives, FillRule, Filter,
-    LevelMode, MixSpace, SamplePattern,
+    backend, default_line_backend, Anisotropic, Backend, Blend, BlendMode, DepthState, Derivatives,
+    FillRule, Filter, LevelMode, MixSpace, SamplePattern,
 };
 use rasterlab::teaching::{explain, Blending, ExplainRequest, GridPicture, Texturing};
 use rasterlab::Result;
 use std::path::PathBuf;
+use std::str::FromStr;
 
 #[derive(Args, Debug)]
 pub struct ExplainArgs {
@@ -22,9 +24,15 @@ pub struct ExplainArgs {
     /// x y, a pixel of --scene); texture (one pixel's texture lookup on
     /// the receding floor of `render --scene floor`: x y); edge-table (a
     /// polygon: x y pairs, in screen coordinates). Any other back-end:
-    /// --picture only.
-    #[arg(long)]
-    backend: String,
+    /// --picture only. With --clip, a line back-end (default bresenham).
+    #[arg(long, required_unless_present = "clip")]
+    backend: Option<String>,
+    /// Clip the line to the grid (--size) first, step by step:
+    /// cohen-sutherland (each endpoint's outcode TBRL, the edge chosen,
+    /// the new point) or liang-barsky (each boundary's p, q and the t
+    /// interval); then the walk's entry and exit columns and its restart.
+    #[arg(long, value_parser = Clipper::from_str)]
+    clip: Option<Clipper>,
     /// The blend trace's built-in scene (default transparent; see
     /// `render --help`).
     #[arg(long)]
@@ -89,14 +97,18 @@ pub struct ExplainArgs {
 }
 
 pub fn run(args: &ExplainArgs) -> Result<()> {
-    if args.rule.is_some() && matches!(backend(&args.backend), Ok(Backend::Line(_))) {
+    let name = match &args.backend {
+        Some(name) => name.clone(),
+        None => default_line_backend().name().to_string(),
+    };
+    if args.rule.is_some() && matches!(backend(&name), Ok(Backend::Line(_))) {
         return Err(rule_for_lines());
     }
     if let Some(path) = &args.picture {
         rasterlab::check_file(path, &GridPicture::EXTENSIONS)?;
     }
     let explanation = explain(&ExplainRequest {
-        backend: args.backend.clone(),
+        backend: name,
         rule: args.rule.unwrap_or_default(),
         size: args.size.map(|s| (s.width, s.height)),
         screen: args.screen,
@@ -115,6 +127,7 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
             sort: args.sort,
         },
         texturing: texturing(args),
+        clip: args.clip,
     })?;
     if let (Some(path), Some(picture)) = (&args.picture, &explanation.picture) {
         picture.save(path)?;

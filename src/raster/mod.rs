@@ -94,8 +94,8 @@ pub use multisample::{masks_of, reference_masks, MaskFragment, SamplePattern, SA
 pub use multisample_stage::{draw_multisampled, MultisampleTarget, MAX_TARGET_SAMPLES};
 pub use primitive::{DepthPlane, ShadedLine, ShadedTriangle, ShadedVertex, TriangleData, Varyings};
 pub use registry::{
-    backend, default_triangle_backend, fallback_triangle_backend, line_backend, line_backends,
-    polygon_backend, polygon_backends, reference_triangle_backend,
+    backend, default_line_backend, default_triangle_backend, fallback_triangle_backend,
+    line_backend, line_backends, polygon_backend, polygon_backends, reference_triangle_backend,
     reference_triangle_backend_within, triangle_backend, triangle_backends, Backend,
 };
 pub use shader::{

@@ -19,12 +19,14 @@ use crate::geometry::Floor;
 use crate::raster::derivatives::Derivatives;
 use crate::raster::edge::FillRule;
 use crate::raster::fixed::FixedPoint;
+use crate::raster::line::clip::Clipper;
 use crate::raster::line::LineOptions;
 use crate::raster::multisample::SamplePattern;
 use crate::raster::polygon::edge_table::EdgeTable;
 use crate::raster::polygon::{PolygonRasterizer, WindingRule};
 use crate::raster::registry::{
-    all_backends, backend, polygon_backend, polygon_backends, triangle_backend, Backend,
+    all_backends, backend, line_backends, polygon_backend, polygon_backends, triangle_backend,
+    Backend,
 };
 use crate::raster::stage::{Blend, BlendMode};
 use crate::raster::target::{DepthState, RenderTarget};
@@ -79,6 +81,9 @@ pub struct ExplainRequest {
     pub blending: Blending,
     /// The texture trace: the sampler and the derivative method.
     pub texturing: Texturing,
+    /// A line back-end's trace: clip the line to the grid by this
+    /// algorithm first ([`trace_clip`](super::trace_clip)).
+    pub clip: Option<Clipper>,
 }
 
 /// How the texture trace samples: trilinear, analytic derivatives, unless
@@ -145,6 +150,7 @@ impl ExplainRequest {
             fill: None,
             blending: Blending::default(),
             texturing: Texturing::default(),
+            clip: None,
         }
     }
 
@@ -224,6 +230,20 @@ pub struct Explanation {
 /// Traces the request's algorithm on its input.
 pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     let rule = request.rule;
+    if let (Some(clipper), false) = (
+        request.clip,
+        matches!(backend(&request.backend), Ok(Backend::Line(_))),
+    ) {
+        return Err(Error::InvalidArgument(format!(
+            "--clip {clipper} clips a line before a line back-end walks it: give --backend {}, not `{}`",
+            line_backends()
+                .iter()
+                .map(|b| b.name())
+                .collect::<Vec<_>>()
+                .join(" | "),
+            request.backend
+        )));
+    }
     if request.backend == DEPTH_BUFFER {
         if request.msaa.is_some() {
             return Err(Error::InvalidArgument(
@@ -338,7 +358,10 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
         }
         Backend::Line(b) => {
             let line = request.line()?;
-            let text = trace::trace_line(b, &line)?.to_text();
+            let text = match request.clip {
+                Some(clipper) => trace::trace_clip(clipper, b, &line, width, height)?.to_text(),
+                None => trace::trace_line(b, &line)?.to_text(),
+            };
             let picture = request
                 .picture
                 .then(|| GridPicture::of_lines(b, &[line], &LineOptions::DEFAULT, width, height))

@@ -50,6 +50,16 @@ impl Bresenham {
         steps
     }
 
+    /// The steps over columns `first..=last` only (inside `frame.i0..=
+    /// frame.i1`), the first started with the row and decision variable
+    /// the whole walk has there: how a clipped segment's walk restarts at
+    /// its entry column.
+    pub fn steps_within(frame: &OctantFrame, first: i64, last: i64) -> Vec<BresenhamStep> {
+        let mut steps = Vec::with_capacity((last - first + 1).max(0) as usize);
+        Bresenham::each_step(frame, first, last, |step| steps.push(step));
+        steps
+    }
+
     /// The loop itself, over columns `first..=last` (inside `frame.i0..=
     /// frame.i1`): gives each column's step to `visit`. Started past `i0`,
     /// it starts with the row and the decision variable it would have had

@@ -25,6 +25,7 @@
 //! rule with Scotty3D's tie-break; `wu` is anti-aliased.
 
 pub mod bresenham;
+pub mod clip;
 pub mod dda;
 pub mod diamond;
 pub mod diamond_nudged;

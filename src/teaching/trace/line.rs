@@ -59,7 +59,7 @@ impl LineEnds {
 
     /// "from pixel (0, 0) to pixel (7, 3) (centres ...)" or "from (0.5,
     /// 0.5) to ... in screen coordinates".
-    fn describe(&self) -> String {
+    pub(super) fn describe(&self) -> String {
         let (fx, fy) = self.from.to_f64();
         let (tx, ty) = self.to.to_f64();
         if self.pixel_indices {
@@ -80,7 +80,7 @@ impl LineEnds {
 /// first octant, where the frame is the screen; `u` and `v` elsewhere, so
 /// that they are not read as screen coordinates (the pixel column gives
 /// those).
-fn frame_axes(frame: &OctantFrame) -> (&'static str, &'static str) {
+pub(super) fn frame_axes(frame: &OctantFrame) -> (&'static str, &'static str) {
     if frame.swap || frame.flip_major || frame.flip_minor {
         ("u", "v")
     } else {
@@ -88,7 +88,7 @@ fn frame_axes(frame: &OctantFrame) -> (&'static str, &'static str) {
     }
 }
 
-fn frame_note(frame: &OctantFrame) -> String {
+pub(super) fn frame_note(frame: &OctantFrame) -> String {
     let mut notes = Vec::new();
     if frame.swap {
         notes.push("steep: x and y swapped");

@@ -24,6 +24,12 @@
 //!   bucket of its first row, then each row's edges moved into the active
 //!   edge table, those removed, the table sorted by x with each crossing's
 //!   winding, and the spans filled (Foley and van Dam's §3.6);
+//! * [`trace_clip`]: a line clipped to the viewport by Cohen-Sutherland
+//!   (each pass's outcodes `TBRL`, the edge chosen, the new point) or
+//!   Liang-Barsky (each boundary's `p_k`, `q_k` and the interval `[t0,
+//!   t1]` after it), then the entry and exit columns of the walk, the row
+//!   and decision variable it restarts with, and the pixels the naive
+//!   walk of the rounded clipped segment moves;
 //! * [`trace_depth_buffer`]: the rasterization slides' depth buffer, printed as the
 //!   slides' matrix after each triangle;
 //! * [`trace_blend`]: one pixel's fragments in order, each one's depth
@@ -47,12 +53,14 @@
 //! ```
 
 mod blend;
+mod clip;
 mod depth_buffer;
 mod line;
 mod polygon;
 mod triangle;
 
 pub use blend::trace_blend;
+pub use clip::trace_clip;
 pub use depth_buffer::trace_depth_buffer;
 pub use line::{trace_line, LineEnds};
 pub use polygon::trace_polygon;
