@@ -1424,3 +1424,55 @@ fn the_zero_area_family_makes_triangles_of_zero_snapped_area() {
     assert!(off_grid > 1900, "{off_grid}");
     assert!(between > 50, "{between}");
 }
+
+/// A case file is input like any other: a vertex that is not a finite
+/// number, or lies past the guard band, is an error naming the file and
+/// its line (exit 2), not a case to judge (a NaN would pass any subject,
+/// and a vertex 40,000 px out would blame a correct one for overflow);
+/// so are a target of zero pixels and one past the size limit, each
+/// named as such.
+#[test]
+fn a_case_file_with_a_vertex_no_subject_can_draw_is_refused() {
+    let dir = std::env::temp_dir().join(format!("rasterlab-bad-case-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text, says) in [
+        (
+            "nan.txt",
+            "# size 4x3\n0.5 0.5 3.5 NaN 0.5 2.5\n",
+            "line 2: ",
+        ),
+        (
+            "inf.txt",
+            "# size 4x3\n# a comment\n0.5 0.5 inf 0.5 0.5 2.5\n",
+            "line 3: ",
+        ),
+        (
+            "far.txt",
+            "# size 4x3\n0.5 0.5 40000 0.5 0.5 2.5\n",
+            "line 2: ",
+        ),
+        (
+            "zero.txt",
+            "# size 0x3\n0.5 0.5 3.5 0.5 0.5 2.5\n",
+            "at least one pixel",
+        ),
+        (
+            "huge.txt",
+            "# size 99999x99999\n0.5 0.5 3.5 0.5 0.5 2.5\n",
+            "huge.txt",
+        ),
+    ] {
+        let file = dir.join(name);
+        std::fs::write(&file, text).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+            .args(["check", "--backend", "scanline", "--case"])
+            .arg(&file)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        assert!(err.contains(name) && err.contains(says), "{name}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -147,6 +147,8 @@ impl Case {
     pub fn from_text(text: &str) -> Result<Case> {
         let mut case = Case::default();
         let mut origin = Origin::TopLeft;
+        // The line of each triangle and of each segment, for the errors.
+        let (mut triangle_lines, mut segment_lines) = (Vec::new(), Vec::new());
         for (i, line) in text.lines().enumerate() {
             let bad = |m: String| Error::InvalidArgument(format!("line {}: {m}", i + 1));
             if let Some(size) = line.trim().strip_prefix("# size ") {
@@ -185,20 +187,49 @@ impl Case {
                 })
                 .collect::<Result<Vec<f64>>>()?;
             match v.len() {
-                6 => case
-                    .triangles
-                    .push([(v[0], v[1]), (v[2], v[3]), (v[4], v[5])]),
-                4 => case.lines.push([(v[0], v[1]), (v[2], v[3])]),
+                6 => {
+                    case.triangles
+                        .push([(v[0], v[1]), (v[2], v[3]), (v[4], v[5])]);
+                    triangle_lines.push(i + 1);
+                }
+                4 => {
+                    case.lines.push([(v[0], v[1]), (v[2], v[3])]);
+                    segment_lines.push(i + 1);
+                }
                 n => return Err(bad(format!("expected 6 or 4 numbers, found {n}"))),
             }
         }
-        if case.width == 0 || case.height == 0 {
+        if !text.lines().any(|l| l.trim().starts_with("# size ")) {
             return Err(Error::InvalidArgument("no `# size WxH` line".into()));
         }
-        Ok(match origin {
+        if case.width == 0 || case.height == 0 {
+            return Err(Error::InvalidArgument(format!(
+                "the target is {}x{}: give it at least one pixel a side",
+                case.width, case.height
+            )));
+        }
+        let case = match origin {
             Origin::TopLeft => case,
             Origin::BottomLeft => case.flipped_y(),
-        })
+        };
+        // Every vertex, as judged (y down), finite and inside the guard
+        // band, as every generated one is.
+        let vertices = case
+            .triangles
+            .iter()
+            .zip(&triangle_lines)
+            .flat_map(|(t, &line)| t.iter().map(move |p| (p, line)))
+            .chain(
+                case.lines
+                    .iter()
+                    .zip(&segment_lines)
+                    .flat_map(|(l, &line)| l.iter().map(move |p| (p, line))),
+            );
+        for (p, line) in vertices {
+            FixedPoint::snap_f64(p.0, p.1)
+                .map_err(|e| Error::InvalidArgument(format!("line {line}: {e}")))?;
+        }
+        Ok(case)
     }
 }
 

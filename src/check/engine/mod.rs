@@ -244,7 +244,13 @@ fn read_case_file(
         line: None,
         message: e.to_string(),
     })?;
-    crate::raster::target::RenderTarget::check_size(case.width, case.height)?;
+    crate::raster::target::RenderTarget::check_size(case.width, case.height).map_err(|e| {
+        Error::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            message: e.to_string(),
+        }
+    })?;
     let fits = match kind {
         Kind::Lines => case.triangles.is_empty() && !case.lines.is_empty(),
         Kind::Triangles => case.lines.is_empty() && !case.triangles.is_empty(),
