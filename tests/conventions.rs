@@ -156,6 +156,13 @@ fn a_y_up_counterexample_file_is_the_programs_own_input() {
         }
     }
     assert!(failed.to_string().contains("y up as it is given the case"));
+    let json = serde_json::to_value(&failed).unwrap();
+    assert_eq!(json["origin"], "bottom-left");
+    // The picture names the vertices as the file gives them.
+    let svg = std::fs::read_to_string(out.join("counterexample.svg")).unwrap();
+    let t = &given[0];
+    let v0 = format!("v0 ({}, {})", t[0], t[1]);
+    assert!(svg.contains(&v0), "{v0} not in the picture's legend");
     // Read back: the same case, the same failure.
     assert_eq!(Case::from_text(&text).unwrap(), finding.case);
     let mut rerun = request.clone();

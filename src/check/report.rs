@@ -185,6 +185,12 @@ impl Finding {
     /// The picture's legend: the cell colours, then a swatch per
     /// primitive with its vertices.
     fn legend(&self, primitives: &[Primitive]) -> Legend {
+        // The vertices as the program is given them: y up from the
+        // bottom edge under `--origin bottom-left`.
+        let seen = |y: f64| match self.origin {
+            Origin::TopLeft => y,
+            Origin::BottomLeft => f64::from(self.case.height) - y,
+        };
         let labels: Vec<String> = primitives
             .iter()
             .map(|p| {
@@ -192,7 +198,7 @@ impl Finding {
                     .points
                     .iter()
                     .enumerate()
-                    .map(|(k, &(x, y))| format!("v{k} ({}, {})", number(x), number(y)))
+                    .map(|(k, &(x, y))| format!("v{k} ({}, {})", number(x), number(seen(y))))
                     .collect();
                 format!("{}: {}", p.name, vertices.join(", "))
             })
@@ -242,7 +248,7 @@ impl Finding {
             self.kind(),
             match self.origin {
                 Origin::TopLeft => "",
-                Origin::BottomLeft => ", rows counted up from the bottom",
+                Origin::BottomLeft => ", y up: rows and vertices as the program counts them",
             }
         );
         let top = 26.0 + 18.0;

@@ -383,6 +383,11 @@ pub struct CheckReport {
     /// Samples per pixel: 1, or under `--msaa N` the N whose coverage
     /// masks were judged.
     pub samples: u32,
+    /// Where the subject's origin is (`top-left`, or `bottom-left`: y
+    /// up). The pixels of the report (`missing`, `extra`, the failing
+    /// cases' sentences) are always the protocol's, y down; a
+    /// counterexample's `input` is as the subject was given it.
+    pub origin: String,
     /// The subject: its command line, or `backend NAME`.
     pub subject: String,
     /// The check's own command line, as recorded by the caller.

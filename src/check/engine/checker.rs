@@ -245,6 +245,7 @@ impl Checker<'_> {
                 self.request.snapping,
             ),
             samples: self.samples.map_or(1, SamplePattern::count),
+            origin: request.origin.to_string(),
             subject: String::new(),
             command: request.command.clone(),
             seed: request.seed,
