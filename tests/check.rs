@@ -1476,3 +1476,27 @@ fn a_case_file_with_a_vertex_no_subject_can_draw_is_refused() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A value a configuration names wrongly is reported as that file's
+/// error (exit 2), not as an option the user never gave.
+#[test]
+fn a_wrong_value_in_a_configuration_names_its_file() {
+    let dir = std::env::temp_dir().join(format!("rasterlab-bad-config-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text, says) in [
+        ("rule.json", r#"{"rule": "top-lef"}"#, "top-lef"),
+        ("timeout.json", r#"{"timeout": 0}"#, "timeout"),
+    ] {
+        let file = dir.join(name);
+        std::fs::write(&file, text).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+            .args(["check", "--backend", "scanline", "--config"])
+            .arg(&file)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        assert!(err.contains(name) && err.contains(says), "{name}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -151,7 +151,14 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         check::preset(name)?.config.apply(&mut request)?;
     }
     if let Some(path) = &args.config {
-        CheckConfig::read(path)?.apply(&mut request)?;
+        // A value the configuration names wrongly is its file's error.
+        CheckConfig::read(path)?
+            .apply(&mut request)
+            .map_err(|e| Error::Parse {
+                path: path.clone(),
+                line: None,
+                message: e.to_string(),
+            })?;
     }
     let request = CheckRequest {
         kind: args.kind.or(request.kind),
