@@ -575,4 +575,20 @@ fn compare_textures_writes_its_chart_or_nothing() {
         .count();
     assert_eq!(rows, 38, "{table}");
     assert!(dir.path().join("out/textures.svg").exists());
+    // An hour's work or more is refused with an estimate (exit 4).
+    let huge = std::process::Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args([
+            "compare",
+            "--textures",
+            "--size",
+            "16384x16384",
+            "--samples",
+            "1",
+        ])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let why = String::from_utf8_lossy(&huge.stderr);
+    assert_eq!(huge.status.code(), Some(4), "{why}");
+    assert!(why.contains("hours") && why.contains("--size"), "{why}");
 }

@@ -203,14 +203,40 @@ pub fn compare_texture_filters(
     out: &Path,
 ) -> Result<TextureSummary> {
     // Bad input first: it leaves no output directory behind.
-    let floor = crate::geometry::Floor::new(width, height)?;
     crate::geometry::Floor::check_truth_samples(truth_samples)?;
+    check_texture_work(width, height, truth_samples, samples)?;
+    let floor = crate::geometry::Floor::new(width, height)?;
     crate::output::check_dir(out)?;
     let comparison = crate::measure::compare_textures(&floor, truth_samples, None, samples)?;
     let chart = out.join("textures.svg");
     let svg = crate::teaching::texture_chart::texture_chart_svg(&comparison);
     crate::output::write_file(&chart, svg.as_bytes())?;
     Ok(TextureSummary { comparison, chart })
+}
+
+/// Seconds a pixel of the floor costs the texture comparison: its ground
+/// truth per bilinear sample, and each round of the 38 methods. Measured
+/// on a 2-core machine of the benchmarks, rounded up; the bound below is
+/// an order of magnitude, not a promise.
+const TRUTH_SECONDS_PER_SAMPLE: f64 = 2.5e-8;
+const METHODS_SECONDS_PER_ROUND: f64 = 2e-5;
+
+/// Refuses, with an estimate, a texture comparison that would run for
+/// more than an hour.
+fn check_texture_work(width: u32, height: u32, truth: u32, samples: usize) -> Result<()> {
+    let pixels = f64::from(width) * f64::from(height);
+    let seconds = pixels
+        * (TRUTH_SECONDS_PER_SAMPLE * f64::from(truth) * f64::from(truth)
+            + METHODS_SECONDS_PER_ROUND * samples as f64);
+    if seconds > 3600.0 {
+        return Err(Error::TooMuchWork(format!(
+            "comparing the texture filters on {width}x{height} with --truth {truth} and \
+             --samples {samples} would take about {:.1} hours: give a smaller --size, --truth \
+             or --samples",
+            seconds / 3600.0
+        )));
+    }
+    Ok(())
 }
 
 impl fmt::Display for TextureSummary {
