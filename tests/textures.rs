@@ -539,6 +539,13 @@ fn the_texture_trace_ends_at_the_stored_colour() {
     }
     let sky = trace_texture(&floor, (80, 2), Sampler::default(), Derivatives::Quad);
     assert!(sky.unwrap_err().to_string().contains("below the horizon"));
+    // A pixel off the picture is named as such, not as sky.
+    let off = trace_texture(&floor, (999, 999), Sampler::default(), Derivatives::Quad);
+    let why = off.unwrap_err().to_string();
+    assert!(
+        why.contains("outside the floor's") && !why.contains("horizon"),
+        "{why}"
+    );
 }
 
 /// `compare --textures`: a ground truth of no samples is refused before

@@ -88,6 +88,16 @@ pub fn trace_texture(
     sampler: Sampler,
     method: Derivatives,
 ) -> Result<String> {
+    if x >= floor.width() || y >= floor.height() {
+        return Err(Error::InvalidArgument(format!(
+            "pixel ({x}, {y}) is outside the floor's {}x{} picture: take x below {} and y \
+             below {} (or give a larger --size)",
+            floor.width(),
+            floor.height(),
+            floor.width(),
+            floor.height()
+        )));
+    }
     let (Some(planes), Some(uv)) = (floor.planes_at(x, y), floor.uv_at(x, y)) else {
         return Err(Error::InvalidArgument(format!(
             "the floor does not cover the centre of pixel ({x}, {y}) of its {}x{} picture: \
