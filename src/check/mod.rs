@@ -104,7 +104,7 @@ pub use program::{shell_words, Program};
 pub use property::{LineConvention, Property};
 pub use request::{
     BrokenReport, CaseFailure, CheckReport, CheckRequest, ConventionChoice, Counterexample,
-    FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord,
+    FamilyTally, Kind, RuleChoice, RuleRow, RuleTable, SubjectSpec, VerdictWord, MAX_CASES,
 };
 pub use snapping::Snapping;
 // What only the `rasterlab` program uses; absent without the `cli` feature.

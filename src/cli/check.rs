@@ -58,8 +58,9 @@ pub struct CheckArgs {
     /// mask`, bit i of the mask for sample i; the masks are judged exactly.
     #[arg(long, value_name = "N", value_parser = msaa, allow_negative_numbers = true)]
     msaa: Option<SamplePattern>,
-    /// How many cases (default: 150, or the configuration's).
-    #[arg(long)]
+    /// How many cases, 1 to 1,000,000 (default: 150, or the
+    /// configuration's).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(check::MAX_CASES)))]
     cases: Option<u32>,
     /// Seed of the case generator (the same seed gives the same cases;
     /// default: 0, or the configuration's).
