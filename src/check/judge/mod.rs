@@ -638,7 +638,8 @@ impl Finding {
         (self.origin == Origin::BottomLeft).then(|| {
             format!(
                 "the pixels (x, y) of the sentences count y down from the top edge, as the \
-                 protocol does; the program's row is {} - y",
+                 protocol does; the program counts rows up from the bottom: its row is \
+                 height - 1 - y = {} - y",
                 i64::from(self.case.height) - 1
             )
         })
