@@ -21,9 +21,10 @@
 use super::LabRequest;
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
-use crate::raster::derivatives::{quad_helper_pixels, quad_helpers, Derivatives, UvPlanes};
+use crate::raster::derivatives::{
+    each_triangle_pixels, quad_helper_pixels, quad_helpers, Derivatives, UvPlanes,
+};
 use crate::raster::edge::{FillRule, PixelRect};
-use crate::raster::fragment::FragmentList;
 use crate::raster::primitive::{ShadedVertex, TriangleData, Varyings};
 use crate::raster::registry::default_triangle_backend;
 use crate::raster::shader::Mipmapped;
@@ -253,14 +254,10 @@ impl TexturedView {
         let (w, h) = (request.width as usize, request.height as usize);
         let mut by_pixel: Vec<Option<Lookup>> = vec![None; w * h];
         let (mut helpers, mut helper_count) = (Vec::new(), 0);
-        let mut list = FragmentList::default();
-        for setup in &setups {
+        each_triangle_pixels(&setups, backend, rect, |setup, pixels| {
             let t = setup.id as usize;
             let planes = UvPlanes::new(setup, scene.vertices[t], true);
-            list.triangles.clear();
-            backend.rasterize(std::slice::from_ref(setup), rect, &mut list);
-            let pixels: Vec<(u32, u32)> = list.triangles.iter().map(|f| (f.x, f.y)).collect();
-            for &(x, y) in &pixels {
+            for &(x, y) in pixels {
                 let (ix, iy) = (i64::from(x), i64::from(y));
                 let g = planes.derivatives(method, ix, iy);
                 let uv = planes.uv_at(ix, iy).unwrap_or_default().as_vec2();
@@ -284,13 +281,13 @@ impl TexturedView {
             if method == Derivatives::Quad {
                 helper_count += quad_helpers(pixels.iter().copied());
                 helpers.extend(
-                    quad_helper_pixels(&pixels)
+                    quad_helper_pixels(pixels)
                         .into_iter()
                         .filter(|&(x, y)| x < request.width && y < request.height)
                         .map(|(x, y)| [x, y, t as u32]),
                 );
             }
-        }
+        });
         let words = |s: String| s.replace('-', " ");
         let mut described = format!(
             "{} filter, {} levels{}, {} derivatives",

@@ -254,14 +254,32 @@ pub fn count_quad_helpers(
     backend: &dyn TriangleRasterizer,
     rect: PixelRect,
 ) -> u64 {
-    let mut list = FragmentList::default();
     let mut helpers = 0;
+    each_triangle_pixels(setups, backend, rect, |_, pixels| {
+        helpers += quad_helpers(pixels.iter().copied());
+    });
+    helpers
+}
+
+/// Rasterizes each of `setups` on its own with `backend` on the pixels of
+/// `rect`, as quads are shaded (a triangle's quads are its own), and
+/// gives `visit` the triangle and its fragments' pixels, in the
+/// back-end's order.
+pub fn each_triangle_pixels(
+    setups: &[TriangleSetup],
+    backend: &dyn TriangleRasterizer,
+    rect: PixelRect,
+    mut visit: impl FnMut(&TriangleSetup, &[(u32, u32)]),
+) {
+    let mut list = FragmentList::default();
+    let mut pixels = Vec::new();
     for setup in setups {
         list.triangles.clear();
         backend.rasterize(std::slice::from_ref(setup), rect, &mut list);
-        helpers += quad_helpers(list.triangles.iter().map(|f| (f.x, f.y)));
+        pixels.clear();
+        pixels.extend(list.triangles.iter().map(|f| (f.x, f.y)));
+        visit(setup, &pixels);
     }
-    helpers
 }
 
 #[cfg(test)]

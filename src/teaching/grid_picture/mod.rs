@@ -58,10 +58,10 @@ pub use png::{for_people, scale_for_people, MAX_LABELLED_CELLS};
 
 use crate::error::{Error, Result};
 use crate::geometry::scene::{setup_triangles, Scene2D};
-use crate::raster::derivatives::quad_helper_pixels;
+use crate::raster::derivatives::{each_triangle_pixels, quad_helper_pixels};
 use crate::raster::edge::{FillRule, PixelRect};
 use crate::raster::fixed::FixedPoint;
-use crate::raster::fragment::{FragmentList, WorkCounters};
+use crate::raster::fragment::WorkCounters;
 use crate::raster::line::{LineOptions, LineRasterizer, LineSetup};
 use crate::raster::multisample::{reference_masks, SamplePattern};
 use crate::raster::target::RenderTarget;
@@ -321,17 +321,15 @@ impl GridPicture {
         let grid = PixelRect::of_target(self.width, self.height);
         let mut helpers = Vec::new();
         let mut fragments = 0;
-        for setup in setup_triangles(triangles, rule) {
-            let mut list = FragmentList::default();
-            backend.rasterize(&[setup], grid, &mut list);
-            let pixels: Vec<(u32, u32)> = list.triangles.iter().map(|f| (f.x, f.y)).collect();
+        let setups = setup_triangles(triangles, rule);
+        each_triangle_pixels(&setups, backend, grid, |_, pixels| {
             fragments += pixels.len();
             helpers.extend(
-                quad_helper_pixels(&pixels)
+                quad_helper_pixels(pixels)
                     .into_iter()
                     .filter(|&(x, y)| x < self.width && y < self.height),
             );
-        }
+        });
         let shaded = fragments + helpers.len();
         self.caption.push_str(&format!(
             "; 2x2 quads: {} helper pixel(s) beside {fragments} fragment(s), {:.0}% of the shading",
