@@ -1462,19 +1462,31 @@ fn a_case_file_with_a_vertex_no_subject_can_draw_is_refused() {
             "huge.txt",
         ),
     ] {
-        let file = dir.join(name);
-        std::fs::write(&file, text).unwrap();
-        let out = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
-            .args(["check", "--backend", "scanline", "--case"])
-            .arg(&file)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
-        assert!(err.contains(name) && err.contains(says), "{name}: {err}");
-        assert!(!err.contains("panicked"), "{err}");
+        refused_naming_the_file(&dir, "--case", name, text, says);
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `check --backend scanline OPTION FILE`, FILE `name` in `dir` holding
+/// `text`: refused with exit 2, the file and `says` named, no panic.
+fn refused_naming_the_file(
+    dir: &std::path::Path,
+    option: &str,
+    name: &str,
+    text: &str,
+    says: &str,
+) {
+    let file = dir.join(name);
+    std::fs::write(&file, text).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(["check", "--backend", "scanline", option])
+        .arg(&file)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+    assert!(err.contains(name) && err.contains(says), "{name}: {err}");
+    assert!(!err.contains("panicked"), "{err}");
 }
 
 /// A value a configuration names wrongly is reported as that file's
@@ -1487,16 +1499,7 @@ fn a_wrong_value_in_a_configuration_names_its_file() {
         ("rule.json", r#"{"rule": "top-lef"}"#, "top-lef"),
         ("timeout.json", r#"{"timeout": 0}"#, "timeout"),
     ] {
-        let file = dir.join(name);
-        std::fs::write(&file, text).unwrap();
-        let out = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
-            .args(["check", "--backend", "scanline", "--config"])
-            .arg(&file)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
-        assert!(err.contains(name) && err.contains(says), "{name}: {err}");
+        refused_naming_the_file(&dir, "--config", name, text, says);
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
