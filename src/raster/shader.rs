@@ -435,16 +435,49 @@ impl Mipmapped {
     }
 }
 
-impl FragmentShader for Mipmapped {
-    fn shade(&self, input: &FragmentInput) -> Vec4 {
-        let g = self.gradient(input);
-        let c = self
-            .texture
-            .sample_grad(input.varyings.uv, g.dx, g.dy, &self.sampler);
+impl Mipmapped {
+    /// The colour of a fragment at `uv` with normal `normal` whose
+    /// derivatives are `g`: the lookup, lit.
+    #[inline(always)]
+    fn lookup(&self, uv: Vec2, normal: Vec3, g: Gradient) -> Vec4 {
+        let c = self.texture.sample_grad(uv, g.dx, g.dy, &self.sampler);
         match self.light {
-            Some(light) => (c.truncate() * light.intensity(input.varyings.normal)).extend(c.w),
+            Some(light) => (c.truncate() * light.intensity(normal)).extend(c.w),
             None => c,
         }
+    }
+}
+
+impl FragmentShader for Mipmapped {
+    fn shade(&self, input: &FragmentInput) -> Vec4 {
+        let v = &input.varyings;
+        self.lookup(v.uv, v.normal, self.gradient(input))
+    }
+
+    /// [`shade`](Self::shade) on each lane, the derivatives of the eight
+    /// pixels found together ([`UvPlanes::derivatives_lanes`]): the
+    /// planes are looked up once, stepped along the row, and each
+    /// coordinate a neighbour's difference reads is computed once.
+    #[inline(always)]
+    fn shade_lanes(&self, lanes: &FragmentLanes) -> ColorLanes {
+        let gradients = match self.planes.get(lanes.primitive as usize) {
+            Some(Some(planes)) => {
+                planes.derivatives_lanes(self.derivatives, i64::from(lanes.x0), i64::from(lanes.y))
+            }
+            _ => [Gradient::default(); LANES],
+        };
+        let mut out = [[0.0; LANES]; 4];
+        for k in 0..LANES {
+            if lanes.active[k] {
+                let uv = Vec2::new(lanes.uv[0][k], lanes.uv[1][k]);
+                let normal = Vec3::new(lanes.normal[0][k], lanes.normal[1][k], lanes.normal[2][k]);
+                let c = self.lookup(uv, normal, gradients[k]).to_array();
+                for (channel, value) in out.iter_mut().zip(c) {
+                    channel[k] = value;
+                }
+            }
+        }
+        out
     }
 }
 

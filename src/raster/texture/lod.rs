@@ -164,11 +164,14 @@ impl LevelMode {
             coarse: level,
             weight: 0.0,
         };
+        // `lambda` is now at least 0: truncation is the floor, and
+        // neither it nor `ceil` calls the library, as `f32::floor` and
+        // `f32::ceil` do where the build does not assume SSE4.1.
         match self {
             LevelMode::Zero => one(0),
-            LevelMode::Nearest => one(((lambda + 0.5).ceil() as usize).saturating_sub(1).min(last)),
+            LevelMode::Nearest => one(ceil(lambda + 0.5).saturating_sub(1).min(last)),
             LevelMode::Linear => {
-                let fine = (lambda.floor() as usize).min(last);
+                let fine = (lambda as usize).min(last);
                 let weight = lambda - fine as f32;
                 if weight > 0.0 && fine < last {
                     LevelChoice {
@@ -182,6 +185,13 @@ impl LevelMode {
             }
         }
     }
+}
+
+/// `x.ceil()` as a level, for `x` from 0 up to a pyramid's depth.
+#[inline]
+fn ceil(x: f32) -> usize {
+    let whole = x as usize;
+    whole + usize::from((whole as f32) < x)
 }
 
 #[cfg(test)]

@@ -292,12 +292,13 @@ impl Image {
                 let (x0, y0) = (floor(u), floor(v));
                 let (fx, fy) = ((u - x0) as f32, (v - y0) as f32);
                 let (x0, y0) = (x0 as i64, y0 as i64);
-                let top = self
-                    .fetch(x0, y0, wrap)
-                    .lerp(self.fetch(x0 + 1, y0, wrap), fx);
-                let bottom = self
-                    .fetch(x0, y0 + 1, wrap)
-                    .lerp(self.fetch(x0 + 1, y0 + 1, wrap), fx);
+                // Each of the two columns and two rows wrapped once.
+                let [left, right] = [x0, x0 + 1].map(|x| wrap.index(x, self.width) as usize);
+                let [above, below] =
+                    [y0, y0 + 1].map(|y| wrap.index(y, self.height) as usize * self.width as usize);
+                let texel = |row: usize, column: usize| self.texels[row + column];
+                let top = texel(above, left).lerp(texel(above, right), fx);
+                let bottom = texel(below, left).lerp(texel(below, right), fx);
                 top.lerp(bottom, fy)
             }
         }

@@ -56,6 +56,8 @@ use crate::raster::primitive::ShadedVertex;
 use crate::raster::triangle::TriangleRasterizer;
 use glam::{DVec2, Vec2};
 
+mod lanes;
+
 /// How the screen-space derivatives of a fragment's texture coordinate
 /// are computed.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
