@@ -15,7 +15,7 @@
 use crate::raster::derivatives::{Derivatives, Gradient, UvPlanes};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::primitive::{TriangleData, Varyings};
-use crate::raster::texture::Sampler;
+use crate::raster::texture::{isotropic_lambdas, Anisotropic, Sampler};
 pub use crate::raster::texture::{Filter, Texture};
 use glam::{Vec2, Vec3, Vec4};
 
@@ -440,7 +440,15 @@ impl Mipmapped {
     /// derivatives are `g`: the lookup, lit.
     #[inline(always)]
     fn lookup(&self, uv: Vec2, normal: Vec3, g: Gradient) -> Vec4 {
-        let c = self.texture.sample_grad(uv, g.dx, g.dy, &self.sampler);
+        self.light(
+            self.texture.sample_grad(uv, g.dx, g.dy, &self.sampler),
+            normal,
+        )
+    }
+
+    /// The texel colour `c` lit, for a fragment whose normal is `normal`.
+    #[inline(always)]
+    fn light(&self, c: Vec4, normal: Vec3) -> Vec4 {
         match self.light {
             Some(light) => (c.truncate() * light.intensity(normal)).extend(c.w),
             None => c,
@@ -466,12 +474,27 @@ impl FragmentShader for Mipmapped {
             }
             _ => [Gradient::default(); LANES],
         };
+        // Isotropic, the level of detail of the eight too, as
+        // `Texture::sample_grad` finds it.
+        let isotropic =
+            self.sampler.anisotropy == 1 && self.sampler.anisotropic == Anisotropic::Probes;
+        let lambdas = isotropic.then(|| {
+            let (dx, dy) = (gradients.map(|g| g.dx), gradients.map(|g| g.dy));
+            isotropic_lambdas(&dx, &dy, self.texture.width(), self.texture.height())
+        });
         let mut out = [[0.0; LANES]; 4];
         for k in 0..LANES {
             if lanes.active[k] {
                 let uv = Vec2::new(lanes.uv[0][k], lanes.uv[1][k]);
                 let normal = Vec3::new(lanes.normal[0][k], lanes.normal[1][k], lanes.normal[2][k]);
-                let c = self.lookup(uv, normal, gradients[k]).to_array();
+                let c = match lambdas {
+                    Some(lambda) => self.light(
+                        self.texture.sample_lod(uv, lambda[k], &self.sampler),
+                        normal,
+                    ),
+                    None => self.lookup(uv, normal, gradients[k]),
+                }
+                .to_array();
                 for (channel, value) in out.iter_mut().zip(c) {
                     channel[k] = value;
                 }

@@ -66,7 +66,7 @@ impl Footprint {
     /// `lambda = log2(rho)`, not yet clamped: minus infinity for a footprint
     /// of zero.
     pub fn lambda(&self) -> f32 {
-        self.rho().log2()
+        log2(self.rho())
     }
 
     /// The extension's anisotropic probes for at most `max_anisotropy`
@@ -82,7 +82,7 @@ impl Footprint {
         if max == 1 || p_max == 0.0 || !p_max.is_finite() {
             return Probes {
                 count: 1,
-                lambda: p_max.log2(),
+                lambda: log2(p_max),
                 axis,
             };
         }
@@ -90,7 +90,7 @@ impl Footprint {
         let count = (p_max / p_min).ceil().min(max as f32) as u32;
         Probes {
             count,
-            lambda: (p_max / count as f32).log2(),
+            lambda: log2(p_max / count as f32),
             axis,
         }
     }
@@ -187,6 +187,90 @@ impl LevelMode {
     }
 }
 
+/// The level of detail `lambda = log2(rho)` of `N` fragments whose
+/// derivatives (in texture coordinates) are `dx[k]` and `dy[k]`, on a
+/// texture of `width` x `height` texels: lane by lane the `lambda` that
+/// [`Footprint::new`] then [`Footprint::probes`] with an anisotropy of 1
+/// give, bit for bit, written as plain arithmetic over the lanes so that
+/// it runs as vectors.
+#[inline(always)]
+pub fn isotropic_lambdas<const N: usize>(
+    dx: &[Vec2; N],
+    dy: &[Vec2; N],
+    width: u32,
+    height: u32,
+) -> [f32; N] {
+    let (w, h) = (width as f32, height as f32);
+    let mut rho = [0.0f32; N];
+    for k in 0..N {
+        let length = |d: Vec2| {
+            let (x, y) = if d.is_finite() {
+                (d.x * w, d.y * h)
+            } else {
+                (0.0, 0.0)
+            };
+            (x * x + y * y).sqrt()
+        };
+        let (px, py) = (length(dx[k]), length(dy[k]));
+        rho[k] = if px >= py { px } else { py };
+    }
+    let mut lambda = rho.map(log2_plain);
+    for k in 0..N {
+        if !is_plain(rho[k]) {
+            lambda[k] = log2_rest(rho[k]);
+        }
+    }
+    lambda
+}
+
+/// `log2(x)`, the level of detail's logarithm, within two units in the
+/// last place of the exact value, and exact at powers of two (so one,
+/// two and four texels a pixel give levels 0, 1 and 2 exactly).
+///
+/// Written without a branch or a library call for the values a footprint
+/// has, positive, normal and finite, so that eight lanes of it run as
+/// vectors: `x = 2^k m` with `m` in `[sqrt(1/2), sqrt(2))`, and
+/// `ln m = 2 atanh(s)` for `s = (m - 1) / (m + 1)`, its series to `s^9`
+/// (`|s| <= 0.172`: the next term is below `2^-25`). Zero, subnormal,
+/// infinite and NaN values go to the library's `log2`
+/// ([`log2_rest`]).
+#[inline(always)]
+pub fn log2(x: f32) -> f32 {
+    if is_plain(x) {
+        log2_plain(x)
+    } else {
+        log2_rest(x)
+    }
+}
+
+/// Whether [`log2_plain`] takes `x`: positive, normal and finite.
+#[inline(always)]
+pub(crate) fn is_plain(x: f32) -> bool {
+    (f32::MIN_POSITIVE..=f32::MAX).contains(&x)
+}
+
+/// [`log2`] of a positive, normal, finite `x`: plain arithmetic, the
+/// same in a loop over lanes as alone.
+#[inline(always)]
+pub(crate) fn log2_plain(x: f32) -> f32 {
+    // The bits of sqrt(1/2): subtracting them puts the exponent of
+    // `x / sqrt(1/2)` in the top bits.
+    const SQRT_HALF: i32 = 0x3f35_04f3;
+    let shifted = x.to_bits() as i32 - SQRT_HALF;
+    let k = shifted >> 23;
+    let m = f32::from_bits(((shifted & 0x007f_ffff) + SQRT_HALF) as u32);
+    let s = (m - 1.0) / (m + 1.0);
+    let z = s * s;
+    let series = 1.0 + z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0 + z * (1.0 / 9.0))));
+    k as f32 + (2.0 * std::f32::consts::LOG2_E) * s * series
+}
+
+/// [`log2`] of what [`log2_plain`] does not take: the library's.
+#[cold]
+pub(crate) fn log2_rest(x: f32) -> f32 {
+    x.log2()
+}
+
 /// `x.ceil()` as a level, for `x` from 0 up to a pyramid's depth.
 #[inline]
 fn ceil(x: f32) -> usize {
@@ -197,6 +281,61 @@ fn ceil(x: f32) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Against `f64`'s logarithm over every binade: within two units in
+    /// the last place of the result (or 2^-23 near 1, where the result
+    /// nears zero), exact at powers of two, and the library's value
+    /// where the plain arithmetic does not apply.
+    #[test]
+    fn log2_is_within_two_ulp_and_exact_at_powers_of_two() {
+        let mut rng = fastrand::Rng::with_seed(3);
+        let mut worst = 0.0f64;
+        for i in 0..2_000_000 {
+            let x = if i % 4 == 0 {
+                1.0 + (rng.f32() - 0.5) * 1e-3
+            } else {
+                f32::from_bits(rng.u32(f32::MIN_POSITIVE.to_bits()..=f32::MAX.to_bits()))
+            };
+            let exact = f64::from(x).log2();
+            let ulp = f64::from(f32::EPSILON) * exact.abs().max(1.0);
+            let error = (f64::from(log2(x)) - exact).abs() / ulp;
+            worst = worst.max(error);
+            assert!(error <= 2.0, "log2({x:e}) = {} not {exact}", log2(x));
+        }
+        assert!(worst > 0.05, "the comparison compared nothing: {worst}");
+        for k in -126..=127 {
+            assert_eq!(log2(2f32.powi(k)), k as f32);
+        }
+        for x in [0.0, -0.0, 1e-40, f32::INFINITY, f32::NAN, -1.0] {
+            assert_eq!(log2(x).to_bits(), x.log2().to_bits(), "{x}");
+        }
+    }
+
+    /// Eight lanes at a time give each lane the `lambda` of its own
+    /// footprint's probes, bit for bit: random derivatives, zero ones,
+    /// ones that overflow to infinity, and non-finite ones.
+    #[test]
+    fn isotropic_lambdas_are_each_footprints_lambda_bit_for_bit() {
+        let mut rng = fastrand::Rng::with_seed(4);
+        let special = [0.0, -0.0, 1e38, f32::NAN, f32::INFINITY, 1e-30, 1e-45];
+        for n in 0..50_000 {
+            let mut d = || {
+                let mut f = || match rng.u8(0..10) {
+                    0 => special[rng.usize(0..special.len())],
+                    _ => (rng.f32() - 0.5) * 10f32.powi(rng.i32(-6..3)),
+                };
+                Vec2::new(f(), f())
+            };
+            let dx: [Vec2; 8] = std::array::from_fn(|_| d());
+            let dy: [Vec2; 8] = std::array::from_fn(|_| d());
+            let (w, h) = (1 << (n % 12), 1 + n % 300);
+            let lanes = isotropic_lambdas(&dx, &dy, w, h);
+            for k in 0..8 {
+                let one = Footprint::new(dx[k], dy[k], w, h).probes(1).lambda;
+                assert_eq!(lanes[k].to_bits(), one.to_bits(), "{:?} {:?}", dx[k], dy[k]);
+            }
+        }
+    }
 
     #[test]
     fn nearest_takes_the_level_within_a_half() {

@@ -52,7 +52,7 @@ pub mod pyramid;
 use crate::error::{Error, Result};
 pub use ewa::Ellipse;
 use glam::{Vec2, Vec4};
-pub use lod::{Footprint, LevelChoice, LevelMode, Probes, MAX_ANISOTROPY};
+pub use lod::{isotropic_lambdas, Footprint, LevelChoice, LevelMode, Probes, MAX_ANISOTROPY};
 
 /// The longest side a texture may have, in texels.
 pub const MAX_TEXTURE_SIDE: u32 = 16384;
