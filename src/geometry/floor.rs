@@ -36,7 +36,8 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::pipeline::{
-    draw_clearing, process_triangles, ClipVertex, Geometry, PipelineOptions, Transform, Viewport,
+    draw_binned_clearing, process_triangles, ClipVertex, Geometry, PipelineOptions, Transform,
+    Viewport,
 };
 use crate::raster::derivatives::{Derivatives, UvPlanes};
 use crate::raster::fragment::WorkCounters;
@@ -200,14 +201,15 @@ impl Floor {
     }
 
     /// The floor drawn by `backend` into `target` with `shader`, the
-    /// target cleared to the [`SKY`] first; the back-end's work.
+    /// target cleared to the [`SKY`] first, band by band on rayon's
+    /// threads; the back-end's work.
     pub fn draw<S: FragmentShader>(
         &self,
         backend: &dyn TriangleRasterizer,
         shader: &S,
         target: &mut RenderTarget,
     ) -> WorkCounters {
-        draw_clearing(
+        draw_binned_clearing(
             &self.geometry,
             backend,
             shader,

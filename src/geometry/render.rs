@@ -366,7 +366,8 @@ impl MeshRenderer {
 
     /// A textured frame with mipmaps, anisotropy or a wrap mode other
     /// than repeat: the whole geometry, then the [`Mipmapped`] shader made
-    /// for its triangles, drawn on one thread; the wireframe over it.
+    /// for its triangles, drawn band by band on rayon's threads; the
+    /// wireframe over it.
     fn render_mipmapped(
         &self,
         textured: &Textured,
@@ -406,7 +407,7 @@ impl MeshRenderer {
         let geometry = &*geometry;
         let geometry_time = frame_start.elapsed();
         let start = Instant::now();
-        let mut work = pipeline::draw_clearing(
+        let mut work = pipeline::draw_binned_clearing(
             geometry,
             backend,
             &*shader,
@@ -415,10 +416,6 @@ impl MeshRenderer {
             Clear::all(self.settings.background),
             target,
         );
-        if self.settings.derivatives == Derivatives::Quad {
-            let rect = PixelRect::of_target(target.width(), target.height());
-            work.helpers = count_quad_helpers(&geometry.setups, backend, rect);
-        }
         if let Some(line_backend) = self.settings.wireframe {
             let lines = pipeline::process_lines(
                 &self.vertices,
@@ -429,6 +426,12 @@ impl MeshRenderer {
             self.draw_wireframe(line_backend, &lines, target);
         }
         let raster_time = start.elapsed();
+        // Counted after the frame's time is taken: the count rasterizes
+        // every triangle again on its own, which a GPU's quads do not.
+        if self.settings.derivatives == Derivatives::Quad {
+            let rect = PixelRect::of_target(target.width(), target.height());
+            work.helpers = count_quad_helpers(&geometry.setups, backend, rect);
+        }
         Ok(FrameStats {
             geometry: geometry.stats,
             work,

@@ -279,6 +279,28 @@ pub fn draw_binned<S: FragmentShader + ?Sized>(
     draw_runs_binned(&geometry.runs(), backend, pass, target)
 }
 
+/// [`draw_binned`], with the target cleared by `clear` first, row by row
+/// as the bands reach it ([`draw_clearing`]'s clear on rayon's threads):
+/// the same bits as [`draw_clearing`].
+pub fn draw_binned_clearing<S: FragmentShader + ?Sized>(
+    geometry: &Geometry,
+    backend: &dyn TriangleRasterizer,
+    shader: &S,
+    depth: DepthState,
+    interpolation: Interpolation,
+    clear: Clear,
+    target: &mut RenderTarget,
+) -> WorkCounters {
+    let pass = Pass {
+        shader,
+        depth,
+        interpolation,
+        clear,
+        blend: Blend::REPLACE,
+    };
+    draw_runs_binned(&geometry.runs(), backend, pass, target)
+}
+
 /// [`draw_binned`] of triangles in runs, with the bins of the pipeline's
 /// parts when they are those of this draw.
 pub(crate) fn draw_runs_binned<S: FragmentShader + ?Sized>(

@@ -45,7 +45,7 @@ mod viewport;
 pub use assembly::{assemble, Topology};
 pub use camera::Camera;
 pub use clip::{ClipResult, ClipVertex, ClipVolume, GUARD_LIMIT_PX, PLANE_NAMES, W_MIN};
-pub use draw::{draw, draw_binned, draw_clearing};
+pub use draw::{draw, draw_binned, draw_binned_clearing, draw_clearing};
 pub use geometry::Geometry;
 pub use options::{ClipPlanes, CullMode, FrontFace, PipelineOptions};
 pub use process::{process_lines, process_triangles, process_triangles_into};
