@@ -21,6 +21,10 @@
 //! * `floor-trilinear`: the textured floor of `render --scene floor`,
 //!   trilinear with quad derivatives, against llvmpipe sampling the same
 //!   pyramid with `GL_LINEAR_MIPMAP_LINEAR` (see `fn floor`);
+//! * `dragon_res4-trilinear`, `dragon-trilinear`: the dragons textured
+//!   with their planar coordinates, trilinear with quad derivatives, depth
+//!   test and back faces culled, against llvmpipe the same way (see
+//!   `fn textured_dragon`);
 //! * `lines-short-1M`, `lines-long-10k`: every line back-end through the
 //!   stage and the fast path, against the `line_drawing` crate's Bresenham
 //!   writing into a colour buffer.
@@ -74,7 +78,7 @@ use rasterlab::raster::line::pixel_containing;
 use rasterlab::raster::triangle::TriangleRasterizer;
 use rasterlab::raster::{
     line_backends, to_rgba8, triangle_backend, triangle_backends, within_budget, Derivatives,
-    FixedPoint, LevelMode, MixSpace, RenderTarget, Sampler, WorkBudget,
+    FixedPoint, LevelMode, MixSpace, RenderTarget, Sampler, Texture, WorkBudget,
 };
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -361,6 +365,172 @@ fn dragon(name: &str, mesh: &Mesh, zoom: f32, rounds: usize, gls: &Gl) -> Worklo
     result
 }
 
+/// The dragons textured and filtered trilinearly: `dragon_res4-trilinear`
+/// (bundled) and `dragon-trilinear` (the full dragon, from the data
+/// folder), the camera and culling of their Gouraud rows.
+fn textured_dragons(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
+    let bundled = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/dragon_vrip_res4.ply.gz");
+    let models = [
+        ("dragon_res4-trilinear", Ok(bundled)),
+        ("dragon-trilinear", find(FULL_DRAGON)),
+    ];
+    let mut results = Vec::new();
+    for (name, path) in models {
+        if !options.wants(name) {
+            continue;
+        }
+        let result = match path {
+            Ok(path) => textured_dragon(name, &Mesh::load(&path).unwrap(), options.rounds, gls),
+            Err(why) => Workload::skipped(name, &why),
+        };
+        print!("{}", result.figure_table());
+        results.push(result);
+    }
+    results
+}
+
+/// A dragon under `render --shading texture --mip linear --derivatives
+/// quad`: its planar texture coordinates (`Mesh::uvs_or_generated`), a
+/// checkerboard of 16 squares of 8 texels, trilinear, with the depth test
+/// and back faces culled; llvmpipe draws the same triangles and
+/// coordinates through the same camera with `GL_LINEAR_MIPMAP_LINEAR`
+/// from the same pyramid, uploaded level by level.
+fn textured_dragon(name: &str, mesh: &Mesh, rounds: usize, gls: &Gl) -> WorkloadResult {
+    let mut settings = RenderSettings {
+        width: W,
+        height: H,
+        azimuth: 30.0,
+        shading: Shading::Texture,
+        mip: LevelMode::Linear,
+        derivatives: Derivatives::Quad,
+        ..RenderSettings::default()
+    };
+    settings.pipeline.cull = CullMode::Back;
+    let texture = Texture::checkerboard(16, 8, settings.color, settings.color * 0.35);
+    let renderer = MeshRenderer::new(mesh, settings)
+        .and_then(|r| r.with_texture(texture.clone()))
+        .unwrap();
+    let target = RefCell::new(RenderTarget::without_coverage(W, H).unwrap());
+    let (one, two) = (pool(1), pool(2));
+    let draw = |b: &dyn TriangleRasterizer, pool: &rayon::ThreadPool| {
+        let target = &mut *target.borrow_mut();
+        pool.install(|| renderer.render_into(b, target).unwrap().work.fragments)
+    };
+    let ours = draw(triangle_backend("scanline").unwrap(), &one);
+    let uvs = mesh.uvs_or_generated();
+    let vertices: Vec<gl::TexturedVertex> = mesh
+        .positions
+        .iter()
+        .zip(&uvs)
+        .map(|(p, uv)| gl::TexturedVertex {
+            position: p.to_array(),
+            uv: uv.to_array(),
+        })
+        .collect();
+    let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+    let transform = gl::Llvmpipe::mesh_transform(renderer.transform().mvp.to_cols_array());
+    let state = gl::DrawState {
+        depth: true,
+        cull_back: true,
+    };
+    let uploaded = upload_textured(gls, &texture, &vertices, &indices);
+    let mut work = Workload::new(name);
+    let (draw, one, two) = (&draw, &one, &two);
+    for name in ["scanline", "tiled"] {
+        let b = triangle_backend(name).unwrap();
+        work.add(Contender::new(name, Side::Rasterlab, 1, move || {
+            draw(b, one)
+        }));
+    }
+    let tiled = triangle_backend("tiled").unwrap();
+    work.add(Contender::new(
+        "tiled-2-threads",
+        Side::Rasterlab,
+        2,
+        move || draw(tiled, two),
+    ));
+    add_textured_llvmpipe(&mut work, gls, &uploaded, &transform, state, ours, 3, name);
+    let result = work.run(rounds);
+    delete_textured(gls, uploaded);
+    result
+}
+
+/// A textured shape and its mipmapped texture, one per llvmpipe context.
+type Uploaded = Vec<(gl::Shape, glow::Texture)>;
+
+/// `texture`'s pyramid (as RGBA8, level by level, `GL_LINEAR_MIPMAP_LINEAR`)
+/// and the shape of `vertices` and `indices`, uploaded to every llvmpipe
+/// context, outside the timing, as an application keeps them.
+fn upload_textured(
+    gls: &Gl,
+    texture: &Texture,
+    vertices: &[gl::TexturedVertex],
+    indices: &[u32],
+) -> Uploaded {
+    let levels: Vec<gl::Level> = texture
+        .levels()
+        .iter()
+        .map(|level| gl::Level {
+            width: level.width(),
+            height: level.height(),
+            rgba: level.texels().iter().flat_map(|&c| to_rgba8(c)).collect(),
+        })
+        .collect();
+    gls.iter()
+        .flatten()
+        .map(|gl| {
+            let texture = gl.mipmapped(&levels, 1.0).expect("the pyramid uploaded");
+            (gl.textured_shape(vertices, indices), texture)
+        })
+        .collect()
+}
+
+/// Adds llvmpipe's contenders drawing `uploaded` under `state`, once it
+/// is seen to draw `ours` fragments give or take `tolerance`.
+#[allow(clippy::too_many_arguments)]
+fn add_textured_llvmpipe<'a>(
+    work: &mut Workload<'a>,
+    gls: &'a Gl,
+    uploaded: &'a Uploaded,
+    transform: &'a [f32; 16],
+    state: gl::DrawState,
+    ours: u64,
+    tolerance: u64,
+    workload: &str,
+) {
+    let gls = match gls {
+        Ok(gls) => gls,
+        Err(why) => {
+            work.skip("llvmpipe", why.clone());
+            return;
+        }
+    };
+    let theirs = gls[0].fragments(&uploaded[0].0, transform, state.cull_back);
+    eprintln!("{workload}: fragments rasterlab {ours}, llvmpipe {theirs}");
+    if ours.abs_diff(theirs) > tolerance {
+        let reason = format!(
+            "llvmpipe drew {theirs} fragments where rasterlab drew {ours}: not the same work"
+        );
+        work.skip("llvmpipe", Skipped { reason });
+        return;
+    }
+    for (gl, (shape, texture)) in gls.iter().zip(uploaded) {
+        let name = llvmpipe_name(gl);
+        work.add(Contender::new(&name, Side::Peer, gl.threads(), move || {
+            gl.draw_textured(shape, transform, *texture, SKY, state)
+        }));
+    }
+}
+
+fn delete_textured(gls: &Gl, uploaded: Uploaded) {
+    if let Ok(gls) = gls {
+        for (gl, (shape, texture)) in gls.iter().zip(uploaded) {
+            gl.delete_texture(texture);
+            gl.delete(shape);
+        }
+    }
+}
+
 /// `floor-trilinear`: the textured floor (`render --scene floor`) at
 /// 1920x1080, trilinear (level mode linear, bilinear, quad derivatives),
 /// against llvmpipe drawing the same plane through the same camera with
@@ -385,32 +555,13 @@ fn floor(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
         pool.install(|| floor.draw(b, &shader, target).fragments)
     };
     let ours = draw(triangle_backend("scanline").unwrap(), &one);
-    let levels: Vec<gl::Level> = floor
-        .texture()
-        .levels()
-        .iter()
-        .map(|level| gl::Level {
-            width: level.width(),
-            height: level.height(),
-            rgba: level.texels().iter().flat_map(|&c| to_rgba8(c)).collect(),
-        })
-        .collect();
     let vertices = floor.vertices().map(|(p, uv)| gl::TexturedVertex {
         position: p.to_array(),
         uv: uv.to_array(),
     });
     let indices: Vec<u32> = Floor::TRIANGLES.concat();
     let transform = gl::Llvmpipe::mesh_transform(floor.mvp().to_cols_array());
-    let uploaded: Vec<(gl::Shape, glow::Texture)> = gls
-        .iter()
-        .flatten()
-        .map(|gl| {
-            let texture = gl
-                .mipmapped(&levels, 1.0)
-                .expect("the floor's pyramid uploaded");
-            (gl.textured_shape(&vertices, &indices), texture)
-        })
-        .collect();
+    let uploaded = upload_textured(gls, floor.texture(), &vertices, &indices);
     let mut work = Workload::new(NAME);
     let (draw, one, two) = (&draw, &one, &two);
     for name in ["scanline", "tiled"] {
@@ -426,37 +577,22 @@ fn floor(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
         2,
         move || draw(tiled, two),
     ));
-    match gls {
-        Err(why) => work.skip("llvmpipe", why.clone()),
-        Ok(gls) => {
-            let theirs = gls[0].fragments(&uploaded[0].0, &transform, false);
-            eprintln!("{NAME}: fragments rasterlab {ours}, llvmpipe {theirs}");
-            // The horizon's row of pixels, where a centre lies within
-            // rounding of the far edge, may go either way.
-            if ours.abs_diff(theirs) > u64::from(W) {
-                let reason = format!(
-                    "llvmpipe drew {theirs} fragments where rasterlab drew {ours}: not the same work"
-                );
-                work.skip("llvmpipe", Skipped { reason });
-            } else {
-                for (gl, (shape, texture)) in gls.iter().zip(&uploaded) {
-                    let name = llvmpipe_name(gl);
-                    let transform = &transform;
-                    work.add(Contender::new(&name, Side::Peer, gl.threads(), move || {
-                        gl.draw_textured(shape, transform, *texture, SKY)
-                    }));
-                }
-            }
-        }
-    }
+    // The horizon's row of pixels, where a centre lies within rounding of
+    // the far edge, may go either way.
+    let state = gl::DrawState::NONE;
+    add_textured_llvmpipe(
+        &mut work,
+        gls,
+        &uploaded,
+        &transform,
+        state,
+        ours,
+        u64::from(W),
+        NAME,
+    );
     let result = work.run(options.rounds);
     print!("{}", result.figure_table());
-    if let Ok(gls) = gls {
-        for (gl, (shape, texture)) in gls.iter().zip(uploaded) {
-            gl.delete_texture(texture);
-            gl.delete(shape);
-        }
-    }
+    delete_textured(gls, uploaded);
     vec![result]
 }
 
@@ -723,6 +859,7 @@ fn main() {
     }
     let mut results = dragons(&options, &gls);
     results.extend(floor(&options, &gls));
+    results.extend(textured_dragons(&options, &gls));
     results.extend(triangles(&options, &gls));
     results.extend(lines(&options));
     context.finish();

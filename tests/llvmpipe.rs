@@ -126,14 +126,7 @@ fn llvmpipe_agrees_with_the_top_left_rule_on_random_triangles() {
             light: 1.0,
         });
         let shape = gl.shape(&vertices, &[0, 1, 2]);
-        gl.draw(
-            &shape,
-            &transform,
-            gl::DrawState {
-                depth: false,
-                cull_back: false,
-            },
-        );
+        gl.draw(&shape, &transform, gl::DrawState::NONE);
         let got = gl.coverage();
         gl.delete(shape);
         if got == expected.covered {
@@ -402,14 +395,7 @@ impl Window {
                 light: 1.0,
             });
             let shape = self.gl.shape(&vertices, &[0, 1, 2]);
-            self.gl.draw(
-                &shape,
-                &self.transform,
-                gl::DrawState {
-                    depth: false,
-                    cull_back: false,
-                },
-            );
+            self.gl.draw(&shape, &self.transform, gl::DrawState::NONE);
             let coverage = self.gl.coverage();
             self.gl.delete(shape);
             for y in 0..h {

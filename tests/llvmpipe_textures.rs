@@ -88,7 +88,7 @@ fn llvmpipe_floor(
     let shape = gl.textured_shape(&vertices, &indices);
     let texture = gl.mipmapped(levels, anisotropy).unwrap();
     let transform = gl::Llvmpipe::mesh_transform(floor.mvp().to_cols_array());
-    gl.draw_textured(&shape, &transform, texture, SKY);
+    gl.draw_textured(&shape, &transform, texture, SKY, gl::DrawState::NONE);
     let rgba = gl.rgba();
     gl.delete_texture(texture);
     gl.delete(shape);

@@ -103,6 +103,14 @@ pub struct DrawState {
     pub cull_back: bool,
 }
 
+impl DrawState {
+    /// No depth test, no culling: a plane drawn alone.
+    pub const NONE: DrawState = DrawState {
+        depth: false,
+        cull_back: false,
+    };
+}
+
 /// An llvmpipe context with an off-screen colour and depth target.
 pub struct Llvmpipe {
     egl: egl::DynamicInstance<egl::EGL1_5>,
@@ -459,15 +467,14 @@ impl Llvmpipe {
         transform: &[f32; 16],
         texture: glow::Texture,
         clear: [u8; 4],
+        state: DrawState,
     ) {
         self.make_current();
         let gl = &self.gl;
         let [r, g, b, a] = clear.map(|c| f32::from(c) / 255.0);
         // SAFETY: GL calls on the current context, with objects it made.
         unsafe {
-            gl.disable(glow::DEPTH_TEST);
-            gl.depth_mask(false);
-            gl.disable(glow::CULL_FACE);
+            self.apply(state);
             gl.clear_color(r, g, b, a);
             gl.clear(glow::COLOR_BUFFER_BIT);
             gl.clear_color(0.0, 0.0, 0.0, 0.0);
@@ -488,6 +495,29 @@ impl Llvmpipe {
         let gl = &self.gl;
         // SAFETY: GL calls on the current context, with objects it made.
         unsafe {
+            self.apply(state);
+            if !state.depth {
+                gl.clear(glow::COLOR_BUFFER_BIT);
+            }
+            gl.use_program(Some(self.program));
+            gl.uniform_matrix_4_f32_slice(Some(&self.transform), false, transform);
+            gl.bind_vertex_array(Some(shape.vertex_array));
+            gl.draw_elements(glow::TRIANGLES, shape.indices, glow::UNSIGNED_INT, 0);
+            gl.bind_vertex_array(None);
+        }
+    }
+}
+
+impl Llvmpipe {
+    /// Sets `state`'s depth test (clearing the depth buffer when there is
+    /// one) and culling.
+    ///
+    /// # Safety
+    /// The context must be current.
+    unsafe fn apply(&self, state: DrawState) {
+        let gl = &self.gl;
+        // SAFETY: the caller made the context current.
+        unsafe {
             if state.depth {
                 gl.enable(glow::DEPTH_TEST);
                 gl.depth_func(glow::LESS);
@@ -496,7 +526,6 @@ impl Llvmpipe {
             } else {
                 gl.disable(glow::DEPTH_TEST);
                 gl.depth_mask(false);
-                gl.clear(glow::COLOR_BUFFER_BIT);
             }
             if state.cull_back {
                 gl.enable(glow::CULL_FACE);
@@ -505,11 +534,6 @@ impl Llvmpipe {
             } else {
                 gl.disable(glow::CULL_FACE);
             }
-            gl.use_program(Some(self.program));
-            gl.uniform_matrix_4_f32_slice(Some(&self.transform), false, transform);
-            gl.bind_vertex_array(Some(shape.vertex_array));
-            gl.draw_elements(glow::TRIANGLES, shape.indices, glow::UNSIGNED_INT, 0);
-            gl.bind_vertex_array(None);
         }
     }
 }
