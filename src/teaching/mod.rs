@@ -74,7 +74,7 @@ pub use scan_or_triangulate::{MethodRow, ScanOrTriangulate};
 pub use texture_chart::texture_chart_svg;
 pub use texture_trace::trace_texture;
 pub use trace::{
-    trace_blend, trace_clip, trace_depth_buffer, trace_line, trace_polygon, trace_triangle,
-    LineEnds,
+    trace_blend, trace_clip, trace_depth_buffer, trace_line, trace_polygon, trace_polygon_rings,
+    trace_triangle, LineEnds,
 };
 pub use trace_table::{Column, Trace, TraceRow};

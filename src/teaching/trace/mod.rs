@@ -63,7 +63,7 @@ pub use blend::trace_blend;
 pub use clip::trace_clip;
 pub use depth_buffer::trace_depth_buffer;
 pub use line::{trace_line, LineEnds};
-pub use polygon::trace_polygon;
+pub use polygon::{trace_polygon, trace_polygon_rings};
 pub use triangle::trace_triangle;
 pub(crate) use triangle::{snapped_or_say, verdict};
 
