@@ -20,7 +20,10 @@ pub struct ExplainArgs {
     /// incremental, tiled (a triangle: x0 y0 x1 y1 x2 y2, in screen
     /// coordinates); depth-buffer (triangles of 7
     /// numbers each, x0 y0 x1 y1 x2 y2 z, or none for the course's
-    /// depth-buffer example); blend (one pixel's fragments and blends:
+    /// depth-buffer example); clip-triangle (a triangle clipped in clip
+    /// space by the pipeline's planes, then its fan: x y z w for each
+    /// vertex, or none for a vertex behind the camera); blend (one
+    /// pixel's fragments and blends:
     /// x y, a pixel of --scene); texture (one pixel's texture lookup on
     /// the receding floor of `render --scene floor`: x y); edge-table (a
     /// polygon: x y pairs, in screen coordinates, more rings by --ring;

@@ -15,7 +15,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
-use crate::geometry::Floor;
+use crate::geometry::{ClipPlanes, Floor};
 use crate::raster::derivatives::Derivatives;
 use crate::raster::edge::FillRule;
 use crate::raster::fixed::FixedPoint;
@@ -41,6 +41,11 @@ pub const DEPTH_BUFFER: &str = "depth-buffer";
 /// The name that asks for one pixel's blends ([`trace_blend`](super::trace_blend))
 /// instead of a back-end's trace.
 pub const BLEND: &str = "blend";
+
+/// The name that asks for a triangle clipped in clip space, plane by
+/// plane, and re-triangulated as a fan
+/// ([`trace_triangle_clip`](super::trace_triangle_clip)).
+pub const CLIP_TRIANGLE: &str = "clip-triangle";
 
 /// The name that asks for one pixel's texture lookup on the receding
 /// floor ([`trace_texture`](super::trace_texture)).
@@ -273,6 +278,9 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     if request.backend == TEXTURE {
         return explain_texture(request);
     }
+    if request.backend == CLIP_TRIANGLE {
+        return explain_triangle_clip(request);
+    }
     // A triangle back-end takes `--derivatives quad` (its quads and
     // helper pixels); the other texture options are the texture trace's.
     let quads = Texturing {
@@ -317,7 +325,7 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
             .chain(polygon_backends().iter().map(|b| b.name()))
             .collect::<Vec<_>>()
             .join(", ")
-            + "; or depth-buffer, the depth buffer's trace; or blend, one pixel's blends; \
+            + "; or depth-buffer, the depth buffer's trace; or clip-triangle, a triangle clipped in clip space; or blend, one pixel's blends; \
                or texture, one pixel's texture lookup",
     })?;
     let (width, height) = request.size(DEFAULT_GRID)?;
@@ -428,6 +436,36 @@ fn explain_polygon(request: &ExplainRequest) -> Result<Explanation> {
     Ok(Explanation {
         text,
         picture,
+        levels: None,
+    })
+}
+
+/// The clipping of the request's clip-space triangle (or the example's,
+/// a vertex behind the camera) by the pipeline's planes.
+fn explain_triangle_clip(request: &ExplainRequest) -> Result<Explanation> {
+    if request.msaa.is_some()
+        || request.picture
+        || request.fill.is_some()
+        || !request.rings.is_empty()
+        || request.blending != Blending::default()
+        || request.texturing != Texturing::default()
+    {
+        return Err(Error::InvalidArgument(
+            "clip-triangle prints the clipping of one triangle in clip space: it takes --size and 12 numbers (or none), no other option"
+                .into(),
+        ));
+    }
+    let numbers = if request.coordinates.is_empty() {
+        trace::BEHIND_THE_CAMERA.to_vec()
+    } else {
+        request.coordinates.clone()
+    };
+    let (width, height) = request.size(DEFAULT_GRID)?;
+    let text =
+        super::trace_triangle_clip(&numbers, ClipPlanes::GuardBand, width, height)?.to_text();
+    Ok(Explanation {
+        text,
+        picture: None,
         levels: None,
     })
 }
