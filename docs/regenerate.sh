@@ -53,6 +53,11 @@ backends='["naive","bbox","scanline","incremental","tiled"]'
 "$bin" explain --backend bbox --size 11x9 --picture docs/bbox-grid.png 1 1 9 2 3 7 >/dev/null
 "$bin" explain --backend tiled --size 32x24 --picture docs/tiled-grid.png 1 1 31 2 2 23 >/dev/null
 "$bin" explain --backend wu --size 14x8 --picture docs/wu-grid.png 0 1 13 6 >/dev/null
+# A polygon whose hole runs the same way as its outer ring, under each rule.
+for fill in even-odd nonzero; do
+    "$bin" explain --backend edge-table --fill "$fill" --size 16x12 1 1 15 2 14 11 2 10 \
+        --ring "5 4 11 4 10 8 6 8" --picture "docs/hole-$fill.png" >/dev/null
+done
 # The side-by-side pictures of docs/teaching.md: aliased and anti-aliased.
 "$bin" render --scene fan --scale 10 --out docs/fan-aliased.png >/dev/null
 "$bin" render --scene fan --scale 10 --msaa 4 --out docs/fan-msaa4.png >/dev/null

@@ -290,7 +290,7 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
     let mut closest = [f64::INFINITY; 3];
 
     // explain --picture: one triangle, tiled's blocks, a Wu line, a
-    // triangle's samples.
+    // polygon with a hole under nonzero, a triangle's samples.
     for args in [
         &[
             "--backend",
@@ -317,6 +317,24 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
             "23",
         ],
         &["--backend", "wu", "--size", "14x8", "0", "1", "13", "6"],
+        &[
+            "--backend",
+            "edge-table",
+            "--fill",
+            "nonzero",
+            "--size",
+            "16x12",
+            "1",
+            "1",
+            "15",
+            "2",
+            "14",
+            "11",
+            "2",
+            "10",
+            "--ring",
+            "5 4 11 4 10 8 6 8",
+        ],
         &[
             "--backend",
             "bbox",

@@ -456,3 +456,97 @@ fn explain_walks_the_edge_table_row_by_row() {
         );
     }
 }
+
+/// `explain --backend edge-table --ring`: a hole typed the same way round
+/// as its outer ring winds twice, so even-odd leaves it empty and nonzero
+/// fills it; typed the other way round it is a hole under both rules. The
+/// picture's green cells are the trace's fragments, and its labels the
+/// exact winding numbers.
+#[test]
+fn a_ring_running_the_same_way_is_a_hole_under_even_odd_only() {
+    use rasterlab::teaching::{trace_polygon_rings, GridPicture};
+    let outer = vec![(1.0, 1.0), (15.0, 2.0), (14.0, 11.0), (2.0, 10.0)];
+    let same = vec![(5.0, 4.0), (11.0, 4.0), (10.0, 8.0), (6.0, 8.0)];
+    let against: Vec<(f64, f64)> = same.iter().rev().copied().collect();
+    let fragments = |rings: &[Vec<(f64, f64)>], rule| {
+        let text = trace_polygon_rings(rings, rule, 16, 12).unwrap().to_text();
+        let last = text.lines().last().unwrap().to_string();
+        last.rsplit(", ").next().unwrap().to_string()
+    };
+    let (even_odd, nonzero) = (WindingRule::EvenOdd, WindingRule::Nonzero);
+    let with_same = [outer.clone(), same.clone()];
+    let with_against = [outer.clone(), against];
+    assert_eq!(fragments(&with_same, even_odd), "97 fragments");
+    assert_eq!(fragments(&with_same, nonzero), "117 fragments");
+    assert_eq!(fragments(&with_against, even_odd), "97 fragments");
+    assert_eq!(fragments(&with_against, nonzero), "97 fragments");
+    let snapped: Vec<Vec<FixedPoint>> = with_same
+        .iter()
+        .map(|r| {
+            r.iter()
+                .map(|&(x, y)| FixedPoint::snap_f64(x, y).unwrap())
+                .collect()
+        })
+        .collect();
+    for (rule, filled) in [(even_odd, 97), (nonzero, 117)] {
+        let picture = GridPicture::of_polygon(&snapped, rule, 16, 12).unwrap();
+        assert_eq!(picture.inside_cells(), filled, "{rule}");
+        // Pixel (8, 6) lies inside both rings, (3, 3) inside the outer only.
+        assert_eq!(picture.labels[6 * 16 + 8], "-2");
+        assert_eq!(picture.labels[3 * 16 + 3], "-1");
+        assert_eq!(picture.labels[0], "");
+    }
+    let out = rasterlab(&[
+        "explain",
+        "--backend",
+        "edge-table",
+        "--fill",
+        "nonzero",
+        "--size",
+        "16x12",
+        "1",
+        "1",
+        "15",
+        "2",
+        "14",
+        "11",
+        "2",
+        "10",
+        "--ring",
+        "5 4 11 4 10 8 6 8",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    assert!(text.contains("ring 1 runs clockwise, as ring 0"), "{text}");
+    assert!(text.ends_with(", 117 fragments\n"), "{text}");
+    for bad in ["5 4 11 4 10", "5 4 x 4 10 8", "5 4 11 4"] {
+        let refused = rasterlab(&[
+            "explain",
+            "--backend",
+            "edge-table",
+            "1",
+            "1",
+            "15",
+            "2",
+            "14",
+            "11",
+            "--ring",
+            bad,
+        ]);
+        assert_eq!(refused.status.code(), Some(2), "{bad}");
+    }
+    let not_a_polygon = rasterlab(&[
+        "explain",
+        "--backend",
+        "bbox",
+        "1",
+        "1",
+        "9",
+        "2",
+        "3",
+        "7",
+        "--ring",
+        "5 4 11 4 10 8",
+    ]);
+    assert_eq!(not_a_polygon.status.code(), Some(2));
+}

@@ -712,3 +712,67 @@ fn clip_traces_worked_by_hand() {
     assert!(cs.contains("walks x = 0..7 only"), "{cs}");
     assert!(cs.contains("round-to-pixel-centres): clipped at the viewport's own edges, moved to their pixels' centres, (0.5, 2.5) -> (8.5, 4.5), walked afresh: 8 fragments, 6 drawn"), "{cs}");
 }
+
+/// `explain --backend clip-triangle`: the example's vertex behind the
+/// camera is outside the near plane and `w > 0`; the near plane cuts its
+/// two edges at the t worked by hand (`d_a / (d_a - d_b)`, 2.0202 against
+/// -3.0303: 0.4), leaving a quadrilateral that the later planes pass
+/// whole, and its fan from v0 is two triangles whose new vertices lie on
+/// the near plane (depth 0). The traced polygon is the pipeline's own
+/// (the trace errs otherwise). Bad input is refused with exit 2.
+#[test]
+fn the_near_plane_cuts_the_example_into_a_fan_of_two() {
+    use rasterlab::geometry::ClipPlanes;
+    use rasterlab::teaching::{trace_triangle_clip, BEHIND_THE_CAMERA};
+    let text = trace_triangle_clip(&BEHIND_THE_CAMERA, ClipPlanes::GuardBand, 16, 16)
+        .unwrap()
+        .to_text();
+    assert!(
+        text.contains("v2 = (0.000, 1.000, -2.530, -0.500): out-code 1111101, outside near, w > 0"),
+        "{text}"
+    );
+    assert!(text.contains("the edge leaves the plane at t = 0.4000: new vertex p0 = (0.600, -0.200, -1.000, 1.000)"), "{text}");
+    assert!(text.contains("the edge enters the plane at t = 0.6000: new vertex p1 = (-0.600, -0.200, -1.000, 1.000)"), "{text}");
+    assert!(
+        text.contains("after near: 4 vertices, v0 v1 p0 p1"),
+        "{text}"
+    );
+    assert!(
+        text.contains("a fan of 2 triangles, (v0 v1 p0), (v0 p0 p1)"),
+        "{text}"
+    );
+    assert!(
+        text.contains(
+            "p0: divided by w = 1.000 and mapped to the viewport: (12.801, 9.602) px, depth 0.0000"
+        ),
+        "{text}"
+    );
+    // Inside every plane, and behind the camera altogether.
+    let inside = [0.0, 0.0, 0.5, 1.0, 0.5, 0.0, 0.5, 1.0, 0.0, 0.5, 0.5, 1.0];
+    let text = trace_triangle_clip(&inside, ClipPlanes::Viewport, 8, 8)
+        .unwrap()
+        .to_text();
+    assert!(text.contains("the triangle goes on as it is"), "{text}");
+    let behind = [
+        0.0, 0.0, 0.5, -1.0, 0.5, 0.0, 0.5, -1.0, 0.0, 0.5, 0.5, -1.0,
+    ];
+    let text = trace_triangle_clip(&behind, ClipPlanes::GuardBand, 8, 8)
+        .unwrap()
+        .to_text();
+    assert!(text.contains("the triangle is rejected"), "{text}");
+    let out = common::rasterlab(&["explain", "--backend", "clip-triangle"]);
+    assert!(out.status.success());
+    for bad in [
+        &["explain", "--backend", "clip-triangle", "1", "2", "3"][..],
+        &[
+            "explain",
+            "--backend",
+            "clip-triangle",
+            "--picture",
+            "p.svg",
+        ],
+        &["explain", "--backend", "clip-triangle", "--size", "0x4"],
+    ] {
+        assert_eq!(common::rasterlab(bad).status.code(), Some(2), "{bad:?}");
+    }
+}

@@ -20,10 +20,14 @@ pub struct ExplainArgs {
     /// incremental, tiled (a triangle: x0 y0 x1 y1 x2 y2, in screen
     /// coordinates); depth-buffer (triangles of 7
     /// numbers each, x0 y0 x1 y1 x2 y2 z, or none for the course's
-    /// depth-buffer example); blend (one pixel's fragments and blends:
+    /// depth-buffer example); clip-triangle (a triangle clipped in clip
+    /// space by the pipeline's planes, then its fan: x y z w for each
+    /// vertex, or none for a vertex behind the camera); blend (one
+    /// pixel's fragments and blends:
     /// x y, a pixel of --scene); texture (one pixel's texture lookup on
     /// the receding floor of `render --scene floor`: x y); edge-table (a
-    /// polygon: x y pairs, in screen coordinates). Any other back-end:
+    /// polygon: x y pairs, in screen coordinates, more rings by --ring;
+    /// its picture labels each centre's winding number). Any other back-end:
     /// --picture only. With --clip, a line back-end (default bresenham).
     #[arg(long, required_unless_present = "clip")]
     backend: Option<String>,
@@ -56,6 +60,12 @@ pub struct ExplainArgs {
     /// Winding rule of edge-table: even-odd (default) or nonzero.
     #[arg(long, value_parser = winding_rule())]
     fill: Option<WindingRule>,
+    /// Another ring of edge-table's polygon: its x y pairs in one
+    /// argument (`--ring "5 4 11 4 10 8"`; repeat for more), taken as
+    /// given, not turned, so a ring running the same way as the first
+    /// winds its inside twice.
+    #[arg(long, value_name = "\"X Y X Y ...\"", allow_hyphen_values = true)]
+    ring: Vec<Ring>,
     /// Grid size, `WxH` (16x16 for one triangle, 14x9 for the course's
     /// depth-buffer example).
     #[arg(long)]
@@ -128,6 +138,7 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
         },
         texturing: texturing(args),
         clip: args.clip,
+        rings: args.ring.iter().map(|r| r.0.clone()).collect(),
     })?;
     if let (Some(path), Some(picture)) = (&args.picture, &explanation.picture) {
         picture.save(path)?;
@@ -153,5 +164,23 @@ fn texturing(args: &ExplainArgs) -> Texturing {
             ..d.sampler
         },
         derivatives: args.derivatives.unwrap_or(d.derivatives),
+    }
+}
+
+/// A ring's numbers, given as one argument.
+#[derive(Clone, Debug)]
+struct Ring(Vec<f64>);
+
+impl FromStr for Ring {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        s.split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|t| !t.is_empty())
+            .map(|t| {
+                t.parse::<f64>()
+                    .map_err(|_| format!("`{t}` is not a number: a ring is x y pairs"))
+            })
+            .collect::<std::result::Result<Vec<f64>, String>>()
+            .map(Ring)
     }
 }

@@ -60,6 +60,7 @@ use crate::teaching::palette::{self, triangle_name, Legend, Mark, Role, MAX_TRIA
 use crate::teaching::trace::{self, LineEnds};
 use crate::teaching::trace_table::Trace;
 use serde::{Deserialize, Serialize};
+use trace_of::trace_of;
 
 /// The page the lab serves, before [`page`] writes the registry's
 /// back-ends into it: one HTML file, no build step, nothing fetched.
@@ -96,6 +97,7 @@ mod composite;
 #[cfg(feature = "lab")]
 mod server;
 mod textured;
+mod trace_of;
 
 pub use composite::CompositeView;
 #[cfg(feature = "lab")]
@@ -164,6 +166,10 @@ pub struct LabRequest {
     /// Triangles: texture them into [`LabResponse::textured`].
     #[serde(default)]
     pub texture: Option<TextureControls>,
+    /// Lines: clip the first to the grid by `cohen-sutherland` or
+    /// `liang-barsky` in its trace, then walk it from its entry column.
+    #[serde(default)]
+    pub clip: Option<String>,
 }
 
 impl LabRequest {
@@ -201,6 +207,9 @@ impl LabRequest {
         }
         if self.backends.len() > 16 {
             return bad("at most 16 back-ends".into());
+        }
+        if let Some(clipper) = &self.clip {
+            clipper.parse::<crate::raster::line::clip::Clipper>()?;
         }
         let (w, h) = (f64::from(self.width), f64::from(self.height));
         let points = self
@@ -621,30 +630,6 @@ fn view(name: &str, picture: &GridPicture) -> BackendView {
         tested,
         fragments,
         caption: picture.caption.clone(),
-    }
-}
-
-/// The trace `rasterlab explain` prints for the first primitive.
-fn trace_of(request: &LabRequest, backend: &str, rule: FillRule) -> Result<Trace> {
-    let (w, h) = (request.width, request.height);
-    match crate::raster::registry::backend(backend)? {
-        Backend::Line(b) => {
-            let Some(l) = request.lines.first().filter(|_| request.kind == "lines") else {
-                return Ok(Trace::default());
-            };
-            let ends = LineEnds::screen([l[0][0], l[0][1], l[1][0], l[1][1]])?;
-            trace::trace_line(b, &ends)
-        }
-        Backend::Triangle(b) => {
-            let Some(t) = request
-                .triangles
-                .first()
-                .filter(|_| request.kind == "triangles")
-            else {
-                return Ok(Trace::default());
-            };
-            trace::trace_triangle(b, t.map(|p| (p[0], p[1])), rule, w, h)
-        }
     }
 }
 

@@ -15,7 +15,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::scene::Scene2D;
-use crate::geometry::Floor;
+use crate::geometry::{ClipPlanes, Floor};
 use crate::raster::derivatives::Derivatives;
 use crate::raster::edge::FillRule;
 use crate::raster::fixed::FixedPoint;
@@ -41,6 +41,11 @@ pub const DEPTH_BUFFER: &str = "depth-buffer";
 /// The name that asks for one pixel's blends ([`trace_blend`](super::trace_blend))
 /// instead of a back-end's trace.
 pub const BLEND: &str = "blend";
+
+/// The name that asks for a triangle clipped in clip space, plane by
+/// plane, and re-triangulated as a fan
+/// ([`trace_triangle_clip`](super::trace_triangle_clip)).
+pub const CLIP_TRIANGLE: &str = "clip-triangle";
 
 /// The name that asks for one pixel's texture lookup on the receding
 /// floor ([`trace_texture`](super::trace_texture)).
@@ -84,6 +89,10 @@ pub struct ExplainRequest {
     /// A line back-end's trace: clip the line to the grid by this
     /// algorithm first ([`trace_clip`](super::trace_clip)).
     pub clip: Option<Clipper>,
+    /// A polygon back-end's trace: the polygon's other rings (holes, or
+    /// rings running the same way as the first), `x y` pairs each, taken
+    /// as given ([`trace_polygon_rings`](super::trace_polygon_rings)).
+    pub rings: Vec<Vec<f64>>,
 }
 
 /// How the texture trace samples: trilinear, analytic derivatives, unless
@@ -151,6 +160,7 @@ impl ExplainRequest {
             blending: Blending::default(),
             texturing: Texturing::default(),
             clip: None,
+            rings: Vec::new(),
         }
     }
 
@@ -268,6 +278,9 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
     if request.backend == TEXTURE {
         return explain_texture(request);
     }
+    if request.backend == CLIP_TRIANGLE {
+        return explain_triangle_clip(request);
+    }
     // A triangle back-end takes `--derivatives quad` (its quads and
     // helper pixels); the other texture options are the texture trace's.
     let quads = Texturing {
@@ -298,9 +311,9 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
         }
         return explain_polygon(request);
     }
-    if request.fill.is_some() {
+    if request.fill.is_some() || !request.rings.is_empty() {
         return Err(Error::InvalidArgument(
-            "--fill is the winding rule of a polygon back-end (edge-table)".into(),
+            "--fill and --ring are a polygon back-end's winding rule and rings (edge-table)".into(),
         ));
     }
     let chosen = backend(&request.backend).map_err(|_| Error::UnknownName {
@@ -312,7 +325,7 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
             .chain(polygon_backends().iter().map(|b| b.name()))
             .collect::<Vec<_>>()
             .join(", ")
-            + "; or depth-buffer, the depth buffer's trace; or blend, one pixel's blends; \
+            + "; or depth-buffer, the depth buffer's trace; or clip-triangle, a triangle clipped in clip space; or blend, one pixel's blends; \
                or texture, one pixel's texture lookup",
     })?;
     let (width, height) = request.size(DEFAULT_GRID)?;
@@ -379,27 +392,77 @@ pub fn explain(request: &ExplainRequest) -> Result<Explanation> {
 /// The edge table's walk over the polygon the request's numbers give
 /// (`x y` pairs, screen coordinates).
 fn explain_polygon(request: &ExplainRequest) -> Result<Explanation> {
-    if request.msaa.is_some() || request.picture || request.rule != FillRule::TopLeft {
+    if request.msaa.is_some() || request.rule != FillRule::TopLeft {
         return Err(Error::InvalidArgument(
-            "edge-table settles ties by the top-left rule on one sample a pixel, and draws no picture: \
-             --rule, --msaa and --picture are for the triangle back-ends"
+            "edge-table settles ties by the top-left rule on one sample a pixel: \
+             --rule and --msaa are for the triangle back-ends"
                 .into(),
         ));
     }
-    if !request.coordinates.len().is_multiple_of(2) {
-        return Err(Error::InvalidArgument(format!(
-            "edge-table traces a polygon: give x y pairs, not {} numbers",
-            request.coordinates.len()
-        )));
+    let mut rings = Vec::new();
+    for (k, numbers) in std::iter::once(&request.coordinates)
+        .chain(&request.rings)
+        .enumerate()
+    {
+        if !numbers.len().is_multiple_of(2) {
+            return Err(Error::InvalidArgument(format!(
+                "edge-table traces a polygon: give x y pairs, not {} numbers{}",
+                numbers.len(),
+                if k == 0 {
+                    String::new()
+                } else {
+                    format!(" (--ring {k})")
+                }
+            )));
+        }
+        rings.push(numbers.chunks(2).map(|c| (c[0], c[1])).collect::<Vec<_>>());
     }
-    let points: Vec<(f64, f64)> = request
-        .coordinates
-        .chunks(2)
-        .map(|c| (c[0], c[1]))
-        .collect();
     let (width, height) = request.size(DEFAULT_GRID)?;
     let rule = request.fill.unwrap_or_default();
-    let text = super::trace_polygon(&points, rule, width, height)?.to_text();
+    let text = super::trace_polygon_rings(&rings, rule, width, height)?.to_text();
+    let picture = if request.picture {
+        let snapped = rings
+            .iter()
+            .map(|ring| {
+                ring.iter()
+                    .map(|&(x, y)| FixedPoint::snap_f64(x, y))
+                    .collect::<Result<Vec<_>>>()
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Some(GridPicture::of_polygon(&snapped, rule, width, height)?)
+    } else {
+        None
+    };
+    Ok(Explanation {
+        text,
+        picture,
+        levels: None,
+    })
+}
+
+/// The clipping of the request's clip-space triangle (or the example's,
+/// a vertex behind the camera) by the pipeline's planes.
+fn explain_triangle_clip(request: &ExplainRequest) -> Result<Explanation> {
+    if request.msaa.is_some()
+        || request.picture
+        || request.fill.is_some()
+        || !request.rings.is_empty()
+        || request.blending != Blending::default()
+        || request.texturing != Texturing::default()
+    {
+        return Err(Error::InvalidArgument(
+            "clip-triangle prints the clipping of one triangle in clip space: it takes --size and 12 numbers (or none), no other option"
+                .into(),
+        ));
+    }
+    let numbers = if request.coordinates.is_empty() {
+        trace::BEHIND_THE_CAMERA.to_vec()
+    } else {
+        request.coordinates.clone()
+    };
+    let (width, height) = request.size(DEFAULT_GRID)?;
+    let text =
+        super::trace_triangle_clip(&numbers, ClipPlanes::GuardBand, width, height)?.to_text();
     Ok(Explanation {
         text,
         picture: None,

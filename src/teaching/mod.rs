@@ -53,8 +53,8 @@ pub use compare::{
 };
 pub use demo::{bundled_assets, run_demo, DemoReport, DemoRow};
 pub use explain::{
-    explain, Blending, ExplainRequest, Explanation, Texturing, BLEND, BLEND_SCENE, DEFAULT_GRID,
-    DEPTH_BUFFER, TEXTURE,
+    explain, Blending, ExplainRequest, Explanation, Texturing, BLEND, BLEND_SCENE, CLIP_TRIANGLE,
+    DEFAULT_GRID, DEPTH_BUFFER, TEXTURE,
 };
 pub use grid_picture::{
     for_people, is_fragment_green, scale_for_people, DepthCells, GridPicture, AS_REFERENCE, GAP,
@@ -74,7 +74,7 @@ pub use scan_or_triangulate::{MethodRow, ScanOrTriangulate};
 pub use texture_chart::texture_chart_svg;
 pub use texture_trace::trace_texture;
 pub use trace::{
-    trace_blend, trace_clip, trace_depth_buffer, trace_line, trace_polygon, trace_triangle,
-    LineEnds,
+    trace_blend, trace_clip, trace_depth_buffer, trace_line, trace_polygon, trace_polygon_rings,
+    trace_triangle, trace_triangle_clip, LineEnds, BEHIND_THE_CAMERA,
 };
 pub use trace_table::{Column, Trace, TraceRow};

@@ -178,21 +178,7 @@ impl ClipVolume {
             if codes.iter().all(|c| c & (1 << plane) == 0) {
                 continue;
             }
-            next.clear();
-            for i in 0..polygon.len() {
-                let a = polygon[i];
-                let b = polygon[(i + 1) % polygon.len()];
-                let (da, db) = (
-                    self.distance(plane, a.position),
-                    self.distance(plane, b.position),
-                );
-                if da >= 0.0 {
-                    next.push(a);
-                }
-                if (da >= 0.0) != (db >= 0.0) {
-                    next.push(a.lerp(&b, da / (da - db)));
-                }
-            }
+            self.clip_to_plane(plane, polygon, &mut next);
             std::mem::swap(polygon, &mut next);
             if polygon.len() < 3 {
                 polygon.clear();
@@ -200,6 +186,36 @@ impl ClipVolume {
             }
         }
         ClipResult::Cut(polygon.len())
+    }
+
+    /// One step of Sutherland-Hodgman: `polygon` cut by plane `plane`
+    /// (an index of [`PLANE_NAMES`]) into `next` (cleared first). Each
+    /// edge `a -> b` in turn: `a` is kept when inside (`distance >= 0`),
+    /// and where the edge crosses the plane the point at `t = d_a / (d_a -
+    /// d_b)` is added, its varyings interpolated.
+    #[inline]
+    pub fn clip_to_plane(&self, plane: usize, polygon: &[ClipVertex], next: &mut Vec<ClipVertex>) {
+        next.clear();
+        for i in 0..polygon.len() {
+            let a = polygon[i];
+            let b = polygon[(i + 1) % polygon.len()];
+            let (da, db) = (
+                self.distance(plane, a.position),
+                self.distance(plane, b.position),
+            );
+            if da >= 0.0 {
+                next.push(a);
+            }
+            if (da >= 0.0) != (db >= 0.0) {
+                next.push(a.lerp(&b, da / (da - db)));
+            }
+        }
+    }
+
+    /// The value of plane `plane` (an index of [`PLANE_NAMES`]) at `p`:
+    /// inside when `>= 0`, in `f64`.
+    pub fn plane_value(&self, plane: usize, p: Vec4) -> f64 {
+        self.distance(plane, p)
     }
 
     /// Clips a segment (parametric, Liang-Barsky style); `None` when

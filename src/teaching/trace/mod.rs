@@ -30,6 +30,9 @@
 //!   t1]` after it), then the entry and exit columns of the walk, the row
 //!   and decision variable it restarts with, and the pixels the naive
 //!   walk of the rounded clipped segment moves;
+//! * [`trace_triangle_clip`]: a triangle clipped in homogeneous clip
+//!   space as the 3D pipeline clips it, plane by plane (Sutherland and
+//!   Hodgman), then re-triangulated as a fan and mapped to the viewport;
 //! * [`trace_depth_buffer`]: the rasterization slides' depth buffer, printed as the
 //!   slides' matrix after each triangle;
 //! * [`trace_blend`]: one pixel's fragments in order, each one's depth
@@ -54,6 +57,7 @@
 
 mod blend;
 mod clip;
+mod clip_triangle;
 mod depth_buffer;
 mod line;
 mod polygon;
@@ -61,9 +65,10 @@ mod triangle;
 
 pub use blend::trace_blend;
 pub use clip::trace_clip;
+pub use clip_triangle::{trace_triangle_clip, BEHIND_THE_CAMERA};
 pub use depth_buffer::trace_depth_buffer;
 pub use line::{trace_line, LineEnds};
-pub use polygon::trace_polygon;
+pub use polygon::{trace_polygon, trace_polygon_rings};
 pub use triangle::trace_triangle;
 pub(crate) use triangle::{snapped_or_say, verdict};
 

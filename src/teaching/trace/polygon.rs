@@ -6,6 +6,7 @@
 
 use super::check_trace_length;
 use crate::error::{Error, Result};
+use crate::geometry::outline::twice_signed_area;
 use crate::raster::edge::PixelRect;
 use crate::raster::fixed::FixedPoint;
 use crate::raster::fragment::FragmentList;
@@ -30,29 +31,68 @@ pub fn trace_polygon(
     width: u32,
     height: u32,
 ) -> Result<Trace> {
-    if points.len() < 3 {
+    trace_polygon_rings(&[points.to_vec()], rule, width, height)
+}
+
+/// The edge table's trace of the polygon bounded by `rings` (the first
+/// the outer one; each closed implicitly), taken as given: a ring is not
+/// turned against the first, so one that runs the same way encloses its
+/// points twice, and the winding rules part there.
+///
+/// ```
+/// use rasterlab::raster::polygon::WindingRule;
+/// use rasterlab::teaching::trace_polygon_rings;
+/// // A square with a square hole, both clockwise on the screen.
+/// let outer = vec![(1.0, 1.0), (9.0, 1.0), (9.0, 9.0), (1.0, 9.0)];
+/// let inner = vec![(3.0, 3.0), (7.0, 3.0), (7.0, 7.0), (3.0, 7.0)];
+/// let rings = [outer, inner];
+/// let fragments = |rule| {
+///     let text = trace_polygon_rings(&rings, rule, 10, 10).unwrap().to_text();
+///     text.lines().last().unwrap().to_string()
+/// };
+/// assert!(fragments(WindingRule::EvenOdd).ends_with(", 48 fragments"));
+/// assert!(fragments(WindingRule::Nonzero).ends_with(", 64 fragments"));
+/// ```
+pub fn trace_polygon_rings(
+    rings: &[Vec<(f64, f64)>],
+    rule: WindingRule,
+    width: u32,
+    height: u32,
+) -> Result<Trace> {
+    if let Some(short) = rings.iter().find(|r| r.len() < 3) {
         return Err(Error::InvalidArgument(format!(
-            "edge-table traces a polygon: give at least 3 points (6 numbers), not {}",
-            points.len()
+            "edge-table traces a polygon: give at least 3 points (6 numbers) a ring, not {}",
+            short.len()
         )));
     }
-    let ring = points
+    let snapped = rings
         .iter()
-        .map(|&(x, y)| FixedPoint::snap_f64(x, y))
+        .map(|ring| {
+            ring.iter()
+                .map(|&(x, y)| FixedPoint::snap_f64(x, y))
+                .collect::<Result<Vec<_>>>()
+        })
         .collect::<Result<Vec<_>>>()?;
     let viewport = PixelRect::of_target(width, height);
-    let setup = PolygonSetup::new(0, &[ring]);
+    let setup = PolygonSetup::new(0, &snapped);
     check_trace_length(u64::from(height) + setup.edges.len() as u64, "lines")?;
     let px = |p: FixedPoint| {
         let (x, y) = p.to_f64();
         format!("({x}, {y})")
     };
     let mut trace = Trace::default();
+    let vertices: Vec<String> = rings.iter().map(|r| r.len().to_string()).collect();
     trace.header.push(format!(
-        "edge-table, {rule}, top-left convention: one ring of {} vertices, {} non-horizontal edges",
-        points.len(),
+        "edge-table, {rule}, top-left convention: {}, {} non-horizontal edges",
+        match vertices.as_slice() {
+            [one] => format!("one ring of {one} vertices"),
+            more => format!("{} rings of {} vertices", more.len(), more.join(" and ")),
+        },
         setup.edges.len()
     ));
+    if snapped.len() > 1 {
+        trace.header.push(ring_directions(&snapped));
+    }
     trace.header.push(
         "edge table (ET): each edge in the bucket of the first row whose sample line y = row + 0.5 it crosses (top end counted, bottom end not)"
             .into(),
@@ -135,4 +175,33 @@ pub fn trace_polygon(
         work.work.spans, work.edges_visited, work.runs, work.work.fragments
     ));
     Ok(trace)
+}
+
+/// Which way each ring runs on the screen (y down), and what that makes
+/// of the points inside a ring and the first: rings as given, not turned.
+fn ring_directions(rings: &[Vec<FixedPoint>]) -> String {
+    let sign = |r: &[FixedPoint]| twice_signed_area(r).signum();
+    let way = |s: i128| match s {
+        1 => "clockwise",
+        -1 => "counter-clockwise",
+        _ => "of no area",
+    };
+    let first = sign(&rings[0]);
+    let each: Vec<String> = rings
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let s = sign(r);
+            let relation = match (k, s == first) {
+                (0, _) => String::new(),
+                (_, true) => ", as ring 0: inside both their winding numbers add up to twice ring 0's (even-odd: out, nonzero: in)".into(),
+                (_, false) => ", against ring 0: inside both they cancel to 0 (a hole under both rules)".into(),
+            };
+            format!("ring {k} runs {}{relation}", way(s))
+        })
+        .collect();
+    format!(
+        "rings as given, not turned (on the screen, y down): {}",
+        each.join("; ")
+    )
 }
