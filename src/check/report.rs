@@ -627,7 +627,7 @@ impl Finding {
         self.provenance_html(&mut m);
         m.newline();
         let expected = match self.property {
-            Property::Exact(_) | Property::Line(_) => {
+            Property::Exact(_) | Property::Line(_) | Property::Polygon(_) => {
                 format!("{} expected", self.expected.len())
             }
             // Any consistent tie rule passes: there is no one answer.
