@@ -190,3 +190,25 @@ fn the_polygon_adapters_are_judged_not_broken() {
         }
     }
 }
+
+#[test]
+fn a_configuration_names_the_fill_rule_and_weighs_polygon_families() {
+    use rasterlab::check::CheckConfig;
+    let config = CheckConfig::from_json(
+        r#"{ "kind": "polygons", "fill": "nonzero", "weights": { "crossing": 5, "ties": 0 } }"#,
+    )
+    .unwrap();
+    let mut request = CheckRequest::new(SubjectSpec::Backend("edge-table".into()));
+    config.apply(&mut request).unwrap();
+    assert_eq!(request.fill, Some(WindingRule::Nonzero));
+    assert_eq!(request.kind, Some(Kind::Polygons));
+    // A triangle family is no polygon family, and a rule must be known.
+    for json in [
+        r#"{ "kind": "polygons", "weights": { "soup": 1 } }"#,
+        r#"{ "kind": "polygons", "fill": "odd" }"#,
+    ] {
+        let config = CheckConfig::from_json(json).unwrap();
+        let mut request = CheckRequest::new(SubjectSpec::Backend("edge-table".into()));
+        assert!(config.apply(&mut request).is_err(), "{json}");
+    }
+}
