@@ -280,5 +280,7 @@ PYTHON
     for peer in opengl tiny-skia euc embedded-graphics; do
         picture "$peer" --exec "$peers $peer {input} {width} {height}"
     done
+    # The polygon fillers' survey of docs/check.md, in one command.
+    sh examples/adapters/survey_polygons.sh
     echo "the survey's tables are above: update docs/check.md's tables from them"
 fi

@@ -49,6 +49,10 @@ const SKIPPED: &[(&str, &str)] = &[
         "a benchmark: minutes, with Mesa and the Stanford data as optional parts",
     ),
     (
+        "sh examples/adapters/survey_polygons.sh",
+        "the polygon survey: the Python packages, seven fillers on 150 cases under two rules",
+    ),
+    (
         "sh examples/adapters/survey.sh",
         "the survey: the Python packages and Mesa, every rasterizer on 150 cases, minutes",
     ),
@@ -65,6 +69,11 @@ const SKIPPED: &[(&str, &str)] = &[
 /// Commands that exit with another status than 0, by the start of their
 /// text (whitespace collapsed).
 const EXPECTED_STATUS: &[(&str, i32)] = &[
+    // The polygon filler asked to fill by the other rule.
+    (
+        "rasterlab check --kind polygons --fill even-odd --persistent --exec \"python3 examples/student/polygon_fill.py nonzero",
+        1,
+    ),
     // The student's rasterizer double draws: the check fails it.
     (
         "rasterlab check --rule watertight --persistent --exec \"python3 examples/student/rasterizer.py",

@@ -1,5 +1,5 @@
 //! One input of a check: a target size, its samples per pixel, and
-//! triangles or line segments in screen pixels, as written in a
+//! triangles, line segments or polygons in screen pixels, as written in a
 //! counterexample file and read back.
 //! The generators make cases, the judge and the shrinker read them.
 
@@ -24,6 +24,11 @@ pub struct Case {
     pub triangles: Vec<[Point; 3]>,
     /// Line segments (empty for a triangle case).
     pub lines: Vec<[Point; 2]>,
+    /// Polygons (empty for a triangle or line case): each its rings, the
+    /// outer ring first, then its holes, each ring closed implicitly
+    /// (last vertex to first). Written `polygon x0 y0 x1 y1 ...` and
+    /// `hole x0 y0 ...` lines, as the polygon file format is.
+    pub polygons: Vec<Vec<Vec<Point>>>,
     /// The samples per pixel under `check --msaa N` (`None`: one sample,
     /// at the pixel centre). A multisampled case's fragments carry a
     /// coverage mask.
@@ -36,7 +41,7 @@ pub struct Case {
 impl Case {
     /// How many primitives the case holds.
     pub fn len(&self) -> usize {
-        self.triangles.len() + self.lines.len()
+        self.triangles.len() + self.lines.len() + self.polygons.len()
     }
 
     /// True when the case holds no primitive.
@@ -51,6 +56,41 @@ impl Case {
             .iter()
             .flat_map(|t| t.iter().copied())
             .chain(self.lines.iter().flat_map(|l| l.iter().copied()))
+            .chain(self.polygons.iter().flatten().flatten().copied())
+    }
+
+    /// The polygons as judged, each its rings snapped like
+    /// [`Case::snapped_triangles`].
+    pub fn snapped_polygons(&self) -> Vec<Vec<Vec<FixedPoint>>> {
+        let s = self.snapping;
+        self.polygons
+            .iter()
+            .map(|rings| {
+                rings
+                    .iter()
+                    .map(|r| r.iter().map(|&p| snap(s.apply(p))).collect())
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Every point mapped by `f`, the target kept.
+    pub(crate) fn map_points(&self, f: impl Fn(Point) -> Point) -> Case {
+        Case {
+            triangles: self.triangles.iter().map(|t| t.map(&f)).collect(),
+            lines: self.lines.iter().map(|l| l.map(&f)).collect(),
+            polygons: self
+                .polygons
+                .iter()
+                .map(|rings| {
+                    rings
+                        .iter()
+                        .map(|r| r.iter().map(|&p| f(p)).collect())
+                        .collect()
+                })
+                .collect(),
+            ..self.clone()
+        }
     }
 
     /// The triangles as judged: snapped as the case's [`Snapping`] says,
@@ -108,6 +148,15 @@ impl Case {
         for l in &clean.lines {
             let _ = writeln!(out, "{} {} {} {}", l[0].0, l[0].1, l[1].0, l[1].1);
         }
+        for rings in &clean.polygons {
+            for (k, ring) in rings.iter().enumerate() {
+                out.push_str(if k == 0 { "polygon" } else { "hole" });
+                for p in ring {
+                    let _ = write!(out, " {} {}", p.0, p.1);
+                }
+                out.push('\n');
+            }
+        }
         out
     }
 
@@ -117,29 +166,17 @@ impl Case {
     /// gives the case back).
     pub(crate) fn flipped_y(&self) -> Case {
         let h = f64::from(self.height);
-        let flip = |p: Point| (p.0, h - p.1);
-        Case {
-            triangles: self.triangles.iter().map(|t| t.map(flip)).collect(),
-            lines: self.lines.iter().map(|l| l.map(flip)).collect(),
-            ..self.clone()
-        }
+        self.map_points(|p: Point| (p.0, h - p.1))
     }
 
     /// The same case with every `-0.0` made `0.0` (adding zero does it).
     fn without_negative_zeros(&self) -> Case {
-        let fix = |p: Point| (p.0 + 0.0, p.1 + 0.0);
-        Case {
-            width: self.width,
-            height: self.height,
-            triangles: self.triangles.iter().map(|t| t.map(fix)).collect(),
-            lines: self.lines.iter().map(|l| l.map(fix)).collect(),
-            samples: self.samples,
-            snapping: self.snapping,
-        }
+        self.map_points(|p: Point| (p.0 + 0.0, p.1 + 0.0))
     }
 
     /// Reads a case written by [`Case::to_text`] (a counterexample file),
-    /// or any soup or line set with a `# size WxH` line (and a `# msaa N`
+    /// or any soup, line set or polygon set (`polygon` and `hole`
+    /// lines) with a `# size WxH` line (and a `# msaa N`
     /// line for a multisampled one, `N` one of 1, 2, 4, 8 and 16; a
     /// `# snap S` line for a snapping other than 1/256 px; a line
     /// `# origin bottom-left` for one whose y runs up from the bottom
@@ -149,6 +186,8 @@ impl Case {
         let mut origin = Origin::TopLeft;
         // The line of each triangle and of each segment, for the errors.
         let (mut triangle_lines, mut segment_lines) = (Vec::new(), Vec::new());
+        // The line of each polygon's ring, for the errors.
+        let mut ring_lines: Vec<usize> = Vec::new();
         for (i, line) in text.lines().enumerate() {
             let bad = |m: String| Error::InvalidArgument(format!("line {}: {m}", i + 1));
             if let Some(size) = line.trim().strip_prefix("# size ") {
@@ -179,6 +218,11 @@ impl Case {
             if content.is_empty() {
                 continue;
             }
+            let (keyword, content) = match content.split_once(char::is_whitespace) {
+                Some((k @ ("polygon" | "hole"), rest)) => (Some(k), rest),
+                _ if content == "polygon" || content == "hole" => (Some(content), ""),
+                _ => (None, content),
+            };
             let v = content
                 .split_whitespace()
                 .map(|t| {
@@ -186,6 +230,22 @@ impl Case {
                         .map_err(|_| bad(format!("`{t}` is not a number")))
                 })
                 .collect::<Result<Vec<f64>>>()?;
+            if let Some(keyword) = keyword {
+                if v.len() % 2 != 0 || v.len() < 6 {
+                    return Err(bad(format!(
+                        "a {keyword} ring takes at least 3 points as x y pairs, found {} numbers",
+                        v.len()
+                    )));
+                }
+                let ring: Vec<Point> = v.chunks(2).map(|c| (c[0], c[1])).collect();
+                match (keyword, case.polygons.last_mut()) {
+                    ("hole", None) => return Err(bad("`hole` before any `polygon`".into())),
+                    ("hole", Some(rings)) => rings.push(ring),
+                    _ => case.polygons.push(vec![ring]),
+                }
+                ring_lines.push(i + 1);
+                continue;
+            }
             match v.len() {
                 6 => {
                     case.triangles
@@ -196,7 +256,11 @@ impl Case {
                     case.lines.push([(v[0], v[1]), (v[2], v[3])]);
                     segment_lines.push(i + 1);
                 }
-                n => return Err(bad(format!("expected 6 or 4 numbers, found {n}"))),
+                n => {
+                    return Err(bad(format!(
+                        "expected 6 or 4 numbers, or a `polygon` or `hole` ring, found {n} numbers"
+                    )))
+                }
             }
         }
         if !text.lines().any(|l| l.trim().starts_with("# size ")) {
@@ -224,6 +288,13 @@ impl Case {
                     .iter()
                     .zip(&segment_lines)
                     .flat_map(|(l, &line)| l.iter().map(move |p| (p, line))),
+            )
+            .chain(
+                case.polygons
+                    .iter()
+                    .flatten()
+                    .zip(&ring_lines)
+                    .flat_map(|(r, &line)| r.iter().map(move |p| (p, line))),
             );
         for (p, line) in vertices {
             FixedPoint::snap_f64(p.0, p.1)

@@ -30,9 +30,11 @@
 
 use super::case::Origin;
 use super::generate::{EXACT_FAMILIES, LINE_FAMILIES, MESH_FAMILIES, PIXEL_INDEX_FAMILIES};
+use super::polygons::POLYGON_FAMILIES;
 use super::request::{timeout_from_seconds, CheckRequest, ConventionChoice, Kind, RuleChoice};
 use super::snapping::Snapping;
 use crate::error::{Error, Result};
+use crate::raster::polygon::WindingRule;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -41,13 +43,16 @@ use std::path::Path;
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CheckConfig {
-    /// What the cases hold: `triangles` or `lines`.
+    /// What the cases hold: `triangles`, `lines` or `polygons`.
     pub kind: Option<String>,
     /// Triangles: a fill rule, `watertight`, `crack-free` or `any`, as
     /// `--rule` takes it.
     pub rule: Option<String>,
     /// Lines: a convention, as `--convention` takes it.
     pub convention: Option<String>,
+    /// Polygons: the fill rule, `even-odd` or `nonzero`, as `--fill`
+    /// takes it.
+    pub fill: Option<String>,
     /// Where the subject's origin is: `top-left` (y down) or
     /// `bottom-left` (y up), as `--origin` takes it.
     pub origin: Option<String>,
@@ -97,6 +102,9 @@ impl CheckConfig {
         if let Some(c) = &self.convention {
             request.convention = Some(c.parse::<ConventionChoice>()?);
         }
+        if let Some(f) = &self.fill {
+            request.fill = Some(f.parse::<WindingRule>()?);
+        }
         if let Some(o) = &self.origin {
             request.origin = o.parse::<Origin>()?;
         }
@@ -112,13 +120,19 @@ impl CheckConfig {
         if let Some(t) = self.timeout {
             request.timeout = timeout_from_seconds(t)?;
         }
-        let lines = request.kind == Some(Kind::Lines) || request.convention.is_some();
+        let kind = if request.kind == Some(Kind::Lines) || request.convention.is_some() {
+            Kind::Lines
+        } else if request.kind == Some(Kind::Polygons) || request.fill.is_some() {
+            Kind::Polygons
+        } else {
+            Kind::Triangles
+        };
         for (family, &points) in &self.weights {
-            if !known_families(lines).contains(&family.as_str()) {
+            if !known_families(kind).contains(&family.as_str()) {
                 return Err(Error::UnknownName {
                     what: "family",
                     name: family.clone(),
-                    known: known_families(lines).join(", "),
+                    known: known_families(kind).join(", "),
                 });
             }
             if !(points.is_finite() && (0.0..=1e6).contains(&points)) {
@@ -132,20 +146,21 @@ impl CheckConfig {
     }
 }
 
-/// The families a weight may name: those of triangles or of lines.
-fn known_families(lines: bool) -> Vec<&'static str> {
-    let mut all: Vec<&'static str> = if lines {
-        LINE_FAMILIES
+/// The families a weight may name: those of triangles, of lines or of
+/// polygons.
+fn known_families(kind: Kind) -> Vec<&'static str> {
+    let mut all: Vec<&'static str> = match kind {
+        Kind::Lines => LINE_FAMILIES
             .iter()
             .chain(PIXEL_INDEX_FAMILIES.iter())
             .copied()
-            .collect()
-    } else {
-        EXACT_FAMILIES
+            .collect(),
+        Kind::Polygons => POLYGON_FAMILIES.to_vec(),
+        Kind::Triangles => EXACT_FAMILIES
             .iter()
             .chain(MESH_FAMILIES.iter())
             .copied()
-            .collect()
+            .collect(),
     };
     let mut seen = std::collections::BTreeSet::new();
     all.retain(|f| seen.insert(*f));

@@ -25,6 +25,10 @@
 //! and diagonal, from far off the target, slopes with halfway ties, and
 //! zero-length.
 //!
+//! Polygons: the families of `super::polygons` (stars with holes, rings
+//! crossing themselves, overlapping holes, collinear and repeated
+//! vertices, slivers, huge coordinates, shared edges, ties).
+//!
 //! A [`Case`] is written and read as the text `rasterlab fragments` reads,
 //! with a first line `# size WxH` (see [`super::Case`]).
 
@@ -70,6 +74,7 @@ pub fn families(property: Property) -> &'static [&'static str] {
         Property::Watertight | Property::CrackFree => &MESH_FAMILIES,
         Property::Line(c) if c.whole_pixels() => &PIXEL_INDEX_FAMILIES,
         Property::Line(_) => &LINE_FAMILIES,
+        Property::Polygon(_) => &super::polygons::POLYGON_FAMILIES,
     }
 }
 
@@ -124,6 +129,7 @@ pub fn generate_case_snapped(
             case.triangles = polygon(rng, w, h);
         }
         Property::Exact(_) => case.triangles = exact(index, rng, w, h, snapping),
+        Property::Polygon(_) => case.polygons = super::polygons::generate(index, rng, w, h),
     }
     case
 }

@@ -76,6 +76,7 @@ mod grader;
 pub(crate) mod judge;
 mod persistent;
 mod pixel_index;
+mod polygons;
 mod preset;
 mod process;
 // Some of it only the program calls: unused without the `cli` feature.
@@ -98,6 +99,9 @@ pub use engine::{run, run_with, Progress, CONFIRMING_CASES};
 pub use generate::{families, family, generate_case, generate_case_snapped};
 pub use grader::{gradescope, junit};
 pub use judge::{judge, FailureKind, Finding, Provenance};
+pub use polygons::{
+    fill as polygon_reference, polygon_fragments, Boundary, Filling, POLYGON_FAMILIES,
+};
 pub use preset::{preset, presets, Preset};
 pub use process::parse_fragments;
 pub use program::{shell_words, Program};
@@ -616,6 +620,7 @@ pub fn reference(property: Property, case: &Case) -> Vec<Fragment> {
             line_fragments(line_backend_walking(LineWalk::DiamondExitNudged), case)
         }
         Property::Line(_) => line_fragments(line_backend_walking(LineWalk::DiamondExit), case),
+        Property::Polygon(rule) => polygons::fill(case, Filling::reference(rule)),
     }
 }
 

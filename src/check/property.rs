@@ -1,11 +1,12 @@
 //! What a check requires of every case: a [`Property`] of the triangles
-//! (a fill rule exactly, watertight, crack-free) or the lines (a
-//! [`LineConvention`]).
+//! (a fill rule exactly, watertight, crack-free), the lines (a
+//! [`LineConvention`]) or the polygons (a winding rule).
 
 use super::pixel_index;
 use super::snapping::Snapping;
 use crate::raster::edge::FillRule;
 use crate::raster::multisample::SamplePattern;
+use crate::raster::polygon::WindingRule;
 use std::fmt;
 
 /// How lines are judged.
@@ -125,19 +126,32 @@ pub enum Property {
     CrackFree,
     /// Lines under a convention.
     Line(LineConvention),
+    /// Polygons filled by a winding rule, exactly, under the polygon
+    /// back-ends' boundary convention: a pixel is filled when its centre,
+    /// moved right by an infinitesimal and down by a smaller one, has a
+    /// winding number the rule fills (a centre on a left or top edge is
+    /// inside, on a right or bottom edge outside: the top-left rule).
+    Polygon(WindingRule),
 }
 
 impl Property {
     /// A stable identifier, for JSON: `exact-top-left` (and so on for
     /// every fill rule), `watertight`, `crack-free`, `line-midpoint`,
-    /// `line-diamond`, `line-vulkan`, `line-pixel-index`.
+    /// `line-diamond`, `line-vulkan`, `line-pixel-index`, `polygon-even-odd`,
+    /// `polygon-nonzero`.
     pub fn id(self) -> String {
         match self {
             Property::Exact(rule) => format!("exact-{}", rule.name()),
             Property::Watertight => "watertight".into(),
             Property::CrackFree => "crack-free".into(),
             Property::Line(c) => format!("line-{}", c.name()),
+            Property::Polygon(r) => format!("polygon-{}", r.name()),
         }
+    }
+
+    /// Whether the cases hold polygons.
+    pub fn is_polygons(self) -> bool {
+        matches!(self, Property::Polygon(_))
     }
 
     /// Whether the cases hold lines.
@@ -180,6 +194,11 @@ impl fmt::Display for Property {
             ),
             Property::Line(LineConvention::PixelIndexOpenCv4) => f.write_str(
                 "lines, pixel-index endpoints as OpenCV's LINE_4 (clipped, a 4-connected staircase)",
+            ),
+            Property::Polygon(rule) => write!(
+                f,
+                "polygons, the {} fill rule, a centre on an edge by the top-left convention",
+                rule.name()
             ),
         }
     }

@@ -148,7 +148,8 @@ struct Primitive {
 impl Finding {
     /// The primitives, as drawn: triangles `t0`, `t1`, ... (snapped),
     /// then segments `l0`, `l1`, ... (snapped; under the pixel-index
-    /// convention an end names a pixel and is drawn at its centre).
+    /// convention an end names a pixel and is drawn at its centre), then
+    /// each polygon's rings, `p0`, `p0 hole 1`, ... (snapped).
     fn primitives(&self) -> Vec<Primitive> {
         let centre = if matches!(self.property, Property::Line(c) if c.whole_pixels()) {
             0.5
@@ -179,7 +180,25 @@ impl Finding {
                     })
                     .collect(),
             });
-        triangles.chain(lines).collect()
+        let rings = self
+            .case
+            .snapped_polygons()
+            .into_iter()
+            .enumerate()
+            .flat_map(|(i, rings)| {
+                rings
+                    .into_iter()
+                    .enumerate()
+                    .map(move |(k, ring)| Primitive {
+                        name: if k == 0 {
+                            format!("p{i}")
+                        } else {
+                            format!("p{i} hole {k}")
+                        },
+                        points: ring.iter().map(|p| p.to_f64()).collect(),
+                    })
+            });
+        triangles.chain(lines).chain(rings).collect()
     }
 
     /// The picture's legend: the cell colours, then a swatch per
@@ -476,7 +495,7 @@ impl Finding {
             let dash = triangle_mark(i).dasharray();
             // The edges clipped one by one (the view's border is no edge).
             let n = p.points.len();
-            let edges: Vec<(P, P)> = (0..if n == 3 { 3 } else { 1 })
+            let edges: Vec<(P, P)> = (0..if n >= 3 { n } else { 1 })
                 .filter_map(|k| view.clip_segment(p.points[k], p.points[(k + 1) % n]))
                 .collect();
             if !edges.is_empty() {
@@ -500,7 +519,7 @@ impl Finding {
                 )
                 .newline();
             }
-            let seen = if n == 3 {
+            let seen = if n >= 3 {
                 view.clip(&p.points)
             } else {
                 edges.iter().flat_map(|&(a, b)| [a, b]).collect()
@@ -627,7 +646,7 @@ impl Finding {
         self.provenance_html(&mut m);
         m.newline();
         let expected = match self.property {
-            Property::Exact(_) | Property::Line(_) => {
+            Property::Exact(_) | Property::Line(_) | Property::Polygon(_) => {
                 format!("{} expected", self.expected.len())
             }
             // Any consistent tie rule passes: there is no one answer.

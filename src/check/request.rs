@@ -39,6 +39,7 @@ use super::judge::{FailureKind, Finding, LineConvention};
 use super::snapping::Snapping;
 use crate::error::{Error, Result};
 use crate::raster::edge::FillRule;
+use crate::raster::polygon::WindingRule;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::str::FromStr;
@@ -64,9 +65,17 @@ pub enum Kind {
     Triangles,
     /// Line segments.
     Lines,
+    /// Polygons, with holes, crossing themselves or not.
+    Polygons,
 }
 
-crate::names::named_enum!(Kind, "kind", Triangles = "triangles", Lines = "lines");
+crate::names::named_enum!(
+    Kind,
+    "kind",
+    Triangles = "triangles",
+    Lines = "lines",
+    Polygons = "polygons"
+);
 
 /// What triangles are judged by.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -151,6 +160,8 @@ pub struct CheckRequest {
     pub rule: Option<RuleChoice>,
     /// Lines: the convention (default: midpoint).
     pub convention: Option<ConventionChoice>,
+    /// Polygons: the winding rule they are filled by (default: even-odd).
+    pub fill: Option<WindingRule>,
     /// How many cases.
     pub cases: u32,
     /// The generator's seed.
@@ -196,6 +207,7 @@ impl CheckRequest {
             kind: None,
             rule: None,
             convention: None,
+            fill: None,
             cases: 150,
             seed: 0,
             timeout: Duration::from_secs(5),

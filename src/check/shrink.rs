@@ -7,7 +7,8 @@
 //! stop when no variant fails or the budget of subject runs is spent. The
 //! variants, in order:
 //!
-//! 1. drop half or a quarter of the primitives, then one primitive;
+//! 1. drop half or a quarter of the primitives, then one primitive (for
+//!    polygons then a hole, then a vertex of a ring of more than 3);
 //! 2. cut the target to the failing pixel alone (moving the input by
 //!    whole pixels), or by half its width or height, or one pixel, and move
 //!    the whole input toward the origin by whole pixels;
@@ -145,6 +146,14 @@ fn variants(case: &Case, focus: Option<(i64, i64)>) -> Vec<Case> {
                 .filter(|&(i, _)| keep(n, i))
                 .map(|(_, l)| l)
                 .collect();
+            let n = c.polygons.len();
+            c.polygons = c
+                .polygons
+                .into_iter()
+                .enumerate()
+                .filter(|&(i, _)| keep(n, i))
+                .map(|(_, p)| p)
+                .collect();
             if c.len() < case.len() && !c.is_empty() {
                 out.push(c);
             }
@@ -160,6 +169,12 @@ fn variants(case: &Case, focus: Option<(i64, i64)>) -> Vec<Case> {
         c.lines.remove(i);
         out.push(c);
     }
+    for i in 0..case.polygons.len() {
+        let mut c = case.clone();
+        c.polygons.remove(i);
+        out.push(c);
+    }
+    out.extend(super::polygons::variants(case));
     if let Some((x, y)) = focus.filter(|&(x, y)| {
         (0..i64::from(case.width)).contains(&x) && (0..i64::from(case.height)).contains(&y)
     }) {
@@ -216,6 +231,7 @@ fn variants(case: &Case, focus: Option<(i64, i64)>) -> Vec<Case> {
         .iter()
         .map(|t| t.to_vec())
         .chain(case.lines.iter().map(|l| l.to_vec()))
+        .chain(case.polygons.iter().flatten().cloned())
         .collect();
     for prim in primitives {
         for k in 0..prim.len() {
@@ -235,12 +251,5 @@ fn variants(case: &Case, focus: Option<(i64, i64)>) -> Vec<Case> {
 }
 
 fn map_points(case: &Case, f: impl Fn(Point) -> Point) -> Case {
-    Case {
-        width: case.width,
-        height: case.height,
-        triangles: case.triangles.iter().map(|t| t.map(&f)).collect(),
-        lines: case.lines.iter().map(|l| l.map(&f)).collect(),
-        samples: case.samples,
-        snapping: case.snapping,
-    }
+    case.map_points(f)
 }

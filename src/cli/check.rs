@@ -8,6 +8,7 @@ use rasterlab::check::{
     timeout_from_seconds, CheckConfig, CheckRequest, ConventionChoice, Kind, Origin, Progress,
     ReportFormat, RuleChoice, Snapping, SubjectSpec,
 };
+use rasterlab::raster::polygon::WindingRule;
 use rasterlab::raster::SamplePattern;
 use rasterlab::{check, Error, Result};
 use std::path::PathBuf;
@@ -30,8 +31,8 @@ pub struct CheckArgs {
     /// Check a built-in back-end instead (see `rasterlab backends`).
     #[arg(long)]
     backend: Option<String>,
-    /// What the cases hold: triangles or lines (default: the back-end's
-    /// kind, or triangles).
+    /// What the cases hold: triangles, lines or polygons (default: the
+    /// back-end's kind, or triangles).
     #[arg(long)]
     kind: Option<Kind>,
     /// Triangles: the fill rule the answer must follow exactly
@@ -52,6 +53,11 @@ pub struct CheckArgs {
     /// (which convention does it follow?). Default: midpoint.
     #[arg(long)]
     convention: Option<ConventionChoice>,
+    /// Polygons (--kind polygons): the winding rule they are filled by,
+    /// even-odd or nonzero, a centre on an edge by the top-left
+    /// convention (inside on a left or top edge). Default: even-odd.
+    #[arg(long, value_name = "RULE")]
+    fill: Option<WindingRule>,
     /// Triangles under one fill rule, multisampled: N samples per pixel
     /// on the standard pattern (1, 2, 4, 8 or 16). The program is told N
     /// by {msaa} (and a line `# msaa N` in the case) and prints `x y id
@@ -165,6 +171,7 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         kind: args.kind.or(request.kind),
         rule: args.rule.or(request.rule),
         convention: args.convention.or(request.convention),
+        fill: args.fill.or(request.fill),
         origin: args.origin.unwrap_or(request.origin),
         snapping: args.snap.unwrap_or(request.snapping),
         msaa: args.msaa.map(SamplePattern::count),

@@ -5,7 +5,7 @@
 //! within a hair of an edge, ...). Where it holds, what the cause showed
 //! is put in words: the evidence of a diagnosis.
 
-use super::{lines, triangles, Cause, Role, Winding};
+use super::{lines, polygons, triangles, Cause, Role, Winding};
 use super::{FAR_OFF_TARGET, NEAR_AN_EDGE};
 use crate::check::case::Case;
 use crate::check::property::{LineConvention, Property};
@@ -95,7 +95,7 @@ pub(super) fn explains(
         Property::Watertight | Property::CrackFree => {
             FillRule::WATERTIGHT.iter().map(|&r| Some(r)).collect()
         }
-        Property::Line(_) => vec![None],
+        Property::Line(_) | Property::Polygon(_) => vec![None],
     };
     for base in bases {
         let answers = if lines {
@@ -114,6 +114,14 @@ pub(super) fn explains(
                 }
             }
             vec![model.fragments(case, base)]
+        } else if let Property::Polygon(rule) = property {
+            let mut model = polygons::Model::default();
+            for c in causes.iter().filter(|c| c.role() == Role::Model) {
+                if !model.add(c) {
+                    return None;
+                }
+            }
+            vec![model.fragments(case, rule)]
         } else {
             let mut model = triangles::Model::default();
             for c in causes.iter().filter(|c| c.role() == Role::Model) {
@@ -334,6 +342,15 @@ pub(crate) fn predict(causes: &[Cause], property: Property, case: &Case) -> Opti
         }
         Property::Exact(rule) => {
             let mut model = triangles::Model::default();
+            for c in models {
+                if !model.add(c) {
+                    return None;
+                }
+            }
+            Some(model.fragments(case, rule))
+        }
+        Property::Polygon(rule) => {
+            let mut model = polygons::Model::default();
             for c in models {
                 if !model.add(c) {
                     return None;

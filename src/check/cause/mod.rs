@@ -36,11 +36,14 @@
 mod diagnosis;
 mod explain;
 mod lines;
+mod polygons;
 mod triangles;
 
+use super::polygons::Boundary;
 use super::property::{LineConvention, Property};
 use super::snapping::Snapping;
 use crate::raster::edge::FillRule;
+use crate::raster::polygon::WindingRule;
 use std::fmt;
 
 pub use diagnosis::Diagnosis;
@@ -130,6 +133,14 @@ pub enum Cause {
     CentreForEverySample,
     /// Multisampling: the sample pattern mirrored in y.
     MirroredPattern,
+    /// Polygons: filled by the other winding rule.
+    OtherFill(WindingRule),
+    /// Polygons: a centre on an edge decided by another boundary
+    /// convention.
+    Boundary(Boundary),
+    /// Polygons: the holes ignored (each polygon filled as its outer ring
+    /// alone).
+    HoleIgnored,
 }
 
 impl Cause {
@@ -171,6 +182,9 @@ impl Cause {
             Cause::FourConnected => "four-connected".into(),
             Cause::CentreForEverySample => "centre-for-every-sample".into(),
             Cause::MirroredPattern => "mirrored-pattern".into(),
+            Cause::OtherFill(r) => format!("fill:{}", r.name()),
+            Cause::Boundary(b) => format!("boundary:{}", b.name()),
+            Cause::HoleIgnored => "hole-ignored".into(),
         }
     }
 
@@ -251,6 +265,20 @@ impl fmt::Display for Cause {
                 "the sample pattern mirrored in y: OpenGL's sample positions, which are given with y up, \
                  used in y-down screen coordinates",
             ),
+            Cause::OtherFill(r) => write!(
+                f,
+                "the other fill rule: filled by the {} rule (they differ where rings cross or overlap)",
+                r.name()
+            ),
+            Cause::Boundary(b) => write!(
+                f,
+                "the boundary convention: a centre on an edge decided by the {} convention ({})",
+                b.name(),
+                b.words()
+            ),
+            Cause::HoleIgnored => f.write_str(
+                "a hole ignored: each polygon filled as its outer ring alone",
+            ),
         }
     }
 }
@@ -293,6 +321,10 @@ enum Role {
 /// first, both) or drawn twice (before pixels listed twice in general);
 /// pixels listed twice; one pixel per column on steep lines; 4-connected.
 ///
+/// Polygons: fragments off the target; pixels listed twice; the other
+/// winding rule; each other boundary convention (top-right, bottom-left,
+/// bottom-right, inclusive, exclusive); the holes ignored.
+///
 /// A box one row *longer* than needed is not in the catalogue: the pixels
 /// it adds are tested and rejected, so it draws what the rules draw.
 ///
@@ -303,6 +335,10 @@ enum Role {
 pub fn catalogue(property: Property) -> Vec<Cause> {
     let mut out = vec![Cause::OffTarget];
     match property {
+        Property::Polygon(base) => {
+            out.push(Cause::Duplicates);
+            out.extend(polygons::catalogue(base));
+        }
         Property::Line(base) => {
             for c in LineConvention::ALL {
                 if c != base

@@ -157,7 +157,7 @@ impl Model {
             } else {
                 samples
             },
-            ..*case
+            ..case.clone()
         };
         for t in &mut changed.triangles {
             // The subject's own view of its triangle: winding and area as

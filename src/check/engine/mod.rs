@@ -61,7 +61,7 @@ use super::snapping::Snapping;
 use super::Subject;
 use crate::error::{Error, Result};
 use crate::raster::multisample::SamplePattern;
-use crate::raster::registry::{backend, Backend};
+use crate::raster::registry::{backend, polygon_backend, Backend};
 use std::path::Path;
 use subjects::{subject_factory, Factory};
 
@@ -111,13 +111,18 @@ fn run_inner(
     custom: Custom<'_>,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<CheckReport> {
+    // A polygon back-end is no triangle or line back-end: its subject is
+    // made from its name.
+    let polygon_named = custom.is_none()
+        && matches!(&request.subject, SubjectSpec::Backend(name) if polygon_backend(name).is_ok());
     let chosen = match (&request.subject, custom) {
-        (SubjectSpec::Backend(name), None) => Some(backend(name)?),
+        (SubjectSpec::Backend(name), None) if !polygon_named => Some(backend(name)?),
         _ => None,
     };
     let kind = match (request.kind, chosen) {
         (Some(k), _) => k,
         (None, Some(Backend::Line(_))) => Kind::Lines,
+        (None, None) if polygon_named => Kind::Polygons,
         (None, _) => Kind::Triangles,
     };
     let mode = Mode::of_request(request, kind)?;
@@ -252,17 +257,24 @@ fn read_case_file(
         }
     })?;
     let fits = match kind {
-        Kind::Lines => case.triangles.is_empty() && !case.lines.is_empty(),
-        Kind::Triangles => case.lines.is_empty() && !case.triangles.is_empty(),
+        Kind::Lines => {
+            case.triangles.is_empty() && case.polygons.is_empty() && !case.lines.is_empty()
+        }
+        Kind::Triangles => {
+            case.lines.is_empty() && case.polygons.is_empty() && !case.triangles.is_empty()
+        }
+        Kind::Polygons => {
+            case.triangles.is_empty() && case.lines.is_empty() && !case.polygons.is_empty()
+        }
     };
     if !fits {
         return Err(Error::InvalidArgument(format!(
             "{}: the case must hold {} only",
             path.display(),
-            if kind == Kind::Lines {
-                "line segments (four numbers a line)"
-            } else {
-                "triangles (six numbers a line)"
+            match kind {
+                Kind::Lines => "line segments (four numbers a line)",
+                Kind::Triangles => "triangles (six numbers a line)",
+                Kind::Polygons => "polygons (`polygon x0 y0 x1 y1 ...` lines, each followed by its `hole ...` lines)",
             }
         )));
     }

@@ -56,12 +56,24 @@ impl Mode {
                 "--rule is for triangles; lines are judged by --convention".into(),
             ));
         }
+        if kind != Kind::Polygons && request.fill.is_some() {
+            return Err(Error::InvalidArgument(
+                "--fill is for polygons (--kind polygons); triangles are judged by --rule".into(),
+            ));
+        }
+        if kind == Kind::Polygons && (request.rule.is_some() || request.convention.is_some()) {
+            return Err(Error::InvalidArgument(
+                "--rule and --convention are for triangles and lines; polygons are judged by --fill"
+                    .into(),
+            ));
+        }
         if kind == Kind::Triangles && request.convention.is_some() {
             return Err(Error::InvalidArgument(
                 "--convention is for lines; triangles are judged by --rule".into(),
             ));
         }
         Ok(match kind {
+            Kind::Polygons => Mode::One(Property::Polygon(request.fill.unwrap_or_default())),
             Kind::Lines => match request.convention {
                 None => Mode::One(Property::Line(LineConvention::Midpoint)),
                 Some(ConventionChoice::Exact(c)) => Mode::One(Property::Line(c)),
@@ -230,5 +242,6 @@ pub(super) fn row_name(p: Property) -> String {
         Property::Watertight => "watertight".into(),
         Property::CrackFree => "crack-free".into(),
         Property::Line(c) => c.name().into(),
+        Property::Polygon(r) => r.name().into(),
     }
 }

@@ -7,10 +7,11 @@ use crate::check::case::Case;
 use crate::check::program::Program;
 use crate::check::property::Property;
 use crate::check::request::{CheckRequest, Kind, SubjectSpec};
-use crate::check::{Builtin, Fragment, Subject, SubjectError};
+use crate::check::{polygon_fragments, Builtin, Fragment, Subject, SubjectError};
 use crate::error::{Error, Result};
 use crate::raster::edge::FillRule;
-use crate::raster::registry::Backend;
+use crate::raster::polygon::WindingRule;
+use crate::raster::registry::{polygon_backend, Backend};
 
 /// The subjects drawing the cases: the caller's one, or a pool of one per
 /// job.
@@ -136,13 +137,30 @@ pub(super) fn subject_factory<'a>(
                 }),
             )
         }
-        (Some(_), SubjectSpec::Backend(name)) => {
+        (None, SubjectSpec::Backend(name)) if kind == Kind::Polygons => {
+            let b = polygon_backend(name)?;
+            let fill = match mode {
+                Mode::One(Property::Polygon(fill)) => fill,
+                _ => WindingRule::default(),
+            };
+            (
+                format!("backend {name}"),
+                Box::new(move || {
+                    Box::new(
+                        move |c: &Case| -> std::result::Result<Vec<Fragment>, SubjectError> {
+                            Ok(polygon_fragments(b, c, fill))
+                        },
+                    ) as Box<dyn Subject + Send>
+                }),
+            )
+        }
+        (_, SubjectSpec::Backend(name)) => {
             return Err(Error::InvalidArgument(format!(
                 "back-end `{name}` does not draw {}",
-                if kind == Kind::Lines {
-                    "lines"
-                } else {
-                    "triangles"
+                match kind {
+                    Kind::Lines => "lines",
+                    Kind::Triangles => "triangles",
+                    Kind::Polygons => "polygons",
                 }
             )))
         }
@@ -152,6 +170,7 @@ pub(super) fn subject_factory<'a>(
                 Mode::One(Property::Watertight) => "watertight",
                 Mode::One(Property::CrackFree) => "crack-free",
                 Mode::One(Property::Line(c)) => c.name(),
+                Mode::One(Property::Polygon(fill)) => fill.name(),
                 Mode::AnyRule | Mode::AnyConvention => "any",
             };
             let mut program = if matches!(request.subject, SubjectSpec::Persistent(_)) {
@@ -165,7 +184,6 @@ pub(super) fn subject_factory<'a>(
                 Box::new(move || Box::new(program.clone()) as Box<dyn Subject + Send>),
             )
         }
-        (None, SubjectSpec::Backend(_)) => unreachable!("a back-end name was resolved"),
     })
 }
 

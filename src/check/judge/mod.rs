@@ -217,7 +217,7 @@ pub fn judge(property: Property, case: &Case, drawn: &[Fragment]) -> Option<Find
     };
     always(case, drawn, &mut finding);
     match property {
-        Property::Exact(_) => exact(case, drawn, &mut finding),
+        Property::Exact(_) | Property::Polygon(_) => exact(case, drawn, &mut finding),
         Property::Line(LineConvention::Vulkan) => vulkan(case, drawn, &mut finding),
         Property::Line(LineConvention::PixelIndexOpenCv4) => exact(case, drawn, &mut finding),
         Property::Line(_) => {
@@ -313,9 +313,14 @@ fn exact(case: &Case, drawn: &[Fragment], finding: &mut Finding) {
         .filter(|f| !already.contains(f))
         .collect();
     let snapped = case.snapped_triangles();
-    let tie = |f: &Fragment| !case.triangles.is_empty() && on_an_edge(&snapped, f);
+    let outlines = super::polygons::outlines(case);
+    let tie = |f: &Fragment| {
+        (!case.triangles.is_empty() && on_an_edge(&snapped, f))
+            || (!case.polygons.is_empty() && super::polygons::on_a_ring(&outlines, f))
+    };
     let rule = match finding.property {
         Property::Exact(rule) => rule.name(),
+        Property::Polygon(_) => "top-left",
         _ => "",
     };
     let ties: Vec<Fragment> = extra
