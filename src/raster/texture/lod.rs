@@ -232,8 +232,7 @@ pub fn isotropic_lambdas<const N: usize>(
 /// vectors: `x = 2^k m` with `m` in `[sqrt(1/2), sqrt(2))`, and
 /// `ln m = 2 atanh(s)` for `s = (m - 1) / (m + 1)`, its series to `s^9`
 /// (`|s| <= 0.172`: the next term is below `2^-25`). Zero, subnormal,
-/// infinite and NaN values go to the library's `log2`
-/// ([`log2_rest`]).
+/// infinite and NaN values go to the library's `f32::log2`.
 #[inline(always)]
 pub fn log2(x: f32) -> f32 {
     if is_plain(x) {
