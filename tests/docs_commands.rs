@@ -69,6 +69,11 @@ const SKIPPED: &[(&str, &str)] = &[
 /// Commands that exit with another status than 0, by the start of their
 /// text (whitespace collapsed).
 const EXPECTED_STATUS: &[(&str, i32)] = &[
+    // rasterlab's render without the depth test: the image check fails it.
+    (
+        "rasterlab check --image --exec \"rasterlab render --scene {scene} --size {size} {settings} --depth-test always",
+        1,
+    ),
     // The polygon filler asked to fill by the other rule.
     (
         "rasterlab check --kind polygons --fill even-odd --persistent --exec \"python3 examples/student/polygon_fill.py nonzero",

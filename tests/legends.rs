@@ -524,6 +524,17 @@ fn every_picture_gives_each_pair_one_meaning_readable_by_every_reader() {
     let svg = finding.to_svg();
     let entries = legend_entries(&svg);
     checked("the counterexample picture", &entries, &mut closest);
+    // check --image's diff picture: one pixel past the threshold.
+    let expected = image::RgbaImage::from_pixel(4, 3, image::Rgba([0, 0, 0, 255]));
+    let mut actual = expected.clone();
+    actual.put_pixel(1, 1, image::Rgba([200, 0, 0, 255]));
+    let diff = rasterlab::check::diff_image(&expected, &actual, 32);
+    let diff_entries = legend_entries(&rasterlab::check::diff_svg(&diff, "diff"));
+    checked(
+        "the image check's diff picture",
+        &diff_entries,
+        &mut closest,
+    );
     let html = finding.to_html();
     let start = html.find("<svg").unwrap();
     let end = html.rfind("</svg>").unwrap() + "</svg>".len();

@@ -30,6 +30,7 @@
 
 use super::case::Origin;
 use super::generate::{EXACT_FAMILIES, LINE_FAMILIES, MESH_FAMILIES, PIXEL_INDEX_FAMILIES};
+use super::image::ImageConfig;
 use super::polygons::POLYGON_FAMILIES;
 use super::request::{timeout_from_seconds, CheckRequest, ConventionChoice, Kind, RuleChoice};
 use super::snapping::Snapping;
@@ -68,6 +69,9 @@ pub struct CheckConfig {
     /// Points per family, by the family's name.
     #[serde(default)]
     pub weights: BTreeMap<String, f64>,
+    /// `check --image`: the thresholds and the tests (scenes, sizes,
+    /// settings, each test's thresholds and weight); other checks ignore it.
+    pub images: Option<ImageConfig>,
 }
 
 impl CheckConfig {

@@ -73,18 +73,18 @@ impl ReportFormat {
 }
 
 /// One test of a grader's report.
-struct GraderTest {
-    name: String,
-    passed: u32,
-    total: u32,
+pub(crate) struct GraderTest {
+    pub(crate) name: String,
+    pub(crate) passed: u32,
+    pub(crate) total: u32,
     /// The points the test is worth, shared among its cases.
-    points: f64,
+    pub(crate) points: f64,
     /// What a failure says in one line (JUnit's `message`).
-    message: String,
+    pub(crate) message: String,
     /// The failure kind (JUnit's `type`).
-    kind: String,
+    pub(crate) kind: String,
     /// The details, several lines.
-    output: String,
+    pub(crate) output: String,
 }
 
 /// The tests: one per family; a broken subject is one test of its own.
@@ -187,7 +187,7 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
                 );
             }
             if !failing.is_empty() {
-                let _ = writeln!(output, "rerun: {}", rerun_command(report));
+                let _ = writeln!(output, "rerun: {}", rerun_command(&report.command));
             }
             GraderTest {
                 name: format!("family {}", t.family),
@@ -206,8 +206,8 @@ fn tests(report: &CheckReport) -> Vec<GraderTest> {
 /// command without its grader format (so it stops at the first failure
 /// and shrinks it) and without the grader's `--out` folder (the files go
 /// to `check-output` where it is run).
-fn rerun_command(report: &CheckReport) -> String {
-    let words: Vec<&str> = report.command.split(' ').collect();
+pub(crate) fn rerun_command(command: &str) -> String {
+    let words: Vec<&str> = command.split(' ').collect();
     let mut kept = Vec::new();
     let mut skip = false;
     for w in words {
@@ -249,7 +249,12 @@ fn summary(report: &CheckReport) -> String {
 /// Gradescope's `results.json`: a test per family, worth one point a
 /// case or the family's weight ([`CheckConfig`](super::CheckConfig)).
 pub fn gradescope(report: &CheckReport) -> Value {
-    let tests: Vec<Value> = tests(report)
+    gradescope_of(tests(report), summary(report))
+}
+
+/// `results.json` of these tests under this summary.
+pub(crate) fn gradescope_of(tests: Vec<GraderTest>, summary: String) -> Value {
+    let tests: Vec<Value> = tests
         .into_iter()
         .enumerate()
         .map(|(i, t)| {
@@ -269,7 +274,7 @@ pub fn gradescope(report: &CheckReport) -> Value {
         .sum();
     json!({
         "score": score,
-        "output": summary(report),
+        "output": summary,
         "tests": tests,
     })
 }
@@ -287,11 +292,24 @@ fn xml(text: &str) -> String {
 
 /// JUnit XML: a testsuite of one testcase per family.
 pub fn junit(report: &CheckReport) -> String {
-    let tests = tests(report);
-    let broken = report.verdict == VerdictWord::Broken;
+    junit_of(
+        &tests(report),
+        &report.property,
+        &summary(report),
+        report.verdict == VerdictWord::Broken,
+    )
+}
+
+/// JUnit XML of these tests, for the property named.
+pub(crate) fn junit_of(
+    tests: &[GraderTest],
+    property: &str,
+    summary: &str,
+    broken: bool,
+) -> String {
     let failed = tests.iter().filter(|t| t.passed < t.total).count();
     let (failures, errors) = if broken { (0, failed) } else { (failed, 0) };
-    let suite = format!("rasterlab check: {}", report.property);
+    let suite = format!("rasterlab check: {property}");
     let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
         out,
@@ -304,18 +322,14 @@ pub fn junit(report: &CheckReport) -> String {
         xml(&suite),
         tests.len()
     );
-    let _ = writeln!(
-        out,
-        "    <system-out>{}</system-out>",
-        xml(&summary(report))
-    );
-    for t in &tests {
+    let _ = writeln!(out, "    <system-out>{}</system-out>", xml(summary));
+    for t in tests {
         // The name stays the same from run to run (CI tracks a test by
         // it); the counts are in the failure's message.
         let _ = write!(
             out,
             "    <testcase classname=\"rasterlab.check.{}\" name=\"{}\"",
-            xml(&report.property),
+            xml(property),
             xml(&t.name),
         );
         if t.passed == t.total {

@@ -73,6 +73,10 @@ pub(crate) mod generate;
 // Some of it only the program calls: unused without the `cli` feature.
 #[cfg_attr(not(feature = "cli"), allow(dead_code))]
 mod grader;
+// Some of it only the program calls: unused without the `cli` feature.
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
+mod image;
+mod image_diff;
 pub(crate) mod judge;
 mod persistent;
 mod pixel_index;
@@ -98,6 +102,12 @@ pub use config::CheckConfig;
 pub use engine::{run, run_with, Progress, CONFIRMING_CASES};
 pub use generate::{families, family, generate_case, generate_case_snapped};
 pub use grader::{gradescope, junit};
+pub use image::{
+    image_gradescope, image_junit, run_images, ImageConfig, ImageOutcome, ImageReport,
+    ImageRequest, ImageResult, ImageTest, ImageTestConfig, ImageThresholds, ThresholdConfig,
+    DEFAULT_IMAGE_SCENES,
+};
+pub use image_diff::{diff_image, diff_svg, ImageMetrics};
 pub use judge::{judge, FailureKind, Finding, Provenance};
 pub use polygons::{
     fill as polygon_reference, polygon_fragments, Boundary, Filling, POLYGON_FAMILIES,

@@ -5,8 +5,8 @@
 use super::args::msaa;
 use clap::Args;
 use rasterlab::check::{
-    timeout_from_seconds, CheckConfig, CheckRequest, ConventionChoice, Kind, Origin, Progress,
-    ReportFormat, RuleChoice, Snapping, SubjectSpec,
+    timeout_from_seconds, CheckConfig, CheckRequest, ConventionChoice, ImageRequest, Kind, Origin,
+    Progress, ReportFormat, RuleChoice, Snapping, SubjectSpec,
 };
 use rasterlab::raster::polygon::WindingRule;
 use rasterlab::raster::SamplePattern;
@@ -28,6 +28,15 @@ pub struct CheckArgs {
     /// start; {rule} and {msaa} are still replaced.
     #[arg(long)]
     persistent: bool,
+    /// Grade whole renders instead of coverage: the --exec program is run
+    /// once per image test with {scene} (a scene file, or a built-in
+    /// scene's name), {size} (WxH), {width}, {height}, {settings} (the
+    /// test's `rasterlab render` options) and {out} (the PNG to write)
+    /// replaced, and its image compared with rasterlab's render of the
+    /// same scene within the configuration's thresholds
+    /// (docs/check-image.md).
+    #[arg(long, requires = "exec", conflicts_with_all = ["persistent", "backend", "case"])]
+    image: bool,
     /// Check a built-in back-end instead (see `rasterlab backends`).
     #[arg(long)]
     backend: Option<String>,
@@ -138,6 +147,9 @@ pub fn run(args: &CheckArgs) -> Result<()> {
     } else {
         args.format
     };
+    if args.image {
+        return run_images(args, format);
+    }
     if args.persistent && args.exec.is_none() {
         return Err(Error::InvalidArgument(
             "--persistent starts an --exec program once; a --backend runs in rasterlab".into(),
@@ -219,6 +231,55 @@ pub fn run(args: &CheckArgs) -> Result<()> {
         ReportFormat::Junit => super::print::out(check::junit(&report))?,
     }
     report.outcome()
+}
+
+/// `check --image`: the program's renders graded against rasterlab's.
+fn run_images(args: &CheckArgs, format: ReportFormat) -> Result<()> {
+    if format == ReportFormat::Json {
+        return Err(Error::InvalidArgument(
+            "--image reports as text, gradescope or junit; its JSON is Gradescope's (--format gradescope)"
+                .into(),
+        ));
+    }
+    let command = args.exec.clone().unwrap_or_default();
+    let mut request = ImageRequest::new(&command, &args.out);
+    if let Some(path) = &args.config {
+        let config = CheckConfig::read(path)?;
+        let mut timeout = request.timeout;
+        if let Some(t) = config.timeout {
+            timeout = timeout_from_seconds(t).map_err(|e| config_error(path, e))?;
+        }
+        if let Some(images) = &config.images {
+            request
+                .configure(images)
+                .map_err(|e| config_error(path, e))?;
+        }
+        request.timeout = timeout;
+    }
+    if let Some(t) = args.timeout {
+        request.timeout = timeout_from_seconds(t)?;
+    }
+    request.check_command = check::shell_words(std::env::args());
+    let report = check::run_images(&request)?;
+    match format {
+        ReportFormat::Gradescope => super::print::line(
+            serde_json::to_string_pretty(&check::image_gradescope(&report))
+                .map_err(|e| Error::InvalidArgument(format!("the report as JSON: {e}")))?,
+        )?,
+        ReportFormat::Junit => super::print::out(check::image_junit(&report))?,
+        _ if report.exit_code() != 2 => super::print::line(&report)?,
+        _ => {}
+    }
+    report.outcome()
+}
+
+/// A value a configuration file names wrongly: its file's error.
+fn config_error(path: &std::path::Path, e: Error) -> Error {
+    Error::Parse {
+        path: path.to_path_buf(),
+        line: None,
+        message: e.to_string(),
+    }
 }
 
 /// The progress bars of a check on standard error: cases, the cases run
