@@ -4,7 +4,8 @@
 //! inclusive-edges and holes-ignored mistakes are named too; every report
 //! validates against the schema; a bad polygon case file is refused with
 //! its file and line; the polygon adapters of `examples/adapters/` are
-//! judged, not broken.
+//! judged, not broken, and the rings their headers were measured on get
+//! the verdicts the headers state.
 
 mod common;
 use common::rasterlab;
@@ -210,5 +211,71 @@ fn a_configuration_names_the_fill_rule_and_weighs_polygon_families() {
         let config = CheckConfig::from_json(json).unwrap();
         let mut request = CheckRequest::new(SubjectSpec::Backend("edge-table".into()));
         assert!(config.apply(&mut request).is_err(), "{json}");
+    }
+}
+
+/// The rings the polygon adapters' headers were measured on, each with
+/// the verdict the header states: Pillow (its vertices rounded to whole
+/// pixels by the adapter, which Pillow would otherwise truncate) and
+/// OpenCV fill the square 1.2..5.8 exactly as the reference does, cairo
+/// the pentagram under both rules, while Pillow and OpenCV add pixels
+/// beside a slanted edge and cairo inside a hexagon whose edges cross.
+#[test]
+fn the_adapters_measured_rings_get_the_verdicts_their_headers_state() {
+    let square = "polygon 1.2 1.2 5.8 1.2 5.8 5.8 1.2 5.8";
+    let triangle = "polygon 0.8 0.3 7.9 2.6 2.2 7.7";
+    let pentagram = "polygon 6 0.5 9.23 10.45 0.77 4.3 11.23 4.3 2.77 10.45";
+    let hexagon = "polygon 13.4453125 8.4296875 4.94140625 0.30859375 4.84765625 \
+                   7.59765625 8.41796875 0.578125 2.82421875 12.109375 9.74609375 1.99609375";
+    let dir = tempfile::tempdir().unwrap();
+    let require = std::env::var("RASTERLAB_REQUIRE_PYTHON").is_ok_and(|v| v == "1");
+    for (adapter, module, ring, passes) in [
+        ("pillow_polygon", "PIL", square, true),
+        ("pillow_polygon", "PIL", triangle, false),
+        ("opencv_polygon", "cv2", square, true),
+        ("opencv_polygon", "cv2", triangle, false),
+        ("cairo_polygon", "cairo", pentagram, true),
+        ("cairo_polygon", "cairo", hexagon, false),
+    ] {
+        let present = Command::new("python3")
+            .args(["-c", &format!("import numpy, {module}")])
+            .output()
+            .is_ok_and(|o| o.status.success());
+        if !present {
+            assert!(
+                !require || module == "cairo",
+                "RASTERLAB_REQUIRE_PYTHON=1 but python3 cannot import {module}"
+            );
+            eprintln!("SKIPPED: the {adapter} adapter (python3 cannot import {module})");
+            continue;
+        }
+        let path = dir.path().join("case.txt");
+        std::fs::write(&path, format!("# size 12x12\n{ring}\n")).unwrap();
+        for fill in ["even-odd", "nonzero"] {
+            let out = rasterlab(&[
+                "check",
+                "--kind",
+                "polygons",
+                "--fill",
+                fill,
+                "--case",
+                path.to_str().unwrap(),
+                "--out",
+                dir.path().join("out").to_str().unwrap(),
+                "--persistent",
+                "--exec",
+                &format!("python3 examples/adapters/{adapter}.py {{rule}}"),
+            ]);
+            let text = String::from_utf8_lossy(&out.stdout);
+            let expected = if passes { 0 } else { 1 };
+            assert_eq!(
+                out.status.code(),
+                Some(expected),
+                "{adapter} {fill} {ring}: {text}"
+            );
+            if !passes {
+                assert!(text.contains("(extra)"), "{adapter} {fill} {ring}: {text}");
+            }
+        }
     }
 }
