@@ -435,7 +435,24 @@ fn textured_dragon(name: &str, mesh: &Mesh, rounds: usize, gls: &Gl) -> Workload
     };
     let uploaded = upload_textured(gls, &texture, &vertices, &indices);
     let mut work = Workload::new(name);
-    let (draw, one, two) = (&draw, &one, &two);
+    add_textured_rasterlab(&mut work, &draw, &one, &two);
+    add_textured_llvmpipe(&mut work, gls, &uploaded, &transform, state, ours, 3, name);
+    let result = work.run(rounds);
+    delete_textured(gls, uploaded);
+    result
+}
+
+/// rasterlab's contenders of a textured workload: `scanline` and `tiled`
+/// on the one-thread pool `one`, `tiled` on the two-thread pool `two`,
+/// each running `draw`.
+fn add_textured_rasterlab<'a, D>(
+    work: &mut Workload<'a>,
+    draw: &'a D,
+    one: &'a rayon::ThreadPool,
+    two: &'a rayon::ThreadPool,
+) where
+    D: Fn(&dyn TriangleRasterizer, &rayon::ThreadPool) -> u64,
+{
     for name in ["scanline", "tiled"] {
         let b = triangle_backend(name).unwrap();
         work.add(Contender::new(name, Side::Rasterlab, 1, move || {
@@ -449,10 +466,6 @@ fn textured_dragon(name: &str, mesh: &Mesh, rounds: usize, gls: &Gl) -> Workload
         2,
         move || draw(tiled, two),
     ));
-    add_textured_llvmpipe(&mut work, gls, &uploaded, &transform, state, ours, 3, name);
-    let result = work.run(rounds);
-    delete_textured(gls, uploaded);
-    result
 }
 
 /// A textured shape and its mipmapped texture, one per llvmpipe context.
@@ -563,20 +576,7 @@ fn floor(options: &Options, gls: &Gl) -> Vec<WorkloadResult> {
     let transform = gl::Llvmpipe::mesh_transform(floor.mvp().to_cols_array());
     let uploaded = upload_textured(gls, floor.texture(), &vertices, &indices);
     let mut work = Workload::new(NAME);
-    let (draw, one, two) = (&draw, &one, &two);
-    for name in ["scanline", "tiled"] {
-        let b = triangle_backend(name).unwrap();
-        work.add(Contender::new(name, Side::Rasterlab, 1, move || {
-            draw(b, one)
-        }));
-    }
-    let tiled = triangle_backend("tiled").unwrap();
-    work.add(Contender::new(
-        "tiled-2-threads",
-        Side::Rasterlab,
-        2,
-        move || draw(tiled, two),
-    ));
+    add_textured_rasterlab(&mut work, &draw, &one, &two);
     // The horizon's row of pixels, where a centre lies within rounding of
     // the far edge, may go either way.
     let state = gl::DrawState::NONE;
