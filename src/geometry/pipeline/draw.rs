@@ -269,14 +269,15 @@ pub fn draw_binned<S: FragmentShader + ?Sized>(
     interpolation: Interpolation,
     target: &mut RenderTarget,
 ) -> WorkCounters {
-    let pass = Pass {
+    draw_binned_clearing(
+        geometry,
+        backend,
         shader,
         depth,
         interpolation,
-        clear: Clear::NOTHING,
-        blend: Blend::REPLACE,
-    };
-    draw_runs_binned(&geometry.runs(), backend, pass, target)
+        Clear::NOTHING,
+        target,
+    )
 }
 
 /// [`draw_binned`], with the target cleared by `clear` first, row by row
