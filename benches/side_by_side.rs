@@ -154,6 +154,36 @@ fn llvmpipe_name(gl: &gl::Llvmpipe) -> String {
     }
 }
 
+/// llvmpipe's contexts, once the first is seen to draw `theirs`
+/// fragments within `tolerance` of rasterlab's `ours`; otherwise
+/// llvmpipe is marked skipped in `work`, with why, and `None`.
+fn same_work<'a>(
+    work: &mut Workload<'_>,
+    gls: &'a Gl,
+    ours: u64,
+    tolerance: u64,
+    workload: &str,
+    theirs: impl FnOnce(&gl::Llvmpipe) -> u64,
+) -> Option<&'a [gl::Llvmpipe]> {
+    let gls = match gls {
+        Ok(gls) => gls,
+        Err(why) => {
+            work.skip("llvmpipe", why.clone());
+            return None;
+        }
+    };
+    let theirs = theirs(&gls[0]);
+    eprintln!("{workload}: fragments rasterlab {ours}, llvmpipe {theirs}");
+    if ours.abs_diff(theirs) > tolerance {
+        let reason = format!(
+            "llvmpipe drew {theirs} fragments where rasterlab drew {ours}: not the same work"
+        );
+        work.skip("llvmpipe", Skipped { reason });
+        return None;
+    }
+    Some(gls)
+}
+
 /// Adds llvmpipe's contenders, drawing `shapes` (one per context), once
 /// it is seen to draw `ours` fragments give or take `tolerance`.
 #[allow(clippy::too_many_arguments)]
@@ -167,26 +197,10 @@ fn add_llvmpipe<'a>(
     tolerance: u64,
     workload: &str,
 ) {
-    let gls = match gls {
-        Ok(gls) => gls,
-        Err(why) => {
-            work.skip("llvmpipe", why.clone());
-            return;
-        }
-    };
-    let theirs = gls[0].fragments(&shapes[0], transform, state.cull_back);
-    eprintln!("{workload}: fragments rasterlab {ours}, llvmpipe {theirs}");
-    if ours.abs_diff(theirs) > tolerance {
-        work.skip(
-            "llvmpipe",
-            Skipped {
-                reason: format!(
-                    "llvmpipe drew {theirs} fragments where rasterlab drew {ours}: not the same work"
-                ),
-            },
-        );
+    let theirs = |gl: &gl::Llvmpipe| gl.fragments(&shapes[0], transform, state.cull_back);
+    let Some(gls) = same_work(work, gls, ours, tolerance, workload, theirs) else {
         return;
-    }
+    };
     for (gl, shape) in gls.iter().zip(shapes) {
         let name = llvmpipe_name(gl);
         work.add(Contender::new(&name, Side::Peer, gl.threads(), move || {
@@ -511,22 +525,10 @@ fn add_textured_llvmpipe<'a>(
     tolerance: u64,
     workload: &str,
 ) {
-    let gls = match gls {
-        Ok(gls) => gls,
-        Err(why) => {
-            work.skip("llvmpipe", why.clone());
-            return;
-        }
-    };
-    let theirs = gls[0].fragments(&uploaded[0].0, transform, state.cull_back);
-    eprintln!("{workload}: fragments rasterlab {ours}, llvmpipe {theirs}");
-    if ours.abs_diff(theirs) > tolerance {
-        let reason = format!(
-            "llvmpipe drew {theirs} fragments where rasterlab drew {ours}: not the same work"
-        );
-        work.skip("llvmpipe", Skipped { reason });
+    let theirs = |gl: &gl::Llvmpipe| gl.fragments(&uploaded[0].0, transform, state.cull_back);
+    let Some(gls) = same_work(work, gls, ours, tolerance, workload, theirs) else {
         return;
-    }
+    };
     for (gl, (shape, texture)) in gls.iter().zip(uploaded) {
         let name = llvmpipe_name(gl);
         work.add(Contender::new(&name, Side::Peer, gl.threads(), move || {
